@@ -1,0 +1,141 @@
+#include "common/dds_participant.hpp"
+
+#include <fastdds/dds/core/status/LivelinessChangedStatus.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+
+#include <mutex>
+#include <set>
+#include <stdexcept>
+#include <thread>
+
+#include "common/clock.hpp"
+
+namespace vcockpit {
+namespace {
+
+void load_profiles_once(const std::string& file) {
+  static std::mutex mutex;
+  static std::set<std::string> loaded;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (loaded.count(file)) return;
+  auto* factory = dds::DomainParticipantFactory::get_instance();
+  if (factory->load_XML_profiles_file(file) != ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error(file + ": Fast DDS could not load the QoS profiles (see its log)");
+  }
+  loaded.insert(file);
+}
+
+// Polls a condition until it holds or the timeout passes (start-up and shutdown paths only).
+template <class Condition>
+bool poll_until(Condition condition, int64_t timeout_ns) {
+  const int64_t deadline = monotonic_now_ns() + timeout_ns;
+  while (!condition()) {
+    if (monotonic_now_ns() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return true;
+}
+
+}  // namespace
+
+DdsDuration to_dds_duration(int64_t ns) {
+  return DdsDuration(static_cast<int32_t>(ns / 1'000'000'000),
+                         static_cast<uint32_t>(ns % 1'000'000'000));
+}
+
+int UntypedWriter::matched_count() const {
+  dds::PublicationMatchedStatus status;
+  writer_->get_publication_matched_status(status);
+  return status.current_count;
+}
+
+bool UntypedWriter::wait_for_matched(int count, int64_t timeout_ns) const {
+  return poll_until([&] { return matched_count() >= count; }, timeout_ns);
+}
+
+bool UntypedWriter::wait_for_acknowledgments(int64_t timeout_ns) const {
+  return writer_->wait_for_acknowledgments(to_dds_duration(timeout_ns)) ==
+         ReturnCode_t::RETCODE_OK;
+}
+
+int UntypedReader::matched_count() const {
+  dds::SubscriptionMatchedStatus status;
+  reader_->get_subscription_matched_status(status);
+  return status.current_count;
+}
+
+bool UntypedReader::wait_for_matched(int count, int64_t timeout_ns) const {
+  return poll_until([&] { return matched_count() >= count; }, timeout_ns);
+}
+
+int UntypedReader::alive_writer_count() const {
+  dds::LivelinessChangedStatus status;
+  reader_->get_liveliness_changed_status(status);
+  return status.alive_count;
+}
+
+bool UntypedReader::wait_for_data(int64_t timeout_ns) const {
+  return reader_->wait_for_unread_message(to_dds_duration(timeout_ns));
+}
+
+DdsParticipant::DdsParticipant(const DdsOptions& options, const std::string& node_name)
+    : domain_id_(options.domain_id) {
+  load_profiles_once(options.qos_file);
+  auto* factory = dds::DomainParticipantFactory::get_instance();
+  dds::DomainParticipantQos qos;
+  if (factory->get_participant_qos_from_profile(options.participant_profile, qos) !=
+      ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error(options.qos_file + ": no participant profile '" +
+                             options.participant_profile + "'");
+  }
+  qos.name(node_name);
+  participant_ = factory->create_participant(options.domain_id, qos);
+  if (!participant_) {
+    throw std::runtime_error("cannot create a DDS participant on domain " +
+                             std::to_string(options.domain_id) + " with profile '" +
+                             options.participant_profile + "'");
+  }
+  publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+  if (!publisher_ || !subscriber_) throw std::runtime_error("cannot create publisher/subscriber");
+}
+
+DdsParticipant::~DdsParticipant() {
+  if (!participant_) return;
+  participant_->delete_contained_entities();
+  dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+dds::Topic* DdsParticipant::find_or_create_topic(const std::string& name,
+                                                 dds::TypeSupport type) {
+  if (auto it = topics_.find(name); it != topics_.end()) return it->second;
+  if (type.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error("cannot register type " + type.get_type_name());
+  }
+  dds::Topic* topic = participant_->create_topic(name, type.get_type_name(), dds::TOPIC_QOS_DEFAULT);
+  if (!topic) throw std::runtime_error("cannot create topic " + name);
+  topics_[name] = topic;
+  return topic;
+}
+
+dds::DataWriter* DdsParticipant::create_writer(dds::Topic* topic, const std::string& profile) {
+  dds::DataWriter* writer = publisher_->create_datawriter_with_profile(topic, profile);
+  if (!writer) {
+    throw std::runtime_error("cannot create a writer on " + topic->get_name() +
+                             " with QoS profile '" + profile + "'");
+  }
+  return writer;
+}
+
+dds::DataReader* DdsParticipant::create_reader(dds::Topic* topic, const std::string& profile) {
+  dds::DataReader* reader = subscriber_->create_datareader_with_profile(topic, profile);
+  if (!reader) {
+    throw std::runtime_error("cannot create a reader on " + topic->get_name() +
+                             " with QoS profile '" + profile + "'");
+  }
+  return reader;
+}
+
+}  // namespace vcockpit

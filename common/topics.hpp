@@ -1,0 +1,28 @@
+#pragma once
+// The project's topics: each IDL type with its PubSubType and its one topic name.
+
+#include "cockpitPubSubTypes.h"
+
+namespace vcockpit {
+
+template <class T>
+struct TopicTraits;
+
+#define VCOCKPIT_TOPIC(Type, topic_name)                   \
+  template <>                                              \
+  struct TopicTraits<cockpit::Type> {                      \
+    using PubSubType = cockpit::Type##PubSubType;          \
+    static constexpr const char* kName = topic_name;       \
+  }
+
+VCOCKPIT_TOPIC(HandSample, "cockpit/hand_sample");
+VCOCKPIT_TOPIC(HandState, "cockpit/hand_state");
+VCOCKPIT_TOPIC(ObjectInfo, "cockpit/object_info");
+VCOCKPIT_TOPIC(ObjectState, "cockpit/object_state");
+VCOCKPIT_TOPIC(GraspEvent, "cockpit/grasp_event");
+VCOCKPIT_TOPIC(FrameInfo, "cockpit/frame_info");
+VCOCKPIT_TOPIC(NodeStatus, "cockpit/node_status");
+
+#undef VCOCKPIT_TOPIC
+
+}  // namespace vcockpit
