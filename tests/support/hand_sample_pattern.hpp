@@ -18,14 +18,14 @@ inline cockpit::HandSample hand_sample_pattern(uint64_t seq) {
   s.seq(seq);
   s.sample_time_ns(static_cast<int64_t>(seq) * 1'000'000);
   s.source_stamp_ns(0);  // the publisher stamps this; the comparison ignores it
-  s.X_MH().position_m().x(0.1 + 0.01 * std::sin(t));
-  s.X_MH().position_m().y(-0.2 + 1.0 / (3.0 + static_cast<double>(seq)));
-  s.X_MH().position_m().z(0.9 + 1e-17 * static_cast<double>(seq));
+  s.X_MT().position_m().x(0.1 + 0.01 * std::sin(t));
+  s.X_MT().position_m().y(-0.2 + 1.0 / (3.0 + static_cast<double>(seq)));
+  s.X_MT().position_m().z(0.9 + 1e-17 * static_cast<double>(seq));
   const double half = 0.5 * t;
-  s.X_MH().orientation().w(std::cos(half));
-  s.X_MH().orientation().x(0.0);
-  s.X_MH().orientation().y(0.0);
-  s.X_MH().orientation().z(std::sin(half));
+  s.X_MT().orientation().w(std::cos(half));
+  s.X_MT().orientation().x(0.0);
+  s.X_MT().orientation().y(0.0);
+  s.X_MT().orientation().z(std::sin(half));
   for (std::size_t j = 0; j < s.joint_angles_rad().size(); ++j) {
     s.joint_angles_rad()[j] = std::fmod(0.001 * static_cast<double>(seq * (j + 1)), 1.5) / 3.0;
   }

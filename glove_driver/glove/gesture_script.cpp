@@ -1,0 +1,146 @@
+#include "glove_driver/glove/gesture_script.hpp"
+
+#include <algorithm>
+
+#include "common/pose.hpp"
+#include "common/yaml_config.hpp"
+
+namespace vcockpit::glove {
+namespace {
+
+using physics::Joint;
+using physics::JointAngles;
+
+JointAngles shape_from_degrees(const physics::HandModel& hand,
+                               std::initializer_list<std::pair<Joint, double>> degrees) {
+  JointAngles q = hand.rest_pose();
+  for (auto [joint, deg] : degrees) q[static_cast<int>(joint)] = deg_to_rad(deg);
+  physics::clamp_to_limits(hand, q);
+  return q;
+}
+
+// Minimum-jerk blend 0 -> 1 with zero velocity and acceleration at both ends.
+double min_jerk(double u) { return u * u * u * (10.0 + u * (-15.0 + 6.0 * u)); }
+
+}  // namespace
+
+std::map<std::string, JointAngles> builtin_shapes(const physics::HandModel& hand) {
+  std::map<std::string, JointAngles> shapes;
+  shapes["rest"] = hand.rest_pose();
+  // open: fingers straight and slightly spread, thumb out to the side
+  shapes["open"] = shape_from_degrees(
+      hand, {{Joint::kThumbRotation, 10}, {Joint::kThumbMcp, 0}, {Joint::kThumbIp, 0},
+             {Joint::kThumbAbduction, 20}, {Joint::kIndexMcp, 0}, {Joint::kIndexPip, 0},
+             {Joint::kIndexDip, 0}, {Joint::kMiddleMcp, 0}, {Joint::kMiddlePip, 0},
+             {Joint::kMiddleDip, 0}, {Joint::kRingMcp, 0}, {Joint::kRingPip, 0},
+             {Joint::kRingDip, 0}, {Joint::kLittleMcp, 0}, {Joint::kLittlePip, 0},
+             {Joint::kLittleDip, 0}, {Joint::kMiddleIndexAbduction, 5},
+             {Joint::kRingMiddleAbduction, 5}, {Joint::kLittleRingAbduction, 5}});
+  // pinch: thumb tip against the index tip, other fingers curled out of the way
+  shapes["pinch"] = shape_from_degrees(
+      hand, {{Joint::kThumbRotation, 40}, {Joint::kThumbMcp, 25}, {Joint::kThumbIp, 20},
+             {Joint::kThumbAbduction, 10}, {Joint::kIndexMcp, 45}, {Joint::kIndexPip, 40},
+             {Joint::kIndexDip, 20}, {Joint::kMiddleMcp, 60}, {Joint::kMiddlePip, 80},
+             {Joint::kMiddleDip, 50}, {Joint::kRingMcp, 65}, {Joint::kRingPip, 85},
+             {Joint::kRingDip, 50}, {Joint::kLittleMcp, 70}, {Joint::kLittlePip, 85},
+             {Joint::kLittleDip, 50}});
+  // power: all fingers wrapped round a handle, thumb closing over them
+  shapes["power"] = shape_from_degrees(
+      hand, {{Joint::kThumbRotation, 50}, {Joint::kThumbMcp, 35}, {Joint::kThumbIp, 30},
+             {Joint::kThumbAbduction, 5}, {Joint::kIndexMcp, 55}, {Joint::kIndexPip, 70},
+             {Joint::kIndexDip, 40}, {Joint::kMiddleMcp, 60}, {Joint::kMiddlePip, 75},
+             {Joint::kMiddleDip, 40}, {Joint::kRingMcp, 60}, {Joint::kRingPip, 75},
+             {Joint::kRingDip, 40}, {Joint::kLittleMcp, 60}, {Joint::kLittlePip, 70},
+             {Joint::kLittleDip, 40}});
+  return shapes;
+}
+
+GestureScript GestureScript::load(const std::string& path, const physics::HandModel& hand) {
+  return parse(ConfigNode::load_file(path), hand);
+}
+
+GestureScript GestureScript::parse(const ConfigNode& root, const physics::HandModel& hand) {
+  root.expect_keys({"rate_hz", "shapes", "keyframes"});
+  GestureScript script(hand);
+  if (auto rate = root.find("rate_hz")) {
+    script.rate_hz_ = rate->as_double();
+    if (script.rate_hz_ <= 0 || script.rate_hz_ > 100'000) rate->fail("must be in (0, 100000] Hz");
+  }
+  auto shapes = builtin_shapes(hand);
+  if (auto extra = root.find("shapes")) {
+    for (const auto& name : extra->keys()) {
+      const ConfigNode node = (*extra)[name];
+      JointAngles q = hand.rest_pose();
+      for (const auto& joint_name : node.keys()) {
+        const int j = physics::joint_index(joint_name);
+        if (j < 0) node[joint_name].fail("unknown joint '" + joint_name + "'");
+        q[j] = deg_to_rad(node[joint_name].as_double());
+      }
+      if (physics::clamp_to_limits(hand, q) > 0) node.fail("joint angles beyond the hand's limits");
+      shapes[name] = q;
+    }
+  }
+  const ConfigNode frames = root["keyframes"];
+  if (frames.size() < 1) frames.fail("needs at least one keyframe");
+  for (const ConfigNode& frame : frames.elements()) {
+    frame.expect_keys({"t_s", "position", "rpy_deg", "shape"});
+    Keyframe k;
+    const double t_s = frame.get_double("t_s");
+    k.t_ns = log_seconds_to_ns(t_s);
+    if (script.keyframes_.empty() ? t_s < 0 : k.t_ns <= script.keyframes_.back().t_ns) {
+      frame["t_s"].fail("keyframe times must start at 0 or later and increase");
+    }
+    const Keyframe* previous = script.keyframes_.empty() ? nullptr : &script.keyframes_.back();
+    auto position = frame.find("position");
+    auto rpy = frame.find("rpy_deg");
+    if (!previous && (!position || !rpy)) frame.fail("the first keyframe needs position and rpy_deg");
+    const Eigen::Vector3d p =
+        position ? Eigen::Vector3d(position->as_doubles<3>().data()) : previous->X_GH.translation();
+    const Eigen::Matrix3d R = rpy ? pose_from_position_rpy_deg({0, 0, 0}, rpy->as_doubles<3>()).linear()
+                                  : Eigen::Matrix3d(previous->X_GH.linear());
+    k.X_GH = make_pose(p, R);
+    k.shape = frame.get_string("shape", previous ? previous->shape : "rest");
+    auto it = shapes.find(k.shape);
+    if (it == shapes.end()) frame["shape"].fail("unknown hand shape '" + k.shape + "'");
+    k.joints_rad = it->second;
+    script.keyframes_.push_back(k);
+  }
+  return script;
+}
+
+void GestureScript::evaluate(int64_t t_ns, Eigen::Isometry3d& X_GH,
+                             JointAngles& joints_rad) const {
+  auto next = std::upper_bound(keyframes_.begin(), keyframes_.end(), t_ns,
+                               [](int64_t t, const Keyframe& k) { return t < k.t_ns; });
+  if (next == keyframes_.begin() || next == keyframes_.end()) {
+    const Keyframe& k = next == keyframes_.begin() ? keyframes_.front() : keyframes_.back();
+    X_GH = k.X_GH;
+    joints_rad = k.joints_rad;
+    return;
+  }
+  const Keyframe& a = *(next - 1);
+  const Keyframe& b = *next;
+  const double s = min_jerk(static_cast<double>(t_ns - a.t_ns) / static_cast<double>(b.t_ns - a.t_ns));
+  const Eigen::Quaterniond qa(a.X_GH.linear());
+  const Eigen::Quaterniond qb(b.X_GH.linear());
+  X_GH = make_pose(a.X_GH.translation() + s * (b.X_GH.translation() - a.X_GH.translation()),
+                   qa.slerp(s, qb).toRotationMatrix());
+  for (int j = 0; j < physics::kJointCount; ++j) {
+    joints_rad[j] = a.joints_rad[j] + s * (b.joints_rad[j] - a.joints_rad[j]);
+  }
+}
+
+GloveSample GestureScript::sample_at(int64_t t_ns) const {
+  Eigen::Isometry3d X_GH;
+  GloveSample out;
+  out.t_ns = t_ns;
+  evaluate(t_ns, X_GH, out.joints_rad);
+  const Eigen::Isometry3d X_TH =
+      physics::X_MH_from_tracker(*hand_, Eigen::Isometry3d::Identity(), out.joints_rad);
+  const Eigen::Isometry3d X_MT = hand_->tracker.X_GM.inverse() * X_GH * X_TH.inverse();
+  out.p_MT_m = X_MT.translation();
+  out.q_MT = Eigen::Quaterniond(X_MT.linear()).normalized();
+  return out;
+}
+
+}  // namespace vcockpit::glove

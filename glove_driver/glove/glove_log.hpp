@@ -1,0 +1,77 @@
+#pragma once
+// Glove logs: plain CSV that users can make and read.
+//
+//   # vcockpit glove log            <- '#' lines are comments, allowed anywhere
+//   # hand: right                   <- recognised: hand side (right by default)
+//   t_s,x_m,y_m,z_m,qw,qx,qy,qz,thumb_rotation_rad,...,wrist_yaw_rad
+//   0,0.1,0.3,0.9,1,0,0,0,0.1,...
+//
+// Columns: t_s (strictly increasing); wrist position x_m,y_m,z_m in the tracker frame M; wrist
+// orientation either qw,qx,qy,qz (unit quaternion) or psi,theta,gamma with _rad or _deg (Euler
+// convention from hand.yaml tracker.euler); joint columns named by the CyberGlove order
+// (hand_joints.hpp) with _rad or _deg. Missing joint columns take the hand's rest pose and are
+// reported once; an unknown or repeated column is an error. Values beyond a joint's limits are
+// clamped to the limit and counted (a glove reads a little past a calibrated range all the
+// time; rejecting the whole log for it would be useless). Everything else that is wrong — a
+// non-numeric field, NaN/Inf, time not increasing, a short or truncated line, an empty or
+// header-only file — is an error naming the file, the line and the column.
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "glove_driver/glove/glove_sample.hpp"
+#include "physics_node/physics/hand_model.hpp"
+
+namespace vcockpit::glove {
+
+class GloveLogError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct GloveLog {
+  std::string path;
+  bool left_hand = false;
+  std::vector<std::string> comments;  // comment lines without the leading '#' and space
+  std::vector<GloveSample> samples;
+  std::vector<std::string> missing_joints;  // channels that took the rest pose
+  int clamped_values = 0;                   // joint values moved into their limits
+  std::string first_clamp;                  // "file:line: column ..." of the first, for the log
+};
+
+// Reads and validates a whole log. Throws GloveLogError.
+GloveLog read_glove_log(const std::string& path, const physics::HandModel& hand);
+
+// Writes a log atomically: to "<path>.partial", then renamed over <path>. The columns are the
+// canonical ones (t_s, position, quaternion, all 22 joints in rad), full double precision, so
+// reading it back gives identical values. Throws GloveLogError on I/O failure.
+void write_glove_log(const std::string& path, const std::vector<GloveSample>& samples,
+                     bool left_hand, const std::vector<std::string>& comments);
+
+// Streaming form of write_glove_log for recording: lines go to "<path>.partial" as they come;
+// commit() renames into place. Destroyed without commit() (crash, error), it removes the partial
+// file, so an interrupted recording never leaves a corrupt log under the real name.
+class GloveLogWriter {
+ public:
+  GloveLogWriter(const std::string& path, bool left_hand, const std::vector<std::string>& comments);
+  ~GloveLogWriter();
+  GloveLogWriter(const GloveLogWriter&) = delete;
+  GloveLogWriter& operator=(const GloveLogWriter&) = delete;
+
+  void append(const GloveSample& sample);
+  void commit();  // flush, fsync, rename; throws GloveLogError on failure
+  std::size_t count() const { return count_; }
+
+ private:
+  std::string path_;
+  std::string partial_path_;
+  std::FILE* file_ = nullptr;
+  std::size_t count_ = 0;
+};
+
+// The canonical header line (without newline).
+std::string canonical_header();
+
+}  // namespace vcockpit::glove

@@ -1,0 +1,239 @@
+// glove_driver: publishes hand samples (wrist pose + 22 joint angles) on cockpit/hand_sample
+// from a synthetic gesture script or a recorded glove log, or records that topic to a log.
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <memory>
+
+#include "common/clock.hpp"
+#include "common/logging.hpp"
+#include "common/signals.hpp"
+#include "common/yaml_config.hpp"
+#include "glove_driver/glove/gesture_script.hpp"
+#include "glove_driver/glove/glove_log.hpp"
+#include "glove_driver/glove/replay_cursor.hpp"
+#include "glove_driver/node/recorder.hpp"
+#include "glove_driver/node/sample_publisher.hpp"
+#include "glove_driver/node/terminal_progress.hpp"
+#include "physics_node/config/hand_config.hpp"
+
+namespace vcockpit::glove {
+namespace {
+
+struct Flags {
+  DdsFlags dds;
+  std::string source;
+  std::string script_path;
+  std::string log_path;
+  std::string record_path;
+  std::string hand_config = std::string(VCOCKPIT_CONFIG_DIR) + "/hand.yaml";
+  std::optional<uint32_t> hand_id;
+  double rate = 1.0;
+  std::optional<double> rate_hz;
+  bool loop = false;
+  double start_offset_s = 0.0;
+  bool lockstep = false;
+  int subscribers = 1;
+  double match_timeout_s = 30.0;
+  uint64_t count = 0;
+  double duration_s = 0.0;
+  double idle_timeout_s = 0.0;
+  std::string log_level = "info";
+};
+
+void add_flags(CLI::App& app, Flags& f) {
+  add_dds_flags(app, f.dds);
+  app.add_option("--source", f.source, "where samples come from: synthetic or replay")
+      ->check(CLI::IsMember({"synthetic", "replay"}));
+  app.add_option("--script", f.script_path, "gesture script YAML (--source synthetic)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--log", f.log_path, "glove log CSV to replay (--source replay)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--record", f.record_path,
+                 "record cockpit/hand_sample to this glove log (instead of publishing)");
+  app.add_option("--hand-config", f.hand_config, "hand model YAML (joint limits, rest pose, tracker)")
+      ->check(CLI::ExistingFile)
+      ->capture_default_str();
+  app.add_option("--hand-id", f.hand_id, "hand id on the topic: 0 right, 1 left (default: the "
+                                          "log's hand, else 0)");
+  app.add_option("--rate", f.rate, "time scale: 2 plays twice as fast; 0 = as fast as possible")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--rate-hz", f.rate_hz, "synthetic samples per second (default: the script's)")
+      ->check(CLI::Range(1.0, 100000.0));
+  app.add_flag("--loop", f.loop, "replay: start over at the end (time keeps increasing)");
+  app.add_option("--start-offset", f.start_offset_s, "replay: skip this many seconds of the log")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--lockstep", f.lockstep,
+               "reliable keep-all delivery: wait for subscribers and their acknowledgements");
+  app.add_option("--subscribers", f.subscribers, "lockstep: subscribers to wait for")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--match-timeout", f.match_timeout_s, "lockstep: seconds to wait for them")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--count", f.count, "record: stop after this many samples");
+  app.add_option("--duration", f.duration_s, "record: stop after this many seconds")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--idle-timeout", f.idle_timeout_s,
+                 "record: stop this many seconds after the last sample")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--log-level", f.log_level, "trace, debug, info, warn, error")
+      ->capture_default_str();
+}
+
+// A source of samples with their due times: a replay cursor or a synthetic script.
+class Source {
+ public:
+  virtual ~Source() = default;
+  virtual bool next(GloveSample& out, int64_t& due_ns) = 0;
+  virtual double position_s() const = 0;
+  virtual double total_s() const = 0;
+  // joint values the reader clamped into their limits while loading (a log), for node_status
+  virtual uint64_t clamped_on_load() const { return 0; }
+};
+
+class ReplaySource : public Source {
+ public:
+  ReplaySource(GloveLog log, const ReplayOptions& options)
+      : log_(std::move(log)), cursor_(log_.samples, options) {}
+  bool next(GloveSample& out, int64_t& due_ns) override { return cursor_.next(out, due_ns); }
+  double position_s() const override { return ns_to_seconds(cursor_.position_ns()); }
+  double total_s() const override { return ns_to_seconds(cursor_.pass_duration_ns()); }
+  uint64_t clamped_on_load() const override { return static_cast<uint64_t>(log_.clamped_values); }
+
+ private:
+  GloveLog log_;
+  ReplayCursor cursor_;
+};
+
+class SyntheticSource : public Source {
+ public:
+  SyntheticSource(GestureScript script, double rate_hz, double time_scale)
+      : script_(std::move(script)), rate_hz_(rate_hz), time_scale_(time_scale) {}
+  bool next(GloveSample& out, int64_t& due_ns) override {
+    const int64_t t_ns = static_cast<int64_t>(std::llround(static_cast<double>(k_) * 1e9 / rate_hz_));
+    if (t_ns > script_.duration_ns()) return false;
+    ++k_;
+    out = script_.sample_at(t_ns);
+    position_ns_ = t_ns;
+    due_ns = time_scale_ > 0 ? static_cast<int64_t>(static_cast<double>(t_ns) / time_scale_) : 0;
+    return true;
+  }
+  double position_s() const override { return ns_to_seconds(position_ns_); }
+  double total_s() const override { return ns_to_seconds(script_.duration_ns()); }
+
+ private:
+  GestureScript script_;
+  double rate_hz_;
+  double time_scale_;
+  uint64_t k_ = 0;
+  int64_t position_ns_ = 0;
+};
+
+int run_publisher(DdsParticipant& participant, const physics::HandModel& hand, Source& source,
+                  const PublisherOptions& options) {
+  SamplePublisher publisher(participant, hand, options);
+  publisher.add_clamped(source.clamped_on_load());
+  if (!publisher.wait_for_subscribers()) return shutdown_requested() ? 0 : 1;
+  TerminalProgress progress;
+  const int64_t start_ns = monotonic_now_ns();
+  GloveSample sample;
+  int64_t due_ns = 0;
+  while (!shutdown_requested() && source.next(sample, due_ns)) {
+    if (due_ns > 0) sleep_until_ns(start_ns + due_ns);
+    publisher.publish(sample);
+    const int64_t now_ns = monotonic_now_ns();
+    publisher.tick(now_ns);
+    const double wall_s = ns_to_seconds(now_ns - start_ns);
+    progress.update(now_ns, source.position_s(), source.total_s(),
+                    wall_s > 0 ? source.position_s() / wall_s : 0.0, publisher.published());
+  }
+  progress.finish();
+  const bool ok = publisher.finish();
+  const auto& c = publisher.counts();
+  spdlog::info("published {} samples in {:.3f} s (rejected {}, clamped {}, write failures {})",
+               publisher.published(), ns_to_seconds(monotonic_now_ns() - start_ns), c.rejected(),
+               c.clamped, publisher.write_failures());
+  return ok ? 0 : 1;
+}
+
+int run(const Flags& f) {
+  const bool recording = !f.record_path.empty();
+  if (recording == !f.source.empty()) {
+    throw CLI::ValidationError("give either --source synthetic|replay or --record FILE");
+  }
+  if (f.source == "synthetic" && f.script_path.empty()) {
+    throw CLI::ValidationError("--source synthetic needs --script FILE");
+  }
+  if (f.source == "replay" && f.log_path.empty()) {
+    throw CLI::ValidationError("--source replay needs --log FILE");
+  }
+  physics::HandModel hand = load_hand_model(f.hand_config);
+  DdsParticipant participant(resolve_dds_options(f.dds), "glove_driver");
+
+  if (recording) {
+    RecorderOptions options;
+    options.path = f.record_path;
+    options.lockstep = f.lockstep;
+    options.hand_id = f.hand_id.value_or(hand.left ? 1 : 0);
+    options.count = f.count;
+    options.duration_s = f.duration_s;
+    options.idle_timeout_s = f.idle_timeout_s;
+    return run_recorder(participant, hand, options);
+  }
+
+  std::unique_ptr<Source> source;
+  bool left = hand.left;
+  if (f.source == "replay") {
+    GloveLog log = read_glove_log(f.log_path, hand);
+    left = log.left_hand;
+    if (!log.missing_joints.empty()) {
+      std::string names;
+      for (const auto& n : log.missing_joints) names += (names.empty() ? "" : ", ") + n;
+      spdlog::warn("{}: no column for {} joint(s), using the rest pose: {}", f.log_path,
+                   log.missing_joints.size(), names);
+    }
+    if (log.clamped_values > 0) {
+      spdlog::warn("{} joint value(s) beyond limits were clamped; first: {}", log.clamped_values,
+                   log.first_clamp);
+    }
+    spdlog::info("{}: {} samples, {:.3f} s", f.log_path, log.samples.size(),
+                 ns_to_seconds(log.samples.back().t_ns - log.samples.front().t_ns));
+    source = std::make_unique<ReplaySource>(
+        std::move(log), ReplayOptions{f.rate, f.loop, f.start_offset_s});
+  } else {
+    GestureScript script = GestureScript::load(f.script_path, hand);
+    const double rate_hz = f.rate_hz.value_or(script.rate_hz());
+    source = std::make_unique<SyntheticSource>(std::move(script), rate_hz, f.rate);
+  }
+  PublisherOptions options;
+  options.hand_id = f.hand_id.value_or(left ? 1 : 0);
+  options.lockstep = f.lockstep;
+  options.subscribers = f.subscribers;
+  options.match_timeout_s = f.match_timeout_s;
+  return run_publisher(participant, hand, *source, options);
+}
+
+}  // namespace
+}  // namespace vcockpit::glove
+
+int main(int argc, char** argv) {
+  using namespace vcockpit;
+  CLI::App app("glove_driver: publishes glove + wrist tracker samples on cockpit/hand_sample "
+               "(synthetic gestures or a replayed glove log), or records them to a glove log");
+  glove::Flags flags;
+  glove::add_flags(app, flags);
+  CLI11_PARSE(app, argc, argv);
+  try {
+    setup_logging("glove_driver", flags.log_level);
+    install_shutdown_handlers();
+    return glove::run(flags);
+  } catch (const CLI::Error& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,89 @@
+#include "glove_driver/node/sample_publisher.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "common/clock.hpp"
+#include "common/signals.hpp"
+#include "glove_driver/glove/hand_sample_convert.hpp"
+
+namespace vcockpit::glove {
+
+SamplePublisher::SamplePublisher(DdsParticipant& participant, const physics::HandModel& hand,
+                                 const PublisherOptions& options)
+    : options_(options),
+      validator_(hand),
+      writer_(participant.make_writer<cockpit::HandSample>(options.lockstep ? "reliable"
+                                                                            : "stream")),
+      status_writer_(participant.make_writer<cockpit::NodeStatus>("state")) {
+  last_status_ns_ = monotonic_now_ns();
+}
+
+bool SamplePublisher::wait_for_subscribers() {
+  if (!options_.lockstep) return true;
+  spdlog::info("lockstep: waiting for {} subscriber(s) on {}", options_.subscribers,
+               TopicTraits<cockpit::HandSample>::kName);
+  const int64_t deadline = monotonic_now_ns() + seconds_to_ns(options_.match_timeout_s);
+  while (!shutdown_requested() && monotonic_now_ns() < deadline) {
+    if (writer_.wait_for_matched(options_.subscribers, 100'000'000)) return true;
+  }
+  if (!shutdown_requested()) {
+    spdlog::error("lockstep: {} subscriber(s) did not match within {} s", options_.subscribers,
+                  options_.match_timeout_s);
+  }
+  return false;
+}
+
+bool SamplePublisher::publish(GloveSample sample) {
+  if (!validator_.accept(sample)) return false;
+  message_ = to_hand_sample(sample, options_.hand_id, published_, monotonic_now_ns());
+  // a reliable history stays full while a reader lags; keep trying while it is still there
+  while (!writer_.write(message_)) {
+    if (!options_.lockstep || shutdown_requested() || writer_.matched_count() == 0) {
+      ++write_failures_;
+      return false;
+    }
+  }
+  ++published_;
+  return true;
+}
+
+void SamplePublisher::tick(int64_t now_ns) {
+  if (now_ns - last_status_ns_ >= 1'000'000'000) publish_status(cockpit::RUNNING, now_ns);
+}
+
+bool SamplePublisher::finish() {
+  bool ok = true;
+  if (options_.lockstep && published_ > 0) {
+    ok = writer_.wait_for_acknowledgments(seconds_to_ns(options_.match_timeout_s));
+    if (!ok) spdlog::error("lockstep: subscribers did not acknowledge every sample");
+  }
+  publish_status(cockpit::STOPPING, monotonic_now_ns());
+  status_writer_.wait_for_acknowledgments(1'000'000'000);  // the last report must not be lost
+  return ok && write_failures_ == 0;
+}
+
+void SamplePublisher::publish_status(cockpit::NodeState state, int64_t now_ns) {
+  const auto& c = validator_.counts();
+  cockpit::NodeStatus status;
+  status.node_name(options_.node_name);
+  status.state(state);
+  status.stamp_ns(now_ns);
+  const double period_s = ns_to_seconds(now_ns - last_status_ns_);
+  status.loop_rate_hz(period_s > 0 ? static_cast<double>(published_ - published_at_last_status_) / period_s
+                                   : 0.0);
+  status.published(published_);
+  status.received(c.accepted);
+  status.rejected(c.rejected());
+  status.rejected_nonfinite(c.rejected_nonfinite);
+  status.rejected_out_of_range(c.rejected_out_of_range);
+  status.rejected_stale(c.rejected_stale);
+  status.clamped(c.clamped + clamped_before_);
+  status.input_alive(true);
+  status.detail(std::string(options_.lockstep ? "lockstep" : "stream") + ", " +
+                std::to_string(writer_.matched_count()) + " subscriber(s)");
+  status_writer_.write(status);
+  last_status_ns_ = now_ns;
+  published_at_last_status_ = published_;
+}
+
+}  // namespace vcockpit::glove

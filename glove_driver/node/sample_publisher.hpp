@@ -1,0 +1,61 @@
+#pragma once
+// The glove driver's DDS side: validates each sample, publishes it on cockpit/hand_sample, and
+// reports counts on cockpit/node_status about once a second.
+//
+// Stream mode: best effort at the source's pace (stream profile). Lockstep: reliable keep-all
+// (reliable profile); waits for its subscribers to match before the first sample and for their
+// acknowledgement after the last, so a replay is lossless however fast it runs.
+
+#include <cstdint>
+#include <string>
+
+#include "common/dds_participant.hpp"
+#include "glove_driver/glove/sample_validator.hpp"
+
+namespace vcockpit::glove {
+
+struct PublisherOptions {
+  uint32_t hand_id = 0;
+  bool lockstep = false;
+  int subscribers = 1;           // lockstep: readers to wait for
+  double match_timeout_s = 30.0;
+  std::string node_name = "glove_driver";
+};
+
+class SamplePublisher {
+ public:
+  SamplePublisher(DdsParticipant& participant, const physics::HandModel& hand,
+                  const PublisherOptions& options);
+
+  // Lockstep: blocks until the subscribers matched (false on timeout or shutdown). Stream: true.
+  bool wait_for_subscribers();
+  // Validates and writes; false if the sample was rejected or the middleware refused it.
+  bool publish(GloveSample sample);
+  // Publishes node_status when a second has passed since the last one.
+  void tick(int64_t now_ns);
+  // Lockstep: waits until every subscriber acknowledged everything. Publishes a final status.
+  bool finish();
+
+  // Joint values clamped before the samples reached the validator (while reading a log).
+  void add_clamped(uint64_t count) { clamped_before_ += count; }
+
+  const ValidationCounts& counts() const { return validator_.counts(); }
+  uint64_t published() const { return published_; }
+  uint64_t write_failures() const { return write_failures_; }
+
+ private:
+  void publish_status(cockpit::NodeState state, int64_t now_ns);
+
+  PublisherOptions options_;
+  SampleValidator validator_;
+  Writer<cockpit::HandSample> writer_;
+  Writer<cockpit::NodeStatus> status_writer_;
+  cockpit::HandSample message_;
+  uint64_t published_ = 0;
+  uint64_t write_failures_ = 0;
+  uint64_t clamped_before_ = 0;
+  int64_t last_status_ns_ = 0;
+  uint64_t published_at_last_status_ = 0;
+};
+
+}  // namespace vcockpit::glove

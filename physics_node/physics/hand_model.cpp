@@ -1,0 +1,156 @@
+#include "physics_node/physics/hand_model.hpp"
+
+#include <cmath>
+
+namespace vcockpit::physics {
+namespace {
+
+// theta of a row for the joint angles q: theta_offset + scale * q[joint].
+double row_theta(const DhRow& row, const JointAngles& q) {
+  if (row.joint < 0 || row.joint >= kJointCount) return row.theta_offset_rad;
+  return row.theta_offset_rad + row.scale * q[static_cast<std::size_t>(row.joint)];
+}
+
+// The first half of a row, Rz(theta) Tz(d): the frame on joint i's axis, turned by it.
+Eigen::Isometry3d joint_frame(const DhRow& row, double theta_rad) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::AngleAxisd(theta_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  X.translation() = Eigen::Vector3d(0.0, 0.0, row.d_m);
+  return X;
+}
+
+// Reflection in the xz plane applied on both sides (M X M, M = diag(1,-1,1)): the rotation stays
+// proper because the two sign flips cancel in its determinant. Exact (sign flips only).
+Eigen::Isometry3d mirror_pose(const Eigen::Isometry3d& X) {
+  static constexpr double kSign[3] = {1.0, -1.0, 1.0};
+  Eigen::Isometry3d Y = X;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c)
+      Y.linear()(r, c) = kSign[r] * kSign[c] * X.linear()(r, c);
+    Y.translation()(r) = kSign[r] * X.translation()(r);
+  }
+  return Y;
+}
+
+// M T(theta, d, a, alpha) M = T(-theta, d, a, -alpha): negate every angle-like term of the row.
+DhRow mirror_row(DhRow row) {
+  row.alpha_rad = -row.alpha_rad;
+  row.theta_offset_rad = -row.theta_offset_rad;
+  row.scale = -row.scale;
+  return row;
+}
+
+void chain_kinematics(const HandModel& model, Finger finger, const JointAngles& q,
+                      HandLinkPoses& out) {
+  const FingerChain& chain = model.fingers[static_cast<std::size_t>(finger)];
+  const auto links = finger_links(finger);
+  // a malformed chain that never names a link leaves it at the base instead of garbage
+  for (Link link : links)
+    out.X_HL[static_cast<std::size_t>(link)] = chain.X_HB;
+
+  // eqs. 8-10: X_HB T(0,1) T(1,2) ... ; a row tagged with a link outputs that link's proximal
+  // joint frame (DH frame i lies on joint i+1's axis), turned by the next row's theta.
+  Eigen::Isometry3d X_HF = chain.X_HB;
+  const std::size_t n = chain.rows.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const DhRow& row = chain.rows[i];
+    X_HF = X_HF * dh_transform(row, row_theta(row, q));
+    if (row.link < 0 || row.link >= kLinkCount) continue;
+    Eigen::Isometry3d X_HL = X_HF;
+    if (i + 1 < n) X_HL = X_HF * joint_frame(chain.rows[i + 1], row_theta(chain.rows[i + 1], q));
+    out.X_HL[static_cast<std::size_t>(row.link)] = X_HL;
+  }
+
+  const auto distal = static_cast<std::size_t>(links[2]);
+  const double length_m = model.capsules[distal].length_m;
+  out.p_H_tip[static_cast<std::size_t>(finger)] =
+      out.X_HL[distal] * Eigen::Vector3d(length_m, 0, 0);
+}
+
+}  // namespace
+
+JointAngles HandModel::rest_pose() const {
+  JointAngles q{};
+  for (int j = 0; j < kJointCount; ++j)
+    q[j] = joints[j].rest_rad;
+  return q;
+}
+
+// Standard (column-vector) DH: T = Rz(theta) Tz(d) Tx(a) Rx(alpha), i.e.
+//   [ ct  -st*ca   st*sa  a*ct ]
+//   [ st   ct*ca  -ct*sa  a*st ]
+//   [ 0    sa      ca     d    ]
+// The paper's printed eq. 1 has the rotation block of Rz(-theta) Rx(-alpha) (= (Rx(alpha)
+// Rz(theta))^T, its row-vector/transposed reading) next to a column-form translation with -d; we
+// use the consistent column form. theta_rad is the row's full theta (offset and scale applied).
+Eigen::Isometry3d dh_transform(const DhRow& row, double theta_rad) {
+  const double ct = std::cos(theta_rad), st = std::sin(theta_rad);
+  const double ca = std::cos(row.alpha_rad), sa = std::sin(row.alpha_rad);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  // clang-format off
+  T.linear() << ct, -st * ca, st * sa,
+                st, ct * ca, -ct * sa,
+                0.0, sa, ca;
+  // clang-format on
+  T.translation() = Eigen::Vector3d(row.a_m * ct, row.a_m * st, row.d_m);
+  return T;
+}
+
+void forward_kinematics(const HandModel& model, const JointAngles& q, HandLinkPoses& out) {
+  out.X_HL[static_cast<std::size_t>(Link::kPalm)] = model.X_HP;
+  for (int f = 0; f < kFingerCount; ++f)
+    chain_kinematics(model, static_cast<Finger>(f), q, out);
+}
+
+// NaN is out of range too: it goes to the rest angle rather than poisoning the kinematics.
+int clamp_to_limits(const HandModel& model, JointAngles& q) {
+  int clamped = 0;
+  for (int j = 0; j < kJointCount; ++j) {
+    const JointRange& range = model.joints[j];
+    double& value = q[j];
+    if (std::isnan(value)) {
+      value = range.rest_rad;
+    } else if (value < range.min_rad) {
+      value = range.min_rad;
+    } else if (value > range.max_rad) {
+      value = range.max_rad;
+    } else {
+      continue;
+    }
+    ++clamped;
+  }
+  return clamped;
+}
+
+// Joint ranges and capsules are anatomical, so they carry over unchanged; the tracker's X_GM is a
+// property of the rig, not of the hand, so it stays too.
+HandModel mirrored(const HandModel& model) {
+  HandModel out = model;
+  out.left = !model.left;
+  out.X_HP = mirror_pose(model.X_HP);
+  for (FingerChain& chain : out.fingers) {
+    chain.X_HB = mirror_pose(chain.X_HB);
+    for (DhRow& row : chain.rows)
+      row = mirror_row(row);
+  }
+  return out;
+}
+
+// Forearm mount: the tracker frame T is the forearm frame at the wrist pivot, with the axes H has
+// at zero wrist angles. The hand turns first by wrist yaw about z (radial deviation +, toward the
+// thumb) and then by wrist pitch about the new y (flexion +, palm side -z):
+//   X_MH = X_MT * Rz(yaw) * Ry(pitch).
+// A left hand is the mirror image, so the same anatomical yaw turns it about -z.
+Eigen::Isometry3d X_MH_from_tracker(const HandModel& model, const Eigen::Isometry3d& X_MT,
+                                    const JointAngles& q) {
+  if (model.tracker.mount == TrackerMount::kBackOfHand) return X_MT;
+  const double yaw_rad = (model.left ? -1.0 : 1.0) * q[static_cast<int>(Joint::kWristYaw)];
+  const double pitch_rad = q[static_cast<int>(Joint::kWristPitch)];
+  Eigen::Isometry3d X_TH = Eigen::Isometry3d::Identity();
+  X_TH.linear() = (Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) *
+                   Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()))
+                      .toRotationMatrix();
+  return X_MT * X_TH;
+}
+
+}  // namespace vcockpit::physics
