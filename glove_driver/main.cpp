@@ -15,7 +15,7 @@
 #include "glove_driver/glove/replay_cursor.hpp"
 #include "glove_driver/node/recorder.hpp"
 #include "glove_driver/node/sample_publisher.hpp"
-#include "glove_driver/node/terminal_progress.hpp"
+#include "common/terminal_progress.hpp"
 #include "physics_node/config/hand_config.hpp"
 
 namespace vcockpit::glove {

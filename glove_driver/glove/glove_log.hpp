@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "common/atomic_file.hpp"
 #include "glove_driver/glove/glove_sample.hpp"
 #include "physics_node/physics/hand_model.hpp"
 
@@ -50,24 +51,19 @@ GloveLog read_glove_log(const std::string& path, const physics::HandModel& hand)
 void write_glove_log(const std::string& path, const std::vector<GloveSample>& samples,
                      bool left_hand, const std::vector<std::string>& comments);
 
-// Streaming form of write_glove_log for recording: lines go to "<path>.partial" as they come;
-// commit() renames into place. Destroyed without commit() (crash, error), it removes the partial
-// file, so an interrupted recording never leaves a corrupt log under the real name.
+// Streaming form of write_glove_log for recording: lines go to "<path>.partial" as they come
+// (AtomicFile); commit() renames into place. Destroyed without commit() (error, exception), it
+// removes the partial file, so an interrupted recording never leaves a corrupt log.
 class GloveLogWriter {
  public:
   GloveLogWriter(const std::string& path, bool left_hand, const std::vector<std::string>& comments);
-  ~GloveLogWriter();
-  GloveLogWriter(const GloveLogWriter&) = delete;
-  GloveLogWriter& operator=(const GloveLogWriter&) = delete;
 
   void append(const GloveSample& sample);
-  void commit();  // flush, fsync, rename; throws GloveLogError on failure
+  void commit();  // throws GloveLogError on failure
   std::size_t count() const { return count_; }
 
  private:
-  std::string path_;
-  std::string partial_path_;
-  std::FILE* file_ = nullptr;
+  AtomicFile file_;
   std::size_t count_ = 0;
 };
 

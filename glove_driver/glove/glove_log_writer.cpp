@@ -1,16 +1,7 @@
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
-
 #include "glove_driver/glove/glove_log.hpp"
 
 namespace vcockpit::glove {
 namespace {
-
-[[noreturn]] void io_fail(const std::string& path, const std::string& what) {
-  throw GloveLogError(path + ": " + what + ": " + std::strerror(errno));
-}
 
 // %.17g round-trips every double exactly.
 void write_line(std::FILE* f, const GloveSample& s) {
@@ -19,6 +10,14 @@ void write_line(std::FILE* f, const GloveSample& s) {
                s.q_MT.z());
   for (double q : s.joints_rad) std::fprintf(f, ",%.17g", q);
   std::fputc('\n', f);
+}
+
+AtomicFile open_log(const std::string& path) {
+  try {
+    return AtomicFile(path);
+  } catch (const FileError& e) {
+    throw GloveLogError(e.what());
+  }
 }
 
 }  // namespace
@@ -35,38 +34,22 @@ std::string canonical_header() {
 
 GloveLogWriter::GloveLogWriter(const std::string& path, bool left_hand,
                                const std::vector<std::string>& comments)
-    : path_(path), partial_path_(path + ".partial") {
-  file_ = std::fopen(partial_path_.c_str(), "w");
-  if (!file_) io_fail(partial_path_, "cannot create");
-  std::fprintf(file_, "# vcockpit glove log\n# hand: %s\n", left_hand ? "left" : "right");
-  for (const auto& c : comments) std::fprintf(file_, "# %s\n", c.c_str());
-  std::fprintf(file_, "%s\n", canonical_header().c_str());
-}
-
-GloveLogWriter::~GloveLogWriter() {
-  if (file_) {
-    std::fclose(file_);
-    std::remove(partial_path_.c_str());
-  }
+    : file_(open_log(path)) {
+  std::fprintf(file_.get(), "# vcockpit glove log\n# hand: %s\n", left_hand ? "left" : "right");
+  for (const auto& c : comments) std::fprintf(file_.get(), "# %s\n", c.c_str());
+  std::fprintf(file_.get(), "%s\n", canonical_header().c_str());
 }
 
 void GloveLogWriter::append(const GloveSample& sample) {
-  write_line(file_, sample);
+  write_line(file_.get(), sample);
   ++count_;
 }
 
 void GloveLogWriter::commit() {
-  if (!file_) throw GloveLogError(path_ + ": already committed");
-  const bool ok = std::fflush(file_) == 0 && fsync(fileno(file_)) == 0 && !std::ferror(file_);
-  std::fclose(file_);
-  file_ = nullptr;
-  if (!ok) {
-    std::remove(partial_path_.c_str());
-    io_fail(partial_path_, "write failed");
-  }
-  if (std::rename(partial_path_.c_str(), path_.c_str()) != 0) {
-    std::remove(partial_path_.c_str());
-    io_fail(path_, "cannot rename the finished log into place");
+  try {
+    file_.commit();
+  } catch (const FileError& e) {
+    throw GloveLogError(e.what());
   }
 }
 

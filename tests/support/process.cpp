@@ -1,5 +1,7 @@
 #include "tests/support/process.hpp"
 
+#include <gtest/gtest.h>
+
 #include <signal.h>
 #include <fcntl.h>
 #include <spawn.h>
@@ -124,7 +126,12 @@ std::string bin_dir() {
 
 std::string make_temp_dir(const std::string& name) {
   const char* base = std::getenv("VCOCKPIT_TEST_TMP");
-  fs::path dir = fs::path(base ? base : fs::temp_directory_path().string()) / name;
+  // one directory per test: ctest runs the tests of one binary in parallel processes
+  std::string leaf = name;
+  if (const auto* info = ::testing::UnitTest::GetInstance()->current_test_info()) {
+    leaf += std::string("-") + info->test_suite_name() + "." + info->name();
+  }
+  fs::path dir = fs::path(base ? base : fs::temp_directory_path().string()) / leaf;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir.string();

@@ -45,7 +45,8 @@ void remove_dev_shm(const std::vector<std::string>& names);
 
 // Directory of the test's own executables (build/bin), from VCOCKPIT_BIN_DIR set by ctest.
 std::string bin_dir();
-// A fresh empty directory under the build tree for this test's files.
+// A fresh empty directory under the build tree for this test's files (named after `name` and
+// the running test, so tests of one binary running in parallel never share one).
 std::string make_temp_dir(const std::string& name);
 
 }  // namespace vcockpit::test

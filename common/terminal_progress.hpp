@@ -5,12 +5,12 @@
 #include <cstdint>
 #include <string>
 
-namespace vcockpit::glove {
+namespace vcockpit {
 
 class TerminalProgress {
  public:
   TerminalProgress();
-  // position and total in seconds of log time; rate = log seconds per wall second so far
+  // position and total in seconds of simulated or log time; rate = those seconds per wall second
   void update(int64_t now_ns, double position_s, double total_s, double rate, uint64_t samples);
   void finish();
 
@@ -20,4 +20,4 @@ class TerminalProgress {
   bool drawn_ = false;
 };
 
-}  // namespace vcockpit::glove
+}  // namespace vcockpit

@@ -1,10 +1,10 @@
-#include "glove_driver/node/terminal_progress.hpp"
+#include "common/terminal_progress.hpp"
 
 #include <unistd.h>
 
 #include <cstdio>
 
-namespace vcockpit::glove {
+namespace vcockpit {
 
 TerminalProgress::TerminalProgress() : enabled_(isatty(STDERR_FILENO) == 1) {}
 
@@ -25,4 +25,4 @@ void TerminalProgress::finish() {
   drawn_ = false;
 }
 
-}  // namespace vcockpit::glove
+}  // namespace vcockpit

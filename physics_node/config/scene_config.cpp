@@ -1,0 +1,320 @@
+#include "physics_node/config/scene_config.hpp"
+
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include "common/pose.hpp"
+#include "physics_node/config/hand_config.hpp"
+
+namespace vcockpit {
+namespace {
+
+namespace fs = std::filesystem;
+using physics::GraspParams;
+using physics::Material;
+using physics::ObjectSpec;
+using physics::Scene;
+using physics::Shape;
+
+constexpr double kMaxStep_s = 0.1;
+constexpr int kMaxSubsteps = 1000;     // beyond this a step could not run in real time anyway
+constexpr int kMaxPointsPerPair = 64;  // FCL reports at most a handful; more is a typo
+
+std::string format_number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+Eigen::Vector3d vector3(const std::array<double, 3>& v) {
+  return {v[0], v[1], v[2]};
+}
+
+// ---- checked scalars: each failure names the node (file:line:col and key) and the value -----
+
+double require(const ConfigNode& node, double value, bool ok, const std::string& rule) {
+  if (!ok) node.fail(rule + ", got " + format_number(value));
+  return value;
+}
+
+double positive(const ConfigNode& node, const std::string& what = "value") {
+  const double v = node.as_double();
+  return require(node, v, v > 0.0, what + " must be positive");
+}
+
+double non_negative(const ConfigNode& node) {
+  const double v = node.as_double();
+  return require(node, v, v >= 0.0, "must be >= 0");
+}
+
+double at_least(const ConfigNode& node, double lo) {
+  const double v = node.as_double();
+  return require(node, v, v >= lo, "must be >= " + format_number(lo));
+}
+
+double in_open_closed(const ConfigNode& node, double lo, double hi) {
+  const double v = node.as_double();
+  return require(node, v, v > lo && v <= hi,
+                 "must be in (" + format_number(lo) + ", " + format_number(hi) + "]");
+}
+
+double in_open(const ConfigNode& node, double lo, double hi) {
+  const double v = node.as_double();
+  return require(node, v, v > lo && v < hi,
+                 "must be in (" + format_number(lo) + ", " + format_number(hi) + ")");
+}
+
+int int_in_range(const ConfigNode& node, int lo, int hi) {
+  const int64_t v = node.as_int();
+  if (v < lo || v > hi) {
+    node.fail("must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+              "], got " + std::to_string(v));
+  }
+  return static_cast<int>(v);
+}
+
+// Reads map[key] through `parse` when the key is present; otherwise `value` keeps its default.
+template <typename T, typename Parse>
+void read_optional(const ConfigNode& map, std::string_view key, T& value, Parse parse) {
+  if (auto node = map.find(key)) value = parse(*node);
+}
+
+// ---- materials, shapes, poses, colours ------------------------------------------------------
+
+Material parse_material(const ConfigNode& node, const Material& defaults) {
+  node.expect_keys({"stiffness", "damping_ratio", "mu_s", "mu_d"});
+  Material m = defaults;
+  read_optional(node, "stiffness", m.stiffness_Npm,
+                [](const ConfigNode& n) { return positive(n); });
+  read_optional(node, "damping_ratio", m.damping_ratio, non_negative);
+  read_optional(node, "mu_s", m.mu_s, non_negative);
+  read_optional(node, "mu_d", m.mu_d, non_negative);
+  if (m.mu_d > m.mu_s) {
+    // blame the key the user wrote (mu_d if given, else the mu_s that undercut the default)
+    const ConfigNode at = node.has("mu_d") ? node["mu_d"] : node["mu_s"];
+    at.fail("mu_d " + format_number(m.mu_d) + " is greater than mu_s " + format_number(m.mu_s) +
+            " (sliding friction cannot exceed sticking friction)");
+  }
+  return m;
+}
+
+// A list of N positive numbers, each checked at its own element.
+template <std::size_t N>
+std::array<double, N> positive_list(const ConfigNode& node,
+                                    const std::array<const char*, N>& what) {
+  std::array<double, N> out = node.as_doubles<N>();
+  for (std::size_t i = 0; i < N; ++i)
+    out[i] = positive(node.at(i), what[i]);
+  return out;
+}
+
+Shape parse_shape(const ConfigNode& node) {
+  node.expect_keys({"box", "sphere", "capsule", "cylinder"});
+  const std::vector<std::string> keys = node.keys();
+  if (keys.size() != 1) {
+    node.fail("expected exactly one of box, sphere, capsule, cylinder, found " +
+              std::to_string(keys.size()));
+  }
+  const ConfigNode dims = node[keys[0]];
+  if (keys[0] == "box") {
+    return Shape::box(vector3(positive_list<3>(dims, {"size x", "size y", "size z"})));
+  }
+  if (keys[0] == "sphere") return Shape::sphere(positive(dims, "radius"));
+  const auto radius_length = positive_list<2>(dims, {"radius", "length"});
+  return keys[0] == "capsule" ? Shape::capsule(radius_length[0], radius_length[1])
+                              : Shape::cylinder(radius_length[0], radius_length[1]);
+}
+
+Eigen::Isometry3d parse_pose(const ConfigNode& node) {
+  node.expect_keys({"position", "rpy_deg"});
+  std::array<double, 3> rpy_deg{0.0, 0.0, 0.0};
+  read_optional(node, "rpy_deg", rpy_deg, [](const ConfigNode& n) { return n.as_doubles<3>(); });
+  return pose_from_position_rpy_deg(node["position"].as_doubles<3>(), rpy_deg);
+}
+
+std::array<float, 4> parse_color(const ConfigNode& node) {
+  if (!node.is_sequence() || (node.size() != 3 && node.size() != 4)) {
+    node.fail("expected [r, g, b] or [r, g, b, a] with components in [0, 1]");
+  }
+  std::array<float, 4> rgba{0.0f, 0.0f, 0.0f, 1.0f};
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const ConfigNode c = node.at(i);
+    const double v = c.as_double();
+    rgba[i] = static_cast<float>(require(c, v, v >= 0.0 && v <= 1.0, "must be in [0, 1]"));
+  }
+  return rgba;
+}
+
+// ---- objects ----------------------------------------------------------------------------------
+
+bool parse_kind_is_dynamic(const ConfigNode& node) {
+  const std::string kind = node.as_string();
+  if (kind != "static" && kind != "dynamic") {
+    node.fail("unknown kind '" + kind + "' (static or dynamic)");
+  }
+  return kind == "dynamic";
+}
+
+std::string parse_name(const ConfigNode& node) {
+  const std::string name = node.as_string();
+  if (name.empty()) node.fail("the name must not be empty");
+  return name;
+}
+
+// Principal moments about the centroid; any real body obeys the triangle inequality.
+Eigen::Matrix3d parse_inertia(const ConfigNode& node) {
+  const Eigen::Vector3d I = vector3(positive_list<3>(node, {"ixx", "iyy", "izz"}));
+  const double slack = 1e-9 * I.sum();  // decimal inputs of a thin plate land on equality
+  for (int i = 0; i < 3; ++i) {
+    if (I[i] > I[(i + 1) % 3] + I[(i + 2) % 3] + slack) {
+      node.fail("principal moments [" + format_number(I.x()) + ", " + format_number(I.y()) + ", " +
+                format_number(I.z()) +
+                "] break the triangle inequality (each must be <= the sum of the other two)");
+    }
+  }
+  return I.asDiagonal();
+}
+
+// Mass from `mass` or `density` (exactly one), inertia from `inertia` or from the shape.
+void parse_mass_properties(const ConfigNode& node, ObjectSpec& spec) {
+  const auto mass = node.find("mass");
+  const auto density = node.find("density");
+  if (mass && density) density->fail("give either mass or density, not both");
+  if (!mass && !density) node.fail("a dynamic object needs 'mass' or 'density'");
+  if (mass) {
+    spec.mass_kg = positive(*mass, "mass");
+    spec.I_O = spec.mass_kg / spec.shape.volume_m3() * spec.shape.unit_density_inertia();
+  } else {
+    physics::mass_properties_from_density(spec.shape, positive(*density, "density"), spec.mass_kg,
+                                          spec.I_O);
+  }
+  read_optional(node, "inertia", spec.I_O, parse_inertia);
+}
+
+void parse_velocity(const ConfigNode& node, ObjectSpec& spec) {
+  node.expect_keys({"linear", "angular"});
+  auto vec = [](const ConfigNode& n) { return vector3(n.as_doubles<3>()); };
+  read_optional(node, "linear", spec.v_G, vec);
+  read_optional(node, "angular", spec.w_G, vec);
+}
+
+// A static object never moves, so anything about its motion is a mistake worth naming.
+void reject_dynamics(const ConfigNode& node) {
+  for (const char* key : {"mass", "density", "inertia", "velocity"}) {
+    if (auto n = node.find(key)) {
+      n->fail("a static object has no " + std::string(key) + " (make it kind: dynamic)");
+    }
+  }
+}
+
+ObjectSpec parse_object(const ConfigNode& node) {
+  node.expect_keys({"name", "kind", "shape", "pose", "mass", "density", "inertia", "velocity",
+                    "material", "color"});
+  ObjectSpec spec;
+  spec.name = parse_name(node["name"]);
+  spec.dynamic = parse_kind_is_dynamic(node["kind"]);
+  spec.shape = parse_shape(node["shape"]);
+  spec.X_GO = parse_pose(node["pose"]);
+  if (spec.dynamic) {
+    parse_mass_properties(node, spec);
+    if (auto v = node.find("velocity")) parse_velocity(*v, spec);
+  } else {
+    reject_dynamics(node);
+  }
+  if (auto m = node.find("material")) spec.material = parse_material(*m, Material{});
+  read_optional(node, "color", spec.color_rgba, parse_color);
+  return spec;
+}
+
+void parse_objects(const ConfigNode& list, Scene& scene) {
+  std::vector<int> lines;  // where each object's name was written, for the duplicate message
+  for (const ConfigNode& node : list.elements()) {
+    ObjectSpec spec = parse_object(node);
+    const int first = scene.find_object(spec.name);
+    if (first >= 0) {
+      node["name"].fail("duplicate object name '" + spec.name + "' (first used on line " +
+                        std::to_string(lines[static_cast<std::size_t>(first)]) + ")");
+    }
+    lines.push_back(node["name"].line());
+    scene.objects.push_back(std::move(spec));
+  }
+}
+
+// ---- hand, grasp, contact ---------------------------------------------------------------------
+
+void parse_hand(const ConfigNode& node, const std::string& base_dir, Scene& scene) {
+  const std::string name = node.as_string();
+  if (name.empty()) node.fail("the hand file name must not be empty");
+  fs::path path(name);
+  if (path.is_relative() && !base_dir.empty()) path = fs::path(base_dir) / path;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) node.fail("cannot open hand file '" + path.string() + "'");
+  scene.hand = load_hand_model(path.string());  // its errors name the hand file itself
+}
+
+GraspParams parse_grasp(const ConfigNode& node) {
+  node.expect_keys({"xi_N", "eta_Nm", "alpha0_deg", "min_contacts", "exit_scale",
+                    "exit_alpha_margin_deg", "min_hold_s", "release_delay_s", "regrab_cooldown_s",
+                    "velocity_window_s"});
+  GraspParams g;
+  auto pos = [](const ConfigNode& n) { return positive(n); };
+  read_optional(node, "xi_N", g.xi_N, pos);
+  read_optional(node, "eta_Nm", g.eta_Nm, pos);
+  read_optional(node, "alpha0_deg", g.alpha0_deg,
+                [](const ConfigNode& n) { return in_open(n, 0.0, 180.0); });
+  read_optional(node, "min_contacts", g.min_contacts,
+                [](const ConfigNode& n) { return int_in_range(n, 1, physics::kLinkCount); });
+  // below 1 the exit thresholds would be tighter than the entry ones: chatter, not hysteresis
+  read_optional(node, "exit_scale", g.exit_scale,
+                [](const ConfigNode& n) { return at_least(n, 1.0); });
+  read_optional(node, "exit_alpha_margin_deg", g.exit_alpha_margin_deg, non_negative);
+  read_optional(node, "min_hold_s", g.min_hold_s, non_negative);
+  read_optional(node, "release_delay_s", g.release_delay_s, non_negative);
+  read_optional(node, "regrab_cooldown_s", g.regrab_cooldown_s, non_negative);
+  read_optional(node, "velocity_window_s", g.velocity_window_s, pos);
+  if (g.exit_alpha_margin_deg >= g.alpha0_deg) {
+    const ConfigNode at =
+        node.has("exit_alpha_margin_deg") ? node["exit_alpha_margin_deg"] : node["alpha0_deg"];
+    at.fail("exit_alpha_margin_deg " + format_number(g.exit_alpha_margin_deg) +
+            " must be below alpha0_deg " + format_number(g.alpha0_deg));
+  }
+  return g;
+}
+
+physics::ContactParams parse_contact(const ConfigNode& node) {
+  node.expect_keys({"slip_speed_mps", "substep_safety", "max_substeps", "max_points_per_pair"});
+  physics::ContactParams c;
+  read_optional(node, "slip_speed_mps", c.slip_speed_mps,
+                [](const ConfigNode& n) { return positive(n); });
+  // semi-implicit Euler on a spring is stable below 2 sqrt(m/k); keep a margin under 1
+  read_optional(node, "substep_safety", c.substep_safety,
+                [](const ConfigNode& n) { return in_open_closed(n, 0.0, 1.0); });
+  read_optional(node, "max_substeps", c.max_substeps,
+                [](const ConfigNode& n) { return int_in_range(n, 1, kMaxSubsteps); });
+  read_optional(node, "max_points_per_pair", c.max_points_per_pair,
+                [](const ConfigNode& n) { return int_in_range(n, 1, kMaxPointsPerPair); });
+  return c;
+}
+
+}  // namespace
+
+physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) {
+  root.expect_keys({"gravity", "step_s", "hand", "hand_material", "objects", "grasp", "contact"});
+  Scene scene;
+  scene.gravity_mps2 = vector3(root["gravity"].as_doubles<3>());
+  scene.step_s = in_open_closed(root["step_s"], 0.0, kMaxStep_s);
+  if (auto hand = root.find("hand")) parse_hand(*hand, base_dir, scene);
+  if (auto m = root.find("hand_material"))
+    scene.hand_material = parse_material(*m, scene.hand_material);
+  parse_objects(root["objects"], scene);
+  read_optional(root, "grasp", scene.grasp, parse_grasp);
+  read_optional(root, "contact", scene.contact, parse_contact);
+  return scene;
+}
+
+physics::Scene load_scene(const std::string& path) {
+  return parse_scene(ConfigNode::load_file(path), fs::path(path).parent_path().string());
+}
+
+}  // namespace vcockpit

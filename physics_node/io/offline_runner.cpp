@@ -1,0 +1,109 @@
+#include "physics_node/io/offline_runner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include "common/clock.hpp"
+#include "common/terminal_progress.hpp"
+#include "glove_driver/glove/glove_log.hpp"
+#include "physics_node/config/scene_config.hpp"
+#include "physics_node/io/hand_input.hpp"
+
+namespace vcockpit::physics_io {
+namespace {
+
+int64_t output_interval_ns(double output_hz, const physics::Scene& scene) {
+  if (!(output_hz > 0) || !std::isfinite(output_hz)) {
+    throw std::invalid_argument("--output-hz must be positive");
+  }
+  const int64_t step_ns = std::llround(scene.step_s * 1e9);
+  const int64_t interval = std::llround(1e9 / output_hz);
+  if (interval % step_ns != 0) {
+    throw std::invalid_argument("--output-hz " + std::to_string(output_hz) +
+                                " is not a whole number of steps of " +
+                                std::to_string(scene.step_s) + " s");
+  }
+  return interval;
+}
+
+}  // namespace
+
+RunSummary run_offline(const OfflineOptions& options) {
+  physics::Scene scene = load_scene(options.scene_path);
+  std::vector<glove::GloveSample> samples;
+  if (!options.log_path.empty()) {
+    if (!scene.hand) {
+      throw std::invalid_argument(options.scene_path + ": the scene has no hand, so a glove log "
+                                                       "cannot drive it");
+    }
+    samples = glove::read_glove_log(options.log_path, *scene.hand).samples;
+  }
+  if (!options.duration_s && samples.empty()) {
+    throw std::invalid_argument("give --log GLOVE.csv or --duration S");
+  }
+  if (options.duration_s && !(*options.duration_s > 0)) {
+    throw std::invalid_argument("--duration must be positive");
+  }
+  const int64_t t0_ns = samples.empty() ? 0 : samples.front().t_ns;
+  const int64_t end_ns = options.duration_s ? std::llround(*options.duration_s * 1e9)
+                                            : samples.back().t_ns - t0_ns;
+  const int64_t interval_ns = output_interval_ns(options.output_hz, scene);
+
+  std::filesystem::create_directories(options.out_dir);
+  TrajectoryWriter trajectories(options.out_dir + "/trajectories.csv");
+  EventWriter events(options.out_dir + "/events.jsonl");
+
+  RunSummary summary;
+  summary.scene_path = options.scene_path;
+  summary.log_path = options.log_path;
+  summary.stage_total_s.assign(physics::kStageCount, 0.0);
+  physics::World world(std::move(scene));
+  const physics::HandModel* hand = world.scene().hand ? &*world.scene().hand : nullptr;
+  std::size_t next_sample = 0;
+  auto feed_samples = [&] {
+    while (next_sample < samples.size() && samples[next_sample].t_ns - t0_ns <= world.time_ns()) {
+      world.set_hand_input(hand_input_from_glove(*hand, samples[next_sample]));
+      ++next_sample;
+    }
+  };
+
+  TerminalProgress progress;
+  const auto wall_start = std::chrono::steady_clock::now();
+  feed_samples();
+  trajectories.write(world);
+  while (world.time_ns() < end_ns) {
+    world.step();
+    events.write(world);
+    const auto& pen = world.hand_penetration();
+    summary.penetration_max_m = std::max(summary.penetration_max_m, pen.max_m);
+    summary.penetration_sum_m += pen.sum_m;
+    summary.penetration_points += static_cast<uint64_t>(pen.points);
+    for (int s = 0; s < physics::kStageCount; ++s) {
+      summary.stage_total_s[s] += static_cast<double>(world.stage_times().ns[s]) * 1e-9;
+    }
+    if (world.time_ns() % interval_ns == 0) trajectories.write(world);
+    feed_samples();
+    if (world.step_count() % 100 == 0) {
+      const double wall_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+      const double sim_s = ns_to_seconds(world.time_ns());
+      progress.update(monotonic_now_ns(), sim_s, ns_to_seconds(end_ns),
+                      wall_s > 0 ? sim_s / wall_s : 0.0, world.step_count());
+    }
+  }
+  progress.finish();
+  summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  summary.steps = world.step_count();
+  summary.substeps = world.substeps();
+  summary.simulated_s = ns_to_seconds(world.time_ns());
+  summary.grasps = events.grasps();
+  summary.releases = events.releases();
+  trajectories.commit();
+  events.commit();
+  write_summary(options.out_dir + "/summary.json", summary, world);
+  return summary;
+}
+
+}  // namespace vcockpit::physics_io

@@ -1,0 +1,66 @@
+#pragma once
+// The offline runner's outputs (a contract other tools rely on; keep the names):
+//   trajectories.csv  t_s,object,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,held_by
+//                     one row per dynamic object per output interval; held_by empty when free
+//   events.jsonl      one JSON object per line: t_s, event (grasp|release), hand, object, reason,
+//                     contacts (+ residual_force_N, residual_torque_Nm)
+//   summary.json      steps, simulated and wall seconds, grasp/release counts, hand-object
+//                     penetration max and mean (m), final pose per object
+// Every file is written to "<name>.partial" and renamed when the run completes.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/atomic_file.hpp"
+#include "physics_node/physics/world.hpp"
+
+namespace vcockpit::physics_io {
+
+std::string hand_name(int hand_id);
+
+class TrajectoryWriter {
+ public:
+  explicit TrajectoryWriter(const std::string& path);
+  void write(const physics::World& world);  // one row per dynamic object
+  void commit() { file_.commit(); }
+
+ private:
+  AtomicFile file_;
+};
+
+class EventWriter {
+ public:
+  explicit EventWriter(const std::string& path);
+  void write(const physics::World& world);  // the last step's events
+  void commit() { file_.commit(); }
+  int grasps() const { return grasps_; }
+  int releases() const { return releases_; }
+
+ private:
+  AtomicFile file_;
+  int grasps_ = 0;
+  int releases_ = 0;
+};
+
+struct RunSummary {
+  std::string scene_path;
+  std::string log_path;
+  uint64_t steps = 0;
+  int substeps = 0;
+  double simulated_s = 0.0;
+  double wall_s = 0.0;
+  int grasps = 0;
+  int releases = 0;
+  double penetration_max_m = 0.0;
+  double penetration_sum_m = 0.0;
+  uint64_t penetration_points = 0;
+  std::vector<double> stage_total_s;  // per Stage
+};
+
+void write_summary(const std::string& path, const RunSummary& summary, const physics::World& world);
+
+// JSON string literal with escapes.
+std::string json_string(const std::string& text);
+
+}  // namespace vcockpit::physics_io

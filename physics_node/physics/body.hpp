@@ -1,0 +1,36 @@
+#pragma once
+// The mutable state of one object (MuJoCo's mjData, in spirit) and the per-body data the contact
+// model needs: inverse mass (0 = immovable: static, held, or a hand link), material, and how fast
+// a point fixed on the body moves.
+
+#include <Eigen/Geometry>
+
+#include "physics_node/physics/scene.hpp"
+
+namespace vcockpit::physics {
+
+constexpr int kNotHeld = -1;
+
+struct BodyState {
+  Eigen::Isometry3d X_GO = Eigen::Isometry3d::Identity();  // centroid frame in world
+  Eigen::Vector3d v_G = Eigen::Vector3d::Zero();            // centroid velocity (m/s)
+  Eigen::Vector3d w_G = Eigen::Vector3d::Zero();            // angular velocity (rad/s)
+  int held_by = kNotHeld;                                   // hand id holding it
+};
+
+// A body as the contact model sees it during one substep.
+struct ContactBody {
+  Eigen::Isometry3d X_GB = Eigen::Isometry3d::Identity();  // pose now
+  Eigen::Vector3d v_G = Eigen::Vector3d::Zero();           // velocity of the frame origin
+  Eigen::Vector3d w_G = Eigen::Vector3d::Zero();
+  double inv_mass = 0.0;        // 0: does not respond to contact forces
+  double mass_for_damping = 0.0;  // effective mass seen by a contact (kg); 0 when immovable
+  const Material* material = nullptr;
+  bool dynamic = false;          // forces on it are integrated
+
+  Eigen::Vector3d point_velocity(const Eigen::Vector3d& p_G) const {
+    return v_G + w_G.cross(p_G - X_GB.translation());
+  }
+};
+
+}  // namespace vcockpit::physics

@@ -1,0 +1,57 @@
+#pragma once
+// Collision detection (paper §4.2): FCL's dynamic AABB tree as broadphase over the objects and
+// the hand's 16 links, then narrowphase contacts (point, normal, depth) from FCL (libccd GJK/EPA
+// for general convex pairs, FCL's box-box manifold for boxes).
+//
+// Pairs that cannot act are never reported: static-static, hand-static and link-link. The output
+// is ordered (by body_a, body_b, then FCL's order within the pair), and the broadphase tree is
+// built in scene order, so the same poses always give the same contacts in the same order.
+
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "physics_node/physics/contact.hpp"
+#include "physics_node/physics/scene.hpp"
+
+namespace vcockpit::physics {
+
+class CollisionWorld {
+ public:
+  explicit CollisionWorld(const Scene& scene);
+  ~CollisionWorld();
+  CollisionWorld(const CollisionWorld&) = delete;
+  CollisionWorld& operator=(const CollisionWorld&) = delete;
+
+  int object_count() const { return object_count_; }
+  bool has_hand() const { return has_hand_; }
+  int hand_link_body(Link link) const { return object_count_ + static_cast<int>(link); }
+  bool is_hand_body(int body) const { return body >= object_count_; }
+
+  // Moves the dynamic objects (X_GO for every object; static ones are ignored) and the hand's
+  // links (X_GL in world; null when the hand is absent or disabled this step).
+  void set_poses(const std::vector<Eigen::Isometry3d>& X_GO,
+                 const std::array<Eigen::Isometry3d, kLinkCount>* X_GL);
+
+  // Broadphase: candidate pairs whose AABBs overlap (stage "broadphase").
+  void find_candidate_pairs();
+  // Narrowphase over the candidates: contact points appended to `out` after clearing it
+  // (stage "narrowphase"). Allocation-free once `out` and the internals have warmed up.
+  void compute_contacts(std::vector<ContactPoint>& out);
+
+  std::size_t candidate_pair_count() const;
+  // Narrowphase points dropped since construction for a zero, NaN or non-unit normal (or a NaN
+  // depth or point): a run-time counter, never an exception.
+  std::uint64_t skipped_contacts() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  int object_count_ = 0;
+  bool has_hand_ = false;
+};
+
+}  // namespace vcockpit::physics

@@ -1,0 +1,18 @@
+#pragma once
+// What the narrowphase reports. Bodies are numbered objects first (0 .. N-1, the scene's order),
+// then the hand's links (N + Link index). The normal points from body_a to body_b (FCL's
+// convention), so body_b is pushed along +n and body_a along -n.
+
+#include <Eigen/Core>
+
+namespace vcockpit::physics {
+
+struct ContactPoint {
+  int body_a = -1;
+  int body_b = -1;                                // body_a < body_b
+  Eigen::Vector3d p_G = Eigen::Vector3d::Zero();  // contact point in world (m)
+  Eigen::Vector3d n_G = Eigen::Vector3d::UnitZ(); // unit normal, from a to b
+  double depth_m = 0.0;                           // penetration depth (m), > 0
+};
+
+}  // namespace vcockpit::physics

@@ -1,0 +1,89 @@
+#include "physics_node/physics/grasp.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/pose.hpp"
+
+namespace vcockpit::physics {
+
+const char* grasp_reason_name(GraspReason reason) {
+  switch (reason) {
+    case GraspReason::kStableGrasp: return "stable grasp";
+    case GraspReason::kTooFewContacts: return "too few contacts";
+    case GraspReason::kNoThumb: return "thumb not touching";
+    case GraspReason::kFingersNotOpposed: return "fingers not opposed to the thumb";
+    case GraspReason::kForceResidual: return "force residual too large";
+    case GraspReason::kTorqueResidual: return "torque residual too large";
+    case GraspReason::kGloveLost: return "glove lost";
+  }
+  return "unknown";
+}
+
+GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
+                          const Eigen::Vector3d& centroid_G, double mass_kg,
+                          const Eigen::Vector3d& gravity_mps2, const GraspParams& params,
+                          bool held) {
+  // per link: touching, and the force-weighted sum of normals (plain sum if no force yet)
+  std::array<bool, kLinkCount> touching{};
+  std::array<Eigen::Vector3d, kLinkCount> normal_sum;
+  normal_sum.fill(Eigen::Vector3d::Zero());
+  Eigen::Vector3d F = mass_kg * gravity_mps2;
+  Eigen::Vector3d M = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < count; ++i) {
+    const HandContact& c = contacts[i];
+    const int l = static_cast<int>(c.link);
+    touching[l] = true;
+    normal_sum[l] += (1e-6 + c.F_G.norm()) * c.n_G;
+    F += c.F_G;
+    M += (c.p_G - centroid_G).cross(c.F_G);
+  }
+
+  GraspCheck check;
+  check.residual_force_N = F.norm();
+  check.residual_torque_Nm = M.norm();
+  // a finger touches if any of its phalanges does; its normal is the sum over them
+  std::array<Eigen::Vector3d, kFingerCount> finger_normal;
+  std::array<bool, kFingerCount> finger_touching{};
+  for (int f = 0; f < kFingerCount; ++f) {
+    finger_normal[f].setZero();
+    for (Link link : finger_links(static_cast<Finger>(f))) {
+      if (!touching[static_cast<int>(link)]) continue;
+      finger_touching[f] = true;
+      finger_normal[f] += normal_sum[static_cast<int>(link)];
+    }
+  }
+  for (bool t : touching) check.links_in_contact += t ? 1 : 0;
+  check.thumb = finger_touching[static_cast<int>(Finger::kThumb)];
+
+  check.min_thumb_angle_deg = 180.0;
+  bool any_finger = false;
+  if (check.thumb) {
+    const Eigen::Vector3d n_thumb = finger_normal[0].normalized();
+    for (int f = 1; f < kFingerCount; ++f) {
+      if (!finger_touching[f]) continue;
+      any_finger = true;
+      const double cosine = std::clamp(n_thumb.dot(finger_normal[f].normalized()), -1.0, 1.0);
+      check.min_thumb_angle_deg = std::min(check.min_thumb_angle_deg, rad_to_deg(std::acos(cosine)));
+    }
+  }
+
+  const double scale = held ? params.exit_scale : 1.0;
+  const double alpha0 = params.alpha0_deg - (held ? params.exit_alpha_margin_deg : 0.0);
+  if (check.links_in_contact < params.min_contacts) {
+    check.verdict = GraspReason::kTooFewContacts;
+  } else if (!check.thumb) {
+    check.verdict = GraspReason::kNoThumb;
+  } else if (!any_finger || check.min_thumb_angle_deg <= alpha0) {
+    check.verdict = GraspReason::kFingersNotOpposed;
+  } else if (check.residual_force_N > params.xi_N * scale) {
+    check.verdict = GraspReason::kForceResidual;
+  } else if (check.residual_torque_Nm > params.eta_Nm * scale) {
+    check.verdict = GraspReason::kTorqueResidual;
+  } else {
+    check.verdict = GraspReason::kStableGrasp;
+  }
+  return check;
+}
+
+}  // namespace vcockpit::physics

@@ -1,0 +1,58 @@
+#pragma once
+// The stable-grasp condition (paper §4.4) for one object and one hand:
+//   equilibrium  |sum F| <= xi and |sum M| <= eta (eqs. 30-31) over the hand's contact forces on
+//                the object plus gravity, moments about the centroid;
+//   gesture      more than 2 hand links touching it (min_contacts), the thumb among them, and
+//                the angle between the thumb's contact normal and each other finger's above
+//                alpha0 (the palm counts as a contact but has no normal test).
+// A link with several contact points counts once, with its force-weighted mean normal. While the
+// object is held the test is looser (exit_scale, exit_alpha_margin_deg): hysteresis against the
+// chatter the paper describes.
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "physics_node/physics/hand_joints.hpp"
+#include "physics_node/physics/scene.hpp"
+
+namespace vcockpit::physics {
+
+enum class GraspReason : uint8_t {
+  kStableGrasp,        // GRASP: every condition held
+  kTooFewContacts,     // RELEASE (or no grasp): fewer than min_contacts links touch
+  kNoThumb,            // the thumb does not touch
+  kFingersNotOpposed,  // no finger opposes the thumb, or one's normal is within alpha0 of it
+  kForceResidual,      // eq. 30 fails
+  kTorqueResidual,     // eq. 31 fails
+  kGloveLost,          // RELEASE: the hand is not tracked any more
+};
+
+const char* grasp_reason_name(GraspReason reason);
+
+// One hand contact on the object.
+struct HandContact {
+  Link link = Link::kPalm;
+  Eigen::Vector3d p_G = Eigen::Vector3d::Zero();
+  Eigen::Vector3d n_G = Eigen::Vector3d::Zero();  // unit, from the hand into the object
+  Eigen::Vector3d F_G = Eigen::Vector3d::Zero();  // force of the hand on the object (N)
+};
+
+struct GraspCheck {
+  int links_in_contact = 0;
+  bool thumb = false;
+  double min_thumb_angle_deg = 0.0;  // smallest thumb-finger normal angle (180: no finger)
+  double residual_force_N = 0.0;
+  double residual_torque_Nm = 0.0;
+  GraspReason verdict = GraspReason::kTooFewContacts;  // kStableGrasp when it holds
+  bool holds() const { return verdict == GraspReason::kStableGrasp; }
+};
+
+GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
+                          const Eigen::Vector3d& centroid_G, double mass_kg,
+                          const Eigen::Vector3d& gravity_mps2, const GraspParams& params,
+                          bool held);
+
+}  // namespace vcockpit::physics

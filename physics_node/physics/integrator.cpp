@@ -1,0 +1,27 @@
+#include "physics_node/physics/integrator.hpp"
+
+#include <cmath>
+
+namespace vcockpit::physics {
+
+Eigen::Quaterniond rotation_increment(const Eigen::Vector3d& w_G, double dt_s) {
+  const Eigen::Vector3d phi = w_G * dt_s;
+  const double angle = phi.norm();
+  if (angle < 1e-12) return Eigen::Quaterniond(1.0, 0.5 * phi.x(), 0.5 * phi.y(), 0.5 * phi.z()).normalized();
+  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, phi / angle));
+}
+
+void integrate_body(BodyState& body, const Eigen::Vector3d& F_G, const Eigen::Vector3d& M_G,
+                    double mass_kg, const Eigen::Matrix3d& I_O, double dt_s) {
+  const Eigen::Matrix3d R = body.X_GO.linear();
+  const Eigen::Matrix3d I_G = R * I_O * R.transpose();
+  body.v_G += F_G * (dt_s / mass_kg);
+  const Eigen::Vector3d gyroscopic = body.w_G.cross(I_G * body.w_G);
+  body.w_G += I_G.ldlt().solve(M_G - gyroscopic) * dt_s;
+  body.X_GO.translation() += body.v_G * dt_s;
+  const Eigen::Quaterniond q =
+      (rotation_increment(body.w_G, dt_s) * Eigen::Quaterniond(R)).normalized();
+  body.X_GO.linear() = q.toRotationMatrix();
+}
+
+}  // namespace vcockpit::physics

@@ -1,0 +1,21 @@
+#pragma once
+// Rigid-body motion (paper §4.3, eqs. 20-25, with eq. 22-23's typo fixed): semi-implicit Euler.
+//   v_t = v_{t-1} + (F / m) dt                      (eqs. 20, 22: dv = F dt / m, added once)
+//   w_t = w_{t-1} + I_G^-1 (M - w x I_G w) dt       (eqs. 21, 23, world inertia R I_O R^T and the
+//                                                    gyroscopic term)
+//   x_t = x_{t-1} + v_t dt                          (eq. 24: the new velocity moves the body)
+//   q_t = exp(w_t dt) q_{t-1}, renormalised         (eq. 25 as a rotation)
+
+#include <Eigen/Geometry>
+
+#include "physics_node/physics/body.hpp"
+
+namespace vcockpit::physics {
+
+void integrate_body(BodyState& body, const Eigen::Vector3d& F_G, const Eigen::Vector3d& M_G,
+                    double mass_kg, const Eigen::Matrix3d& I_O, double dt_s);
+
+// Rotation by the rotation vector w dt (exponential map), exact for any angle.
+Eigen::Quaterniond rotation_increment(const Eigen::Vector3d& w_G, double dt_s);
+
+}  // namespace vcockpit::physics

@@ -1,0 +1,100 @@
+#pragma once
+// The constant model of a world (MuJoCo's mjModel, in spirit): objects with shape, mass,
+// material and initial state, the hand, gravity, the step, and every contact and grasp
+// threshold. Built once from config (physics_config) and never changed by stepping.
+
+#include <Eigen/Geometry>
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "physics_node/physics/hand_model.hpp"
+
+namespace vcockpit::physics {
+
+enum class ShapeKind : uint8_t { kBox, kSphere, kCapsule, kCylinder };
+
+// Dimensions in metres. Box: full extents x, y, z. Sphere: radius. Capsule and cylinder:
+// radius and length along the object's z axis (a capsule's length excludes its end caps).
+struct Shape {
+  ShapeKind kind = ShapeKind::kBox;
+  Eigen::Vector3d box_size_m = Eigen::Vector3d::Zero();
+  double radius_m = 0.0;
+  double length_m = 0.0;
+
+  static Shape box(const Eigen::Vector3d& size_m);
+  static Shape sphere(double radius_m);
+  static Shape capsule(double radius_m, double length_m);
+  static Shape cylinder(double radius_m, double length_m);
+
+  double volume_m3() const;
+  // Inertia about the centroid in the shape's own frame for a uniform density (kg m^2).
+  Eigen::Matrix3d unit_density_inertia() const;
+  // Radius of the smallest centred sphere holding the shape (m).
+  double bounding_radius_m() const;
+};
+
+// Contact material (paper §4.2). A pair's stiffness is k1 k2 / (k1 + k2) (eqs. 11-14), its
+// friction coefficients the geometric means (Box2D, Jolt), its damping from the damping ratio.
+struct Material {
+  double stiffness_Npm = 1.0e5;
+  double damping_ratio = 0.7;
+  double mu_s = 0.6;  // static
+  double mu_d = 0.4;  // dynamic (sliding)
+};
+
+struct ObjectSpec {
+  std::string name;
+  bool dynamic = false;
+  Shape shape;
+  Eigen::Isometry3d X_GO = Eigen::Isometry3d::Identity();  // initial pose of the centroid frame
+  double mass_kg = 0.0;                                     // 0 for static objects
+  Eigen::Matrix3d I_O = Eigen::Matrix3d::Zero();            // inertia about the centroid, frame O
+  Eigen::Vector3d v_G = Eigen::Vector3d::Zero();            // initial linear velocity (m/s)
+  Eigen::Vector3d w_G = Eigen::Vector3d::Zero();            // initial angular velocity (rad/s)
+  Material material;
+  std::array<float, 4> color_rgba{0.6f, 0.6f, 0.6f, 1.0f};
+};
+
+// Stable grasp (paper §4.4) and the hysteresis around it. Forces in N, torques in N m.
+struct GraspParams {
+  double xi_N = 3.0;           // eq. 30: |sum F| over hand contacts + gravity
+  double eta_Nm = 0.3;         // eq. 31: |sum M| about the centroid
+  double alpha0_deg = 120.0;   // thumb vs each finger contact-normal angle must exceed this
+  int min_contacts = 3;        // hand links touching the object ("more than 2")
+  double exit_scale = 4.0;     // while held, xi and eta are this much looser (hysteresis)
+  double exit_alpha_margin_deg = 15.0;  // while held, the angle may drop this far below alpha0
+  double min_hold_s = 0.2;     // no release (but for a lost glove) before this
+  double release_delay_s = 0.03;  // the condition must fail this long before a release
+  double regrab_cooldown_s = 0.3;  // no new grasp of the same object for this long after release
+  double velocity_window_s = 0.02;  // released object takes the hand's velocity over this window
+};
+
+// Contact model details beyond the paper's equations.
+struct ContactParams {
+  double slip_speed_mps = 1.0e-3;  // eq. 15-17 epsilon: |v_t| at or above it is sliding
+  double substep_safety = 0.2;     // dt_sub <= safety * sqrt(m_eff / k_eff)
+  int max_substeps = 32;
+  int max_points_per_pair = 4;
+};
+
+struct Scene {
+  Eigen::Vector3d gravity_mps2{0.0, 0.0, -9.81};
+  double step_s = 0.001;
+  std::vector<ObjectSpec> objects;
+  std::optional<HandModel> hand;       // no hand: objects only
+  Material hand_material{2.0e4, 0.7, 1.0, 0.8};  // skin on a glove: grippy and soft
+  GraspParams grasp;
+  ContactParams contact;
+
+  // -1 when no object has that name.
+  int find_object(const std::string& name) const;
+};
+
+// Mass properties from density: mass and inertia about the centroid.
+void mass_properties_from_density(const Shape& shape, double density_kgpm3, double& mass_kg,
+                                  Eigen::Matrix3d& I_O);
+
+}  // namespace vcockpit::physics

@@ -1,0 +1,587 @@
+// Collision (paper §4.2): FCL's contacts against closed forms (resting depths, normals, manifold
+// sizes), the pair filter (static-static, hand-static, link-link, disabled hand), the normal
+// convention for every shape pair in both body orders, determinism and allocation-free steps.
+//
+// Every scene is built here; none reads config/cockpit.yaml. The floor is a static box whose
+// top face is z = 0, so a body resting d into it has its lowest point at z = -d.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "physics_node/config/hand_config.hpp"
+#include "physics_node/physics/collision.hpp"
+#include "physics_node/physics/hand_model.hpp"
+#include "physics_node/physics/scene.hpp"
+
+// Counts heap allocations while armed, to prove the broadphase step allocates nothing.
+namespace {
+std::atomic<bool> g_count_allocations{false};
+std::atomic<int> g_allocations{0};
+}  // namespace
+
+// noinline: GCC otherwise inlines these into gtest's factories and flags malloc/free as a
+// mismatched new/delete pair.
+[[gnu::noinline]] void* operator new(std::size_t size) {
+  if (g_count_allocations.load()) g_allocations.fetch_add(1);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+[[gnu::noinline]] void* operator new[](std::size_t size) {
+  return ::operator new(size);
+}
+[[gnu::noinline]] void operator delete(void* p) noexcept {
+  std::free(p);
+}
+[[gnu::noinline]] void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+[[gnu::noinline]] void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+namespace vcockpit::physics {
+namespace {
+
+// FCL's closed-form pairs (box-box, sphere-*) are exact to rounding; the MPR pairs (capsule or
+// cylinder against box, cylinder, capsule) converge to collision.cpp's 1e-9 m tolerance.
+constexpr double kDepthTol_m = 1e-8;
+constexpr double kPointTol_m = 1e-8;
+constexpr double kNormalTol = 1e-6;  // |n - n_expected|, unitless
+constexpr double kDepth_m = 1e-3;    // how far bodies are pushed into each other
+
+std::string source_dir() {
+  if (const char* dir = std::getenv("VCOCKPIT_SOURCE_DIR")) return dir;
+  const std::string file = __FILE__;  // <repo>/tests/unit/collision_test.cpp
+  return file.substr(0, file.rfind("/tests/unit/"));
+}
+
+const HandModel& shipped_hand() {
+  static const HandModel model = load_hand_model(source_dir() + "/config/hand.yaml");
+  return model;
+}
+
+// Exact quarter turns, so closed-form expectations stay exact.
+Eigen::Matrix3d ry90() {  // z -> x: an axis-along-z shape lying along x
+  Eigen::Matrix3d R;
+  R << 0, 0, 1, 0, 1, 0, -1, 0, 0;
+  return R;
+}
+Eigen::Matrix3d rx90() {  // z -> -y: an axis-along-z shape lying along y
+  Eigen::Matrix3d R;
+  R << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+  return R;
+}
+
+Eigen::Isometry3d pose(double x_m, double y_m, double z_m,
+                       const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity()) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = R;
+  X.translation() = Eigen::Vector3d(x_m, y_m, z_m);
+  return X;
+}
+
+ObjectSpec object(const std::string& name, bool dynamic, const Shape& shape,
+                  const Eigen::Isometry3d& X_GO) {
+  ObjectSpec spec;
+  spec.name = name;
+  spec.dynamic = dynamic;
+  spec.shape = shape;
+  spec.X_GO = X_GO;
+  spec.mass_kg = dynamic ? 0.1 : 0.0;
+  return spec;
+}
+
+// 1 m x 1 m, 0.1 m thick, top face at z = 0.
+ObjectSpec floor_box(bool dynamic = false) {
+  return object("floor", dynamic, Shape::box({1.0, 1.0, 0.1}), pose(0, 0, -0.05));
+}
+
+std::vector<Eigen::Isometry3d> initial_poses(const Scene& scene) {
+  std::vector<Eigen::Isometry3d> X_GO;
+  for (const ObjectSpec& spec : scene.objects)
+    X_GO.push_back(spec.X_GO);
+  return X_GO;
+}
+
+std::vector<ContactPoint> step(CollisionWorld& world, const std::vector<Eigen::Isometry3d>& X_GO,
+                               const std::array<Eigen::Isometry3d, kLinkCount>* X_GL = nullptr) {
+  std::vector<ContactPoint> contacts;
+  world.set_poses(X_GO, X_GL);
+  world.find_candidate_pairs();
+  world.compute_contacts(contacts);
+  return contacts;
+}
+
+void expect_vec_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected, double tol,
+                     const std::string& what) {
+  EXPECT_LE((actual - expected).norm(), tol)
+      << what << ": got " << actual.transpose() << ", expected " << expected.transpose();
+}
+
+bool same_bits(const ContactPoint& x, const ContactPoint& y) {
+  return x.body_a == y.body_a && x.body_b == y.body_b &&
+         std::memcmp(x.p_G.data(), y.p_G.data(), 3 * sizeof(double)) == 0 &&
+         std::memcmp(x.n_G.data(), y.n_G.data(), 3 * sizeof(double)) == 0 &&
+         std::memcmp(&x.depth_m, &y.depth_m, sizeof(double)) == 0;
+}
+
+// ---- closed-form resting contacts -----------------------------------------------------------
+
+TEST(Collision, SphereOneMillimetreIntoStaticBox) {
+  constexpr double r_m = 0.05;
+  Scene scene;
+  scene.objects = {floor_box(),
+                   object("ball", true, Shape::sphere(r_m), pose(0.1, 0.05, r_m - kDepth_m))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+
+  EXPECT_EQ(world.candidate_pair_count(), 1u);
+  ASSERT_EQ(contacts.size(), 1u);
+  const ContactPoint& c = contacts[0];
+  EXPECT_EQ(c.body_a, 0);  // the box
+  EXPECT_EQ(c.body_b, 1);
+  EXPECT_NEAR(c.depth_m, kDepth_m, 1e-6);
+  expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal, box -> sphere");
+  // FCL puts the point midway between the sphere's bottom (z = -d) and the box top (z = 0)
+  expect_vec_near(c.p_G, Eigen::Vector3d(0.1, 0.05, -0.5 * kDepth_m), kPointTol_m, "point");
+  EXPECT_EQ(world.skipped_contacts(), 0u);
+}
+
+TEST(Collision, BoxOneMillimetreIntoBoxFloorGivesFourCorners) {
+  constexpr double half_m = 0.05;  // 0.1 m cube
+  const Eigen::Vector3d centre(0.1, -0.2, half_m - kDepth_m);
+  Scene scene;
+  scene.objects = {floor_box(), object("crate", true, Shape::box(Eigen::Vector3d::Constant(0.1)),
+                                       pose(centre.x(), centre.y(), centre.z()))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+
+  ASSERT_EQ(contacts.size(), 4u);
+  int corners_seen = 0;
+  for (const ContactPoint& c : contacts) {
+    EXPECT_EQ(c.body_a, 0);
+    EXPECT_EQ(c.body_b, 1);
+    EXPECT_NEAR(c.depth_m, kDepth_m, 1e-6);
+    expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal");
+    // one point under each corner of the footprint, midway through the overlap
+    const Eigen::Vector3d offset = c.p_G - Eigen::Vector3d(centre.x(), centre.y(), 0.0);
+    EXPECT_NEAR(std::abs(offset.x()), half_m, kPointTol_m);
+    EXPECT_NEAR(std::abs(offset.y()), half_m, kPointTol_m);
+    EXPECT_NEAR(offset.z(), -0.5 * kDepth_m, kPointTol_m);
+    corners_seen |= 1 << ((offset.x() > 0 ? 1 : 0) + (offset.y() > 0 ? 2 : 0));
+  }
+  EXPECT_EQ(corners_seen, 0b1111);
+}
+
+TEST(Collision, MaxPointsPerPairCapsTheManifold) {
+  Scene scene;
+  scene.contact.max_points_per_pair = 2;
+  scene.objects = {floor_box(), object("crate", true, Shape::box(Eigen::Vector3d::Constant(0.1)),
+                                       pose(0, 0, 0.05 - kDepth_m))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+  ASSERT_EQ(contacts.size(), 2u);
+  for (const ContactPoint& c : contacts)
+    EXPECT_NEAR(c.depth_m, kDepth_m, 1e-6);
+}
+
+TEST(Collision, CylinderLyingOnBox) {
+  constexpr double r_m = 0.03, length_m = 0.2;
+  const Eigen::Vector3d centre(-0.1, 0.15, r_m - kDepth_m);
+  Scene scene;
+  scene.objects = {floor_box(), object("can", true, Shape::cylinder(r_m, length_m),
+                                       pose(centre.x(), centre.y(), centre.z(), ry90()))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+
+  ASSERT_GE(contacts.size(), 1u);  // FCL 0.7: one MPR point for the line contact
+  for (const ContactPoint& c : contacts) {
+    EXPECT_NEAR(c.depth_m, kDepth_m, 1e-6);
+    expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal");
+    // somewhere on the contact line, inside the overlap slab
+    EXPECT_LE(std::abs(c.p_G.x() - centre.x()), 0.5 * length_m + kPointTol_m);
+    EXPECT_NEAR(c.p_G.y(), centre.y(), 1e-6);
+    EXPECT_GE(c.p_G.z(), -kDepth_m - kPointTol_m);
+    EXPECT_LE(c.p_G.z(), kPointTol_m);
+  }
+}
+
+// ---- the normal points from body_a (lower index) to body_b, for every shape pair ------------
+
+struct StackCase {
+  std::string name;
+  Shape lower;
+  Eigen::Isometry3d X_G_lower;  // its top at z = 0
+  Shape upper;
+  Eigen::Isometry3d X_G_upper;  // its bottom at z = -1 mm
+  std::size_t points;
+};
+
+std::vector<StackCase> stack_cases() {
+  const double d = kDepth_m;
+  const Shape slab = Shape::box({0.4, 0.4, 0.1});
+  const Eigen::Isometry3d X_slab = pose(0, 0, -0.05);
+  const Shape drum = Shape::cylinder(0.05, 0.1);  // upright, top at z = 0
+  const Eigen::Isometry3d X_drum = pose(0, 0, -0.05);
+  return {
+      {"box-box", slab, X_slab, Shape::box(Eigen::Vector3d::Constant(0.1)),
+       pose(0.02, 0.03, 0.05 - d), 4},
+      {"box-sphere", slab, X_slab, Shape::sphere(0.05), pose(0.02, 0.03, 0.05 - d), 1},
+      {"box-cylinder", slab, X_slab, Shape::cylinder(0.03, 0.2), pose(0.02, 0.03, 0.03 - d, ry90()),
+       1},
+      {"box-capsule", slab, X_slab, Shape::capsule(0.01, 0.05), pose(0.02, 0.03, 0.01 - d, ry90()),
+       1},
+      {"cylinder-capsule", drum, X_drum, Shape::capsule(0.01, 0.05),
+       pose(0.0, 0.01, 0.01 - d, ry90()), 1},
+      {"sphere-capsule", Shape::sphere(0.05), pose(0, 0, -0.05), Shape::capsule(0.01, 0.05),
+       pose(0, 0, 0.01 - d, ry90()), 1},
+      {"capsule-capsule", Shape::capsule(0.01, 0.05), pose(0, 0, -0.01, ry90()),
+       Shape::capsule(0.01, 0.05), pose(0, 0, 0.01 - d, rx90()), 1},
+      {"cylinder-sphere", drum, X_drum, Shape::sphere(0.02), pose(0.01, 0, 0.02 - d), 1},
+      {"box-upright cylinder", slab, X_slab, Shape::cylinder(0.03, 0.2),
+       pose(0.02, 0.03, 0.1 - d), 1},
+  };
+}
+
+TEST(Collision, NormalPointsFromBodyAToBodyBForEveryShapePair) {
+  for (const StackCase& k : stack_cases()) {
+    for (bool lower_first : {true, false}) {
+      SCOPED_TRACE(k.name + (lower_first ? ", lower body first" : ", upper body first"));
+      const ObjectSpec lower = object("lower", true, k.lower, k.X_G_lower);
+      const ObjectSpec upper = object("upper", true, k.upper, k.X_G_upper);
+      Scene scene;
+      scene.objects = lower_first ? std::vector{lower, upper} : std::vector{upper, lower};
+      CollisionWorld world(scene);
+      const auto contacts = step(world, initial_poses(scene));
+
+      // body 0 is below body 1 exactly when the lower body comes first
+      const Eigen::Vector3d n_expected = (lower_first ? 1.0 : -1.0) * Eigen::Vector3d::UnitZ();
+      ASSERT_EQ(contacts.size(), k.points);
+      for (const ContactPoint& c : contacts) {
+        EXPECT_EQ(c.body_a, 0);
+        EXPECT_EQ(c.body_b, 1);
+        EXPECT_NEAR(c.depth_m, kDepth_m, kDepthTol_m);
+        expect_vec_near(c.n_G, n_expected, kNormalTol, "normal");
+        EXPECT_NEAR(c.n_G.norm(), 1.0, 1e-12);
+        EXPECT_GE(c.p_G.z(), -kDepth_m - kPointTol_m);  // inside the overlap slab
+        EXPECT_LE(c.p_G.z(), kPointTol_m);
+      }
+    }
+  }
+}
+
+TEST(Collision, DeepOverlapStillGivesAUnitNormal) {
+  Scene scene;
+  // a capsule lying with its axis 20 mm below the floor's top: 30 mm deep
+  scene.objects = {floor_box(),
+                   object("rod", true, Shape::capsule(0.01, 0.05), pose(0.1, 0.1, -0.02, ry90())),
+                   // centred in a static box: no preferred direction at all
+                   object("block", false, Shape::box(Eigen::Vector3d::Constant(0.1)),
+                          pose(0, 0, 2.0)),
+                   object("pin", true, Shape::capsule(0.01, 0.03), pose(0, 0, 2.0))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+
+  ASSERT_EQ(contacts.size(), 2u);
+  EXPECT_EQ(contacts[0].body_b, 1);
+  EXPECT_NEAR(contacts[0].depth_m, 0.03, kDepthTol_m);
+  expect_vec_near(contacts[0].n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "deep capsule normal");
+  EXPECT_EQ(contacts[1].body_a, 2);
+  EXPECT_EQ(contacts[1].body_b, 3);
+  EXPECT_TRUE(contacts[1].n_G.allFinite());
+  EXPECT_NEAR(contacts[1].n_G.norm(), 1.0, 1e-12);
+  EXPECT_GT(contacts[1].depth_m, 0.0);
+  EXPECT_EQ(world.skipped_contacts(), 0u);
+}
+
+TEST(Collision, ZeroNormalIsSkippedAndCounted) {
+  // FCL's sphere-sphere and sphere-capsule give a zero normal for coincident centres
+  Scene scene;
+  scene.objects = {object("a", true, Shape::sphere(0.05), pose(0, 0, 1)),
+                   object("b", true, Shape::sphere(0.03), pose(0, 0, 1)),
+                   object("c", true, Shape::capsule(0.01, 0.1), pose(1, 0, 1)),
+                   object("d", true, Shape::sphere(0.02), pose(1, 0, 1))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+  EXPECT_EQ(world.candidate_pair_count(), 2u);
+  EXPECT_TRUE(contacts.empty());
+  EXPECT_EQ(world.skipped_contacts(), 2u);
+  step(world, initial_poses(scene));
+  EXPECT_EQ(world.skipped_contacts(), 4u);  // a running count
+}
+
+// ---- the pair filter -------------------------------------------------------------------------
+
+TEST(Collision, SeparatedBodiesGiveNoPairsAndNoContacts) {
+  Scene scene;
+  // a turned shape's bounds are a cube around its bounding sphere (FCL): the rod lies 70 mm up
+  scene.objects = {floor_box(), object("ball", true, Shape::sphere(0.05), pose(0, 0, 0.06)),
+                   object("rod", true, Shape::capsule(0.01, 0.1), pose(0.3, 0.3, 0.08, ry90()))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+  EXPECT_EQ(world.candidate_pair_count(), 0u);
+  EXPECT_TRUE(contacts.empty());
+}
+
+TEST(Collision, OverlappingBoundsButApartShapesGiveAPairAndNoContact) {
+  // a ball off the floor's corner along the diagonal: the boxes around them overlap, the
+  // shapes are 0.04 * sqrt(3) - 0.05 = 19 mm apart
+  Scene scene;
+  scene.objects = {floor_box(), object("ball", true, Shape::sphere(0.05), pose(0.54, 0.54, 0.04))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+  EXPECT_EQ(world.candidate_pair_count(), 1u);
+  EXPECT_TRUE(contacts.empty());
+}
+
+TEST(Collision, StaticStaticOverlapIsNeverReported) {
+  Scene scene;
+  scene.objects = {floor_box(),
+                   object("panel", false, Shape::box({0.2, 0.2, 0.2}), pose(0, 0, 0)),
+                   object("knob", false, Shape::sphere(0.05), pose(0, 0, 0.1)),
+                   object("ball", true, Shape::sphere(0.05), pose(0.4, 0.4, 0.05 - kDepth_m))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+  EXPECT_EQ(world.candidate_pair_count(), 1u);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_EQ(contacts[0].body_a, 0);
+  EXPECT_EQ(contacts[0].body_b, 3);
+}
+
+TEST(Collision, StaticObjectsIgnoreTheirPoses) {
+  Scene scene;
+  scene.objects = {floor_box(), object("ball", true, Shape::sphere(0.05), pose(0, 0, 0.049))};
+  CollisionWorld world(scene);
+  auto X_GO = initial_poses(scene);
+  X_GO[0] = pose(0, 0, 10.0);  // a static object never moves
+  const auto contacts = step(world, X_GO);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_NEAR(contacts[0].depth_m, kDepth_m, 1e-6);
+}
+
+TEST(Collision, DynamicObjectsFollowTheirPoses) {
+  Scene scene;
+  scene.objects = {floor_box(), object("ball", true, Shape::sphere(0.05), pose(0, 0, 0.5))};
+  CollisionWorld world(scene);
+  auto X_GO = initial_poses(scene);
+  EXPECT_TRUE(step(world, X_GO).empty());
+  X_GO[1] = pose(0.2, 0.1, 0.05 - 2e-3);
+  const auto contacts = step(world, X_GO);
+  ASSERT_EQ(contacts.size(), 1u);
+  EXPECT_NEAR(contacts[0].depth_m, 2e-3, 1e-6);
+  expect_vec_near(contacts[0].p_G, Eigen::Vector3d(0.2, 0.1, -1e-3), kPointTol_m, "point");
+}
+
+TEST(Collision, RejectsBadShapes) {
+  Scene scene;
+  scene.objects = {object("flat", true, Shape::box({0.1, 0.0, 0.1}), pose(0, 0, 0))};
+  EXPECT_THROW(CollisionWorld{scene}, std::invalid_argument);
+  scene.objects = {object("dot", true, Shape::sphere(0.0), pose(0, 0, 0))};
+  EXPECT_THROW(CollisionWorld{scene}, std::invalid_argument);
+  scene.objects = {object("ok", true, Shape::sphere(0.1), pose(0, 0, 0))};
+  scene.contact.max_points_per_pair = 0;
+  EXPECT_THROW(CollisionWorld{scene}, std::invalid_argument);
+}
+
+// ---- the hand --------------------------------------------------------------------------------
+
+// A flat open right hand (all joints zero), wrist at X_GH: link poses in world.
+std::array<Eigen::Isometry3d, kLinkCount> flat_hand_links(const HandModel& hand,
+                                                          const Eigen::Isometry3d& X_GH) {
+  HandLinkPoses fk;
+  forward_kinematics(hand, JointAngles{}, fk);
+  std::array<Eigen::Isometry3d, kLinkCount> X_GL;
+  for (int l = 0; l < kLinkCount; ++l)
+    X_GL[l] = X_GH * fk.X_HL[l];
+  return X_GL;
+}
+
+// A box under the index distal phalanx only, its top `dip_m` above the capsule's lowest line.
+// It starts 10 mm past the distal joint, clear of the middle phalanx's end cap (radius 8 mm).
+ObjectSpec box_under_index_tip(const HandModel& hand,
+                               const std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                               double dip_m, bool dynamic) {
+  const auto distal = static_cast<std::size_t>(Link::kIndexDistal);
+  const Eigen::Vector3d p0 = X_GL[distal].translation();
+  const double top_m = p0.z() - hand.capsules[distal].radius_m + dip_m;
+  const Eigen::Vector3d size(0.030, 0.010, 0.020);
+  return object("key", dynamic, Shape::box(size),
+                pose(p0.x() + 0.010 + 0.5 * size.x(), p0.y(), top_m - 0.5 * size.z()));
+}
+
+TEST(CollisionHand, IndexTipDipsTwoMillimetresIntoABox) {
+  const HandModel& hand = shipped_hand();
+  const auto X_GL = flat_hand_links(hand, pose(0.2, -0.1, 0.9));
+  const auto distal = static_cast<std::size_t>(Link::kIndexDistal);
+  // the closed form below needs the phalanx level and along +x
+  expect_vec_near(X_GL[distal].linear().col(0), Eigen::Vector3d::UnitX(), 1e-12, "x_L");
+  constexpr double dip_m = 2e-3;
+
+  Scene scene;
+  scene.hand = hand;
+  scene.objects = {box_under_index_tip(hand, X_GL, dip_m, true)};
+  CollisionWorld world(scene);
+  ASSERT_TRUE(world.has_hand());
+  EXPECT_EQ(world.hand_link_body(Link::kPalm), 1);
+  const auto contacts = step(world, initial_poses(scene), &X_GL);
+
+  ASSERT_EQ(contacts.size(), 1u);
+  const ContactPoint& c = contacts[0];
+  EXPECT_EQ(c.body_a, 0);
+  EXPECT_EQ(c.body_b, world.hand_link_body(Link::kIndexDistal));
+  EXPECT_TRUE(world.is_hand_body(c.body_b));
+  EXPECT_NEAR(c.depth_m, dip_m, 1e-6);
+  expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal, box -> finger");
+  // on the finger's underside, between the box's start and the capsule's end
+  const Eigen::Vector3d p0 = X_GL[distal].translation();
+  const double r_m = hand.capsules[distal].radius_m, length_m = hand.capsules[distal].length_m;
+  EXPECT_GE(c.p_G.x(), p0.x() + 0.010 - kPointTol_m);
+  EXPECT_LE(c.p_G.x(), p0.x() + length_m + r_m);
+  EXPECT_NEAR(c.p_G.y(), p0.y(), 1e-6);
+  EXPECT_GE(c.p_G.z(), p0.z() - r_m - kPointTol_m);
+  EXPECT_LE(c.p_G.z(), p0.z() - r_m + dip_m + kPointTol_m);
+}
+
+TEST(CollisionHand, DisabledHandGivesNoHandPairs) {
+  const HandModel& hand = shipped_hand();
+  const auto X_GL = flat_hand_links(hand, pose(0.2, -0.1, 0.9));
+  Scene scene;
+  scene.hand = hand;
+  scene.objects = {box_under_index_tip(hand, X_GL, 2e-3, true)};
+  CollisionWorld world(scene);
+  const auto X_GO = initial_poses(scene);
+
+  EXPECT_EQ(step(world, X_GO, &X_GL).size(), 1u);
+  // the links keep their last poses in the tree, but no pair with them may come out
+  EXPECT_TRUE(step(world, X_GO, nullptr).empty());
+  EXPECT_EQ(world.candidate_pair_count(), 0u);
+  EXPECT_EQ(step(world, X_GO, &X_GL).size(), 1u);  // and back
+}
+
+TEST(CollisionHand, HandAgainstStaticObjectAndLinkAgainstLinkAreNeverPairs) {
+  const HandModel& hand = shipped_hand();
+  const auto X_GL = flat_hand_links(hand, pose(0.2, -0.1, 0.9));
+  Scene scene;
+  scene.hand = hand;
+  scene.objects = {box_under_index_tip(hand, X_GL, 2e-3, false)};
+  CollisionWorld world(scene);
+  // the phalanx capsules overlap at every joint, the box overlaps the index tip
+  EXPECT_TRUE(step(world, initial_poses(scene), &X_GL).empty());
+  EXPECT_EQ(world.candidate_pair_count(), 0u);
+}
+
+// ---- determinism and the allocation-free loop ------------------------------------------------
+
+// Static floor and static panel (overlapping each other), four dynamic bodies resting in a
+// stack, and the palm 1 mm into a dynamic pad under the palm only (clear of the thumb, which
+// hangs lower than the palm's bottom face near the wrist). In pair (1, 3) the body below has the
+// higher index.
+Scene busy_scene(const Eigen::Isometry3d& X_GH) {
+  const double d = kDepth_m;
+  const HandModel& hand = shipped_hand();
+  const double palm_bottom_m = hand.X_HP.translation().z() - 0.5 * hand.palm_size_m.z();
+  const Eigen::Vector3d pad_size(0.08, 0.045, 0.02);
+  Eigen::Isometry3d X_GPad = X_GH * pose(0.045, -0.0175, palm_bottom_m + d - 0.5 * pad_size.z());
+  Scene scene;
+  scene.hand = hand;
+  scene.objects = {
+      floor_box(),                                                                          // 0
+      object("lid", true, Shape::box({0.1, 0.1, 0.02}), pose(-0.3, 0.2, 0.11 - 2 * d)),     // 1
+      object("ball", true, Shape::sphere(0.04), pose(0.3, -0.3, 0.04 - d)),                 // 2
+      object("crate", true, Shape::box(Eigen::Vector3d::Constant(0.1)),
+             pose(-0.3, 0.2, 0.05 - d)),                                                    // 3
+      object("can", true, Shape::cylinder(0.03, 0.15), pose(0.3, 0.3, 0.03 - d, ry90())),  // 4
+      object("panel", false, Shape::box({0.2, 0.2, 0.2}), pose(-0.45, -0.45, 0.0)),         // 5
+      object("pad", true, Shape::box(pad_size), X_GPad),                                    // 6
+  };
+  return scene;
+}
+
+TEST(Collision, SameSceneSamePosesGiveBitwiseIdenticalSortedContacts) {
+  const Eigen::Isometry3d X_GH = pose(0.0, 0.0, 1.0);
+  const auto X_GL = flat_hand_links(shipped_hand(), X_GH);
+  const Scene scene = busy_scene(X_GH);
+  const auto X_GO = initial_poses(scene);
+  CollisionWorld world(scene);
+  const auto first = step(world, X_GO, &X_GL);
+
+  const int palm = world.hand_link_body(Link::kPalm);
+  std::vector<std::pair<int, int>> pairs;
+  for (const ContactPoint& c : first) {
+    EXPECT_LT(c.body_a, c.body_b);
+    EXPECT_GT(c.depth_m, 0.0);
+    if (pairs.empty() || pairs.back() != std::pair{c.body_a, c.body_b})
+      pairs.emplace_back(c.body_a, c.body_b);
+  }
+  const std::vector<std::pair<int, int>> expected{{0, 2}, {0, 3}, {0, 4}, {1, 3}, {6, palm}};
+  EXPECT_EQ(pairs, expected);  // sorted by (body_a, body_b); no static-static (0, 5)
+  EXPECT_TRUE(std::is_sorted(first.begin(), first.end(), [](const auto& x, const auto& y) {
+    return x.body_a != y.body_a ? x.body_a < y.body_a : x.body_b < y.body_b;
+  }));
+
+  // the same world after moving everything elsewhere (the tree refits and rebalances), and a
+  // fresh world: identical bits
+  auto X_GO_moved = X_GO;
+  for (auto& X : X_GO_moved)
+    X.translation() += Eigen::Vector3d(0.37, -0.21, 0.5);
+  const auto X_GL_moved = flat_hand_links(shipped_hand(), pose(-0.5, 0.4, 1.2));
+  step(world, X_GO_moved, &X_GL_moved);
+  const auto again = step(world, X_GO, &X_GL);
+  CollisionWorld fresh(scene);
+  const auto other = step(fresh, X_GO, &X_GL);
+
+  ASSERT_EQ(again.size(), first.size());
+  ASSERT_EQ(other.size(), first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_TRUE(same_bits(first[i], again[i])) << "contact " << i;
+    EXPECT_TRUE(same_bits(first[i], other[i])) << "contact " << i;
+  }
+}
+
+TEST(Collision, StepsAllocateNothingOnceWarm) {
+  const Eigen::Isometry3d X_GH = pose(0.0, 0.0, 1.0);
+  const auto X_GL = flat_hand_links(shipped_hand(), X_GH);
+  const auto X_GL_moved = flat_hand_links(shipped_hand(), pose(0.01, -0.02, 1.003));
+  const Scene scene = busy_scene(X_GH);
+  const auto X_GO = initial_poses(scene);
+  auto X_GO_moved = X_GO;
+  for (auto& X : X_GO_moved)
+    X.translation() += Eigen::Vector3d(0.002, -0.001, 0.0005);
+  CollisionWorld world(scene);
+  std::vector<ContactPoint> contacts;
+  for (int i = 0; i < 3; ++i) {
+    step(world, X_GO, &X_GL);
+    world.compute_contacts(contacts);
+  }
+  const ContactPoint* buffer = contacts.data();
+
+  // FCL's narrowphase allocates internally (its per-pair contact vector, libccd's shape copies),
+  // so only the broadphase half is counted; the output buffer must simply stay put.
+  g_allocations = 0;
+  for (int i = 0; i < 20; ++i) {
+    const bool moved = i % 2 == 1;
+    g_count_allocations = true;
+    world.set_poses(moved ? X_GO_moved : X_GO, i % 5 == 4 ? nullptr : moved ? &X_GL_moved : &X_GL);
+    world.find_candidate_pairs();
+    g_count_allocations = false;
+    world.compute_contacts(contacts);
+    EXPECT_FALSE(contacts.empty());
+  }
+  EXPECT_EQ(g_allocations.load(), 0);
+  EXPECT_EQ(contacts.data(), buffer);
+}
+
+}  // namespace
+}  // namespace vcockpit::physics

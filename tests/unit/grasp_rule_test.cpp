@@ -1,0 +1,105 @@
+// The stable-grasp rule (paper §4.4): gesture (more than 2 links, the thumb, thumb-finger normal
+// angles above alpha0) and equilibrium (eqs. 30-31).
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "physics_node/physics/grasp.hpp"
+
+namespace vcockpit::physics {
+namespace {
+
+const Eigen::Vector3d kCentroid(0, 0, 0);
+const Eigen::Vector3d kGravity(0, 0, -9.81);
+constexpr double kMass = 0.2;  // weight 1.962 N
+
+// A contact at p pressing with `normal_N` along n (into the object) plus `lift_N` upward.
+HandContact touch(Link link, Eigen::Vector3d p, Eigen::Vector3d n, double normal_N, double lift_N) {
+  HandContact c;
+  c.link = link;
+  c.p_G = p;
+  c.n_G = n.normalized();
+  c.F_G = normal_N * c.n_G + Eigen::Vector3d(0, 0, lift_N);
+  return c;
+}
+
+GraspCheck check(const std::vector<HandContact>& contacts, bool held = false) {
+  return evaluate_grasp(contacts.data(), contacts.size(), kCentroid, kMass, kGravity,
+                        GraspParams{}, held);
+}
+
+// Thumb on -x pressing +x; index and middle on +x pressing -x; friction carries the weight.
+std::vector<HandContact> balanced_three_point() {
+  const double w = kMass * 9.81;
+  return {touch(Link::kThumbDistal, {-0.04, 0, 0}, {1, 0, 0}, 4.0, w / 2),
+          touch(Link::kIndexDistal, {0.04, 0, 0.01}, {-1, 0, 0}, 2.0, w / 4),
+          touch(Link::kMiddleDistal, {0.04, 0, -0.01}, {-1, 0, 0}, 2.0, w / 4)};
+}
+
+TEST(GraspRule, BalancedThreePointGraspWithTheThumbHolds) {
+  const GraspCheck c = check(balanced_three_point());
+  EXPECT_EQ(c.verdict, GraspReason::kStableGrasp) << grasp_reason_name(c.verdict);
+  EXPECT_EQ(c.links_in_contact, 3);
+  EXPECT_TRUE(c.thumb);
+  EXPECT_NEAR(c.min_thumb_angle_deg, 180.0, 1e-9);
+  EXPECT_NEAR(c.residual_force_N, 0.0, 1e-12);
+  EXPECT_NEAR(c.residual_torque_Nm, 0.0, 1e-12);
+}
+
+TEST(GraspRule, TwoContactsAreNoGrasp) {
+  auto contacts = balanced_three_point();
+  contacts.pop_back();
+  EXPECT_EQ(check(contacts).verdict, GraspReason::kTooFewContacts);
+}
+
+TEST(GraspRule, SeveralPointsOnOneLinkCountOnce) {
+  auto contacts = balanced_three_point();
+  contacts[2].link = Link::kIndexDistal;  // two points on the index tip
+  EXPECT_EQ(check(contacts).verdict, GraspReason::kTooFewContacts);
+}
+
+TEST(GraspRule, NoThumbIsNoGrasp) {
+  auto contacts = balanced_three_point();
+  contacts[0].link = Link::kRingDistal;
+  EXPECT_EQ(check(contacts).verdict, GraspReason::kNoThumb);
+}
+
+TEST(GraspRule, ThumbFingerAngleUnderAlpha0IsNoGrasp) {
+  auto contacts = balanced_three_point();
+  // the middle finger presses at 100 deg from the thumb's normal (alpha0 is 120)
+  const double a = 100.0 * M_PI / 180.0;
+  contacts[2] = touch(Link::kMiddleDistal, {0, 0.04, 0}, {std::cos(a), std::sin(a), 0}, 2.0, 0.5);
+  const GraspCheck c = check(contacts);
+  EXPECT_EQ(c.verdict, GraspReason::kFingersNotOpposed);
+  EXPECT_NEAR(c.min_thumb_angle_deg, 100.0, 1e-6);
+}
+
+TEST(GraspRule, ThumbPalmAndThumbAloneOpposeNothing) {
+  const double w = kMass * 9.81;
+  const std::vector<HandContact> contacts = {
+      touch(Link::kThumbDistal, {-0.04, 0, 0}, {1, 0, 0}, 2.0, w / 3),
+      touch(Link::kThumbMiddle, {-0.04, 0, 0.02}, {1, 0, 0}, 2.0, w / 3),
+      touch(Link::kPalm, {0.04, 0, 0}, {-1, 0, 0}, 4.0, w / 3)};
+  EXPECT_EQ(check(contacts).verdict, GraspReason::kFingersNotOpposed);
+}
+
+TEST(GraspRule, UnbalancedForceOrTorqueIsNoGraspButLooserWhileHeld) {
+  auto contacts = balanced_three_point();
+  contacts[0].F_G.x() += 4.0;  // 4 N net push: above xi (3 N), below exit_scale xi
+  EXPECT_EQ(check(contacts).verdict, GraspReason::kForceResidual);
+  EXPECT_EQ(check(contacts, /*held=*/true).verdict, GraspReason::kStableGrasp);
+
+  auto twisted = balanced_three_point();
+  // equal and opposite vertical forces 10 cm apart: no net force, 0.5 N m of torque
+  twisted[1].F_G.z() += 5.0;
+  twisted[1].p_G = {0.05, 0, 0};
+  twisted[0].F_G.z() -= 5.0;
+  twisted[0].p_G = {-0.05, 0, 0};
+  const GraspCheck c = check(twisted);
+  EXPECT_LT(c.residual_force_N, 1e-9);
+  EXPECT_EQ(c.verdict, GraspReason::kTorqueResidual) << c.residual_torque_Nm;
+}
+
+}  // namespace
+}  // namespace vcockpit::physics
