@@ -1,45 +1,91 @@
-// physics_node: the central computer of the paper's prototype. `--offline` runs the world with no
-// DDS from a scene and a glove log, as fast as it can, and writes trajectories, events and a
-// summary.
+// physics_node: the central computer of the paper's prototype (§2). Over DDS it takes hand samples
+// and publishes the virtual world (real time at a fixed rate, or lockstep with a replay);
+// `--offline` runs the same world with no DDS from a glove log and writes trajectories, events and
+// a summary.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
 #include "common/logging.hpp"
+#include "common/signals.hpp"
+#include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/offline_runner.hpp"
+#include "physics_node/node/node_loop.hpp"
+
+namespace {
+
+using namespace vcockpit;
+
+int run_offline_mode(const physics_io::OfflineOptions& options) {
+  if (options.out_dir.empty()) throw CLI::ValidationError("--offline needs --out DIR");
+  const auto summary = physics_io::run_offline(options);
+  spdlog::info("{} steps ({} substeps each), {:.3f} s simulated in {:.3f} s wall ({:.1f}x real "
+               "time); {} grasp(s), {} release(s); hand penetration max {:.2f} mm",
+               summary.steps, summary.substeps, summary.simulated_s, summary.wall_s,
+               summary.wall_s > 0 ? summary.simulated_s / summary.wall_s : 0.0, summary.grasps,
+               summary.releases, summary.penetration_max_m * 1e3);
+  return 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
-  using namespace vcockpit;
   CLI::App app("physics_node: hand kinematics, collision, virtual forces, rigid-body motion and "
-               "the stable grasp of the virtual cockpit");
+               "the stable grasp of the virtual cockpit. Over DDS by default; --offline without.");
   bool offline = false;
-  physics_io::OfflineOptions options;
-  options.scene_path = std::string(VCOCKPIT_CONFIG_DIR) + "/cockpit.yaml";
+  physics_io::OfflineOptions offline_options;
+  std::string scene_path = std::string(VCOCKPIT_CONFIG_DIR) + "/cockpit.yaml";
+  physics_node::NodeOptions node_options;
+  DdsFlags dds_flags;
   std::string log_level = "info";
-  app.add_flag("--offline", offline, "run without DDS, as fast as possible, and write DIR outputs");
-  app.add_option("--scene", options.scene_path, "scene YAML")->capture_default_str();
-  app.add_option("--log", options.log_path, "glove log CSV driving the hand (--offline)");
-  app.add_option("--duration", options.duration_s,
-                 "simulated seconds (default: the log's span)");
-  app.add_option("--out", options.out_dir, "output directory (--offline)");
-  app.add_option("--output-hz", options.output_hz, "trajectory rows per second")
+
+  app.add_option("--scene", scene_path, "scene YAML (objects, materials, hand, grasp thresholds)")
+      ->check(CLI::ExistingFile)
       ->capture_default_str();
+  app.add_flag("--offline", offline,
+               "no DDS: run --log (or --duration) as fast as possible and write --out DIR");
+  app.add_option("--log", offline_options.log_path, "offline: glove log CSV driving the hand")
+      ->check(CLI::ExistingFile);
+  app.add_option("--duration", offline_options.duration_s,
+                 "offline: simulated seconds (default: the log's span)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--out", offline_options.out_dir,
+                 "offline: output directory for trajectories.csv, events.jsonl, summary.json");
+  app.add_option("--output-hz", offline_options.output_hz, "offline: trajectory rows per second")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_flag("--lockstep", node_options.lockstep,
+               "DDS: step to each hand sample's stamp (pairs with glove_driver --lockstep)");
+  app.add_option("--rate-hz", node_options.rate_hz, "DDS real time: physics steps per second")
+      ->check(CLI::Range(1.0, 10000.0))
+      ->capture_default_str();
+  app.add_option("--publish-hz", node_options.publish_hz,
+                 "DDS: hand_state/object_state publications per second")
+      ->check(CLI::Range(1.0, 10000.0))
+      ->capture_default_str();
+  app.add_option("--glove-timeout", node_options.glove_timeout_s,
+                 "DDS: seconds without a hand sample before the glove counts as lost")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--node-name", node_options.node_name, "name on cockpit/node_status")
+      ->capture_default_str();
+  add_dds_flags(app, dds_flags);
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+
   try {
     setup_logging("physics_node", log_level);
-    if (!offline) {
-      spdlog::error("the DDS (real-time and lockstep) mode is not built yet; use --offline");
-      return 2;
+    install_shutdown_handlers();
+    if (offline) {
+      offline_options.scene_path = scene_path;
+      return run_offline_mode(offline_options);
     }
-    if (options.out_dir.empty()) throw CLI::ValidationError("--offline needs --out DIR");
-    const auto summary = physics_io::run_offline(options);
-    spdlog::info("{} steps ({} substeps each), {:.3f} s simulated in {:.3f} s wall ({:.1f}x real "
-                 "time); {} grasp(s), {} release(s); hand penetration max {:.2f} mm",
-                 summary.steps, summary.substeps, summary.simulated_s, summary.wall_s,
-                 summary.wall_s > 0 ? summary.simulated_s / summary.wall_s : 0.0, summary.grasps,
-                 summary.releases, summary.penetration_max_m * 1e3);
-    return 0;
+    if (!offline_options.log_path.empty() || !offline_options.out_dir.empty()) {
+      throw CLI::ValidationError("--log and --out belong to --offline");
+    }
+    physics::Scene scene = load_scene(scene_path);
+    DdsParticipant participant(resolve_dds_options(dds_flags), node_options.node_name);
+    return physics_node::run_node(participant, std::move(scene), node_options);
   } catch (const CLI::Error& e) {
     return app.exit(e);
   } catch (const std::exception& e) {

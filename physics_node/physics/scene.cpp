@@ -115,6 +115,26 @@ double Shape::bounding_radius_m() const {
   return 0.0;
 }
 
+Eigen::Vector3d Shape::axis_reach_m() const {
+  switch (kind) {
+    case ShapeKind::kBox: {
+      const Eigen::Vector3d h = 0.5 * box_size_m;
+      return {std::hypot(h.y(), h.z()), std::hypot(h.x(), h.z()), std::hypot(h.x(), h.y())};
+    }
+    case ShapeKind::kSphere:
+      return Eigen::Vector3d::Constant(radius_m);
+    case ShapeKind::kCapsule: {
+      const double across = 0.5 * length_m + radius_m;
+      return {across, across, radius_m};
+    }
+    case ShapeKind::kCylinder: {
+      const double across = std::hypot(radius_m, 0.5 * length_m);
+      return {across, across, radius_m};
+    }
+  }
+  return Eigen::Vector3d::Zero();
+}
+
 int Scene::find_object(const std::string& name) const {
   for (std::size_t i = 0; i < objects.size(); ++i) {
     if (objects[i].name == name) return static_cast<int>(i);

@@ -34,6 +34,9 @@ struct Shape {
   Eigen::Matrix3d unit_density_inertia() const;
   // Radius of the smallest centred sphere holding the shape (m).
   double bounding_radius_m() const;
+  // For each of the shape's own axes, the largest distance of a point of the shape from it (m):
+  // the longest lever a contact force can have about that axis.
+  Eigen::Vector3d axis_reach_m() const;
 };
 
 // Contact material (paper §4.2). A pair's stiffness is k1 k2 / (k1 + k2) (eqs. 11-14), its

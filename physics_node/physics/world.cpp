@@ -1,8 +1,6 @@
 #include "physics_node/physics/world.hpp"
 
 #include <algorithm>
-#include <Eigen/Eigenvalues>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -43,11 +41,17 @@ void finite_difference(const Eigen::Isometry3d& before, const Eigen::Isometry3d&
   w_G = turn.axis() * (turn.angle() / dt_s);
 }
 
-// The smallest effective mass a contact on this body can see: 1 / (1/m + r^2 / I_min).
+// A lower bound of the effective mass a contact on this body can see,
+// 1 / (1/m + (r x n)^T I^-1 (r x n)): the lever about each principal axis is at most the shape's
+// reach from that axis, and |r x n| is at most the bounding radius. (Inertia from the shape is
+// diagonal in the shape's frame.)
 double worst_contact_mass(const ObjectSpec& o) {
+  const Eigen::Vector3d reach = o.shape.axis_reach_m();
+  double per_axis = 0.0;
+  for (int i = 0; i < 3; ++i) per_axis += reach[i] * reach[i] / o.I_O(i, i);
   const double r = o.shape.bounding_radius_m();
-  const double I_min = o.I_O.eigenvalues().real().minCoeff();
-  return 1.0 / (1.0 / o.mass_kg + r * r / I_min);
+  const double I_min = o.I_O.diagonal().minCoeff();
+  return 1.0 / (1.0 / o.mass_kg + std::min(per_axis, r * r / I_min));
 }
 
 double series_stiffness(const Material& a, const Material& b) {

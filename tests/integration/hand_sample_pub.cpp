@@ -4,6 +4,8 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
+
 #include "common/clock.hpp"
 #include "common/dds_participant.hpp"
 #include "common/logging.hpp"
@@ -18,6 +20,11 @@ int main(int argc, char** argv) {
   int count = 1000;
   double rate_hz = 1000.0;
   std::string profile = "reliable";
+  int nan_at = -1, stale_at = -1;
+  bool all_valid = false;
+  app.add_flag("--all-valid", all_valid, "clear the pattern's source-invalid flags");
+  app.add_option("--nan-at", nan_at, "make sample N's wrist x NaN");
+  app.add_option("--stale-at", stale_at, "give sample N the stamp of sample N - 5");
   app.add_option("--count", count)->check(CLI::PositiveNumber);
   app.add_option("--rate-hz", rate_hz)->check(CLI::PositiveNumber);
   app.add_option("--profile", profile);
@@ -37,6 +44,9 @@ int main(int argc, char** argv) {
       sleep_until_ns(next_ns);
       next_ns += period_ns;
       auto sample = test::hand_sample_pattern(static_cast<uint64_t>(i));
+      if (all_valid) sample.valid(true);
+      if (i == nan_at) sample.X_MT().position_m().x(std::nan(""));
+      if (i == stale_at) sample.sample_time_ns(sample.sample_time_ns() - 5'000'000);
       sample.source_stamp_ns(monotonic_now_ns());
       if (!writer.write(sample)) {
         spdlog::error("write {} failed", i);

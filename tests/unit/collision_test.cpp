@@ -1,10 +1,18 @@
 // Collision (paper §4.2): FCL's contacts against closed forms (resting depths, normals, manifold
 // sizes), the pair filter (static-static, hand-static, link-link, disabled hand), the normal
 // convention for every shape pair in both body orders, determinism and allocation-free steps.
+// The manifolds collision.cpp builds for flat contacts of round shapes (a cylinder standing or
+// lying on a box, a capsule lying on one, a cup on a cup) against closed forms and against FCL's
+// own single point.
 //
 // Every scene is built here; none reads config/cockpit.yaml. The floor is a static box whose
 // top face is z = 0, so a body resting d into it has its lowest point at z = -d.
 
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -206,15 +214,308 @@ TEST(Collision, CylinderLyingOnBox) {
   CollisionWorld world(scene);
   const auto contacts = step(world, initial_poses(scene));
 
-  ASSERT_GE(contacts.size(), 1u);  // FCL 0.7: one MPR point for the line contact
+  // FCL 0.7 gives one MPR point for the line contact; collision.cpp reports its two ends
+  ASSERT_EQ(contacts.size(), 2u);
+  double x_sum = 0.0;
   for (const ContactPoint& c : contacts) {
     EXPECT_NEAR(c.depth_m, kDepth_m, 1e-6);
     expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal");
-    // somewhere on the contact line, inside the overlap slab
-    EXPECT_LE(std::abs(c.p_G.x() - centre.x()), 0.5 * length_m + kPointTol_m);
+    // an end of the contact line, midway through the overlap slab
+    EXPECT_NEAR(std::abs(c.p_G.x() - centre.x()), 0.5 * length_m, kPointTol_m);
     EXPECT_NEAR(c.p_G.y(), centre.y(), 1e-6);
-    EXPECT_GE(c.p_G.z(), -kDepth_m - kPointTol_m);
-    EXPECT_LE(c.p_G.z(), kPointTol_m);
+    EXPECT_NEAR(c.p_G.z(), -0.5 * kDepth_m, kPointTol_m);
+    x_sum += c.p_G.x() - centre.x();
+  }
+  EXPECT_NEAR(x_sum, 0.0, 2 * kPointTol_m);  // one at each end
+}
+
+// ---- manifolds for flat contacts of round shapes ----------------------------------------------
+// FCL 0.7's MPR gives one point for these; collision.cpp clips the round shape's facing feature
+// (cap rim, side line, capsule segment) to the box face and reduces to at most 4 points.
+
+Eigen::Matrix3d rot(double angle_deg, const Eigen::Vector3d& axis) {
+  return Eigen::AngleAxisd(angle_deg * M_PI / 180.0, axis.normalized()).toRotationMatrix();
+}
+
+// FCL's own single contact for the floor_box() and a cylinder or capsule, at collision.cpp's
+// MPR tolerance: what the manifold must agree with.
+fcl::Contactd fcl_contact(const Shape& round, const Eigen::Isometry3d& X_G_round) {
+  const ObjectSpec floor = floor_box();
+  auto box = std::make_shared<fcl::Boxd>(floor.shape.box_size_m);
+  std::shared_ptr<fcl::CollisionGeometryd> other;
+  if (round.kind == ShapeKind::kCylinder)
+    other = std::make_shared<fcl::Cylinderd>(round.radius_m, round.length_m);
+  else
+    other = std::make_shared<fcl::Capsuled>(round.radius_m, round.length_m);
+  fcl::CollisionObjectd o1(box, floor.X_GO), o2(other, X_G_round);
+  fcl::CollisionRequestd request(1, true);
+  request.gjk_tolerance = 1e-9;
+  fcl::CollisionResultd result;
+  fcl::collide(&o1, &o2, request, result);
+  EXPECT_EQ(result.numContacts(), 1u);
+  return result.numContacts() > 0 ? result.getContact(0) : fcl::Contactd{};
+}
+
+std::vector<ContactPoint> round_on_floor(const Shape& round, const Eigen::Isometry3d& X_GO,
+                                         int max_points = 4) {
+  Scene scene;
+  scene.contact.max_points_per_pair = max_points;
+  scene.objects = {floor_box(), object("round", true, round, X_GO)};
+  CollisionWorld world(scene);
+  return step(world, initial_poses(scene));
+}
+
+double max_depth(const std::vector<ContactPoint>& contacts) {
+  double d = 0.0;
+  for (const ContactPoint& c : contacts) d = std::max(d, c.depth_m);
+  return d;
+}
+
+void expect_spread(const std::vector<ContactPoint>& contacts, double min_distance_m) {
+  for (std::size_t i = 0; i < contacts.size(); ++i)
+    for (std::size_t j = i + 1; j < contacts.size(); ++j)
+      EXPECT_GT((contacts[i].p_G - contacts[j].p_G).norm(), min_distance_m)
+          << "points " << i << " and " << j;
+}
+
+TEST(CollisionManifold, UprightCylinderOnBoxGivesFourPointsOnTheRim) {
+  constexpr double r_m = 0.035, length_m = 0.1;
+  for (double yaw_deg : {0.0, 30.0, 67.0}) {
+    SCOPED_TRACE("yaw " + std::to_string(yaw_deg));
+    const Eigen::Vector3d axis(0.1, -0.05, 0.0);
+    const auto X = pose(axis.x(), axis.y(), 0.5 * length_m - kDepth_m,
+                        rot(yaw_deg, Eigen::Vector3d::UnitZ()));
+    const auto contacts = round_on_floor(Shape::cylinder(r_m, length_m), X);
+    ASSERT_EQ(contacts.size(), 4u);
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const ContactPoint& c : contacts) {
+      EXPECT_EQ(c.body_a, 0);
+      EXPECT_EQ(c.body_b, 1);
+      EXPECT_NEAR(c.depth_m, kDepth_m, 1e-6);
+      expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal");
+      EXPECT_NEAR(c.p_G.z(), -0.5 * kDepth_m, kPointTol_m);  // midway through the overlap
+      EXPECT_NEAR((c.p_G - axis).head<2>().norm(), r_m, kPointTol_m);  // on the rim
+      centroid += c.p_G / 4.0;
+    }
+    expect_spread(contacts, r_m);
+    // a square on the rim: its centre is on the axis, so the support has no lever arm
+    expect_vec_near(Eigen::Vector3d(centroid.x(), centroid.y(), 0.0), axis, kPointTol_m,
+                    "centre of the points");
+  }
+}
+
+TEST(CollisionManifold, LyingCapsuleOnBoxGivesBothSegmentEnds) {
+  constexpr double r_m = 0.01, length_m = 0.08;
+  const Eigen::Vector3d centre(-0.2, 0.1, r_m - kDepth_m);
+  const auto contacts = round_on_floor(Shape::capsule(r_m, length_m),
+                                       pose(centre.x(), centre.y(), centre.z(), rx90()));
+  ASSERT_EQ(contacts.size(), 2u);
+  for (const ContactPoint& c : contacts) {
+    EXPECT_NEAR(c.depth_m, kDepth_m, 1e-6);
+    expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal");
+    EXPECT_NEAR(c.p_G.x(), centre.x(), kPointTol_m);
+    EXPECT_NEAR(std::abs(c.p_G.y() - centre.y()), 0.5 * length_m, kPointTol_m);
+    EXPECT_NEAR(c.p_G.z(), -0.5 * kDepth_m, kPointTol_m);
+  }
+  EXPECT_NEAR(contacts[0].p_G.y() + contacts[1].p_G.y(), 2 * centre.y(), 2 * kPointTol_m);
+}
+
+// Tilted 5 deg about y: the cap's lowest rim point is 1 mm in, the rest of the rim is out.
+TEST(CollisionManifold, TiltedCylinderWithOneRimPointInGivesThatPoint) {
+  constexpr double r_m = 0.05, length_m = 0.1, tilt_deg = 5.0;
+  const double t = tilt_deg * M_PI / 180.0;
+  const double z_m = 0.5 * length_m * std::cos(t) + r_m * std::sin(t) - kDepth_m;
+  const Eigen::Vector3d lowest(0.5 * length_m * -std::sin(t) + r_m * std::cos(t), 0.0, -kDepth_m);
+  const Shape shape = Shape::cylinder(r_m, length_m);
+
+  // a body-fixed rim point is the lowest one: exactly one point
+  {
+    const auto X = pose(0, 0, z_m, rot(tilt_deg, Eigen::Vector3d::UnitY()));
+    const auto contacts = round_on_floor(shape, X);
+    ASSERT_EQ(contacts.size(), 1u);
+    EXPECT_NEAR(contacts[0].depth_m, kDepth_m, 1e-6);
+    EXPECT_NEAR(contacts[0].depth_m, fcl_contact(shape, X).penetration_depth, 1e-6);
+    expect_vec_near(contacts[0].n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal");
+    expect_vec_near(contacts[0].p_G, lowest + Eigen::Vector3d(0, 0, 0.5 * kDepth_m), kPointTol_m,
+                    "the lowest rim point, midway");
+  }
+  // the lowest point between two body-fixed rim points (turned 22.5 deg about its axis): the
+  // exact lowest point, deepest, plus the two rim points beside it, 22.5 deg up the rim
+  {
+    const auto X = pose(0, 0, z_m, rot(tilt_deg, Eigen::Vector3d::UnitY()) *
+                                       rot(22.5, Eigen::Vector3d::UnitZ()));
+    const auto contacts = round_on_floor(shape, X);
+    ASSERT_EQ(contacts.size(), 3u);
+    EXPECT_NEAR(max_depth(contacts), kDepth_m, 1e-6);
+    EXPECT_NEAR(max_depth(contacts), fcl_contact(shape, X).penetration_depth, 1e-6);
+    EXPECT_NEAR(contacts[0].depth_m, kDepth_m, 1e-6);  // the deepest comes first
+    expect_vec_near(contacts[0].p_G, lowest + Eigen::Vector3d(0, 0, 0.5 * kDepth_m), kPointTol_m,
+                    "the lowest rim point, midway");
+    const double up_m = r_m * std::sin(t) * (1.0 - std::cos(22.5 * M_PI / 180.0));
+    for (std::size_t i = 1; i < 3; ++i) EXPECT_NEAR(contacts[i].depth_m, kDepth_m - up_m, 1e-9);
+  }
+}
+
+TEST(CollisionManifold, CylinderCapOverhangingTheBoxEdgeKeepsOnlyPointsOverTheFace) {
+  constexpr double r_m = 0.035, length_m = 0.1, edge_x_m = 0.5;  // the floor's face ends at x 0.5
+  for (double overhang_m : {0.01, 0.025, 0.045}) {
+    SCOPED_TRACE("axis " + std::to_string(overhang_m) + " m from the edge");
+    const double x_m = edge_x_m + overhang_m - r_m;  // the rim overhangs by overhang_m
+    const auto contacts =
+        round_on_floor(Shape::cylinder(r_m, length_m), pose(x_m, 0.0, 0.5 * length_m - kDepth_m));
+    ASSERT_GE(contacts.size(), 3u);
+    ASSERT_LE(contacts.size(), 4u);
+    double x_max = -1.0;
+    for (const ContactPoint& c : contacts) {
+      EXPECT_NEAR(c.depth_m, kDepth_m, 1e-6);
+      EXPECT_LE(c.p_G.x(), edge_x_m + kPointTol_m);  // over the face
+      EXPECT_LE((c.p_G - Eigen::Vector3d(x_m, 0, 0)).head<2>().norm(), r_m + kPointTol_m);
+      x_max = std::max(x_max, c.p_G.x());
+    }
+    EXPECT_NEAR(x_max, edge_x_m, kPointTol_m);  // the support reaches the edge
+    expect_spread(contacts, 1e-3);
+  }
+}
+
+TEST(CollisionManifold, MaxPointsPerPairKeepsTheDeepestAndSpreadPoints) {
+  constexpr double r_m = 0.035, length_m = 0.1;
+  const Shape shape = Shape::cylinder(r_m, length_m);
+  const auto X = pose(0, 0, 0.5 * length_m - kDepth_m);
+  for (int max_points : {1, 2, 3, 4, 8}) {
+    SCOPED_TRACE("max_points_per_pair " + std::to_string(max_points));
+    const auto contacts = round_on_floor(shape, X, max_points);
+    ASSERT_EQ(contacts.size(), static_cast<std::size_t>(std::min(max_points, 4)));
+    for (const ContactPoint& c : contacts) EXPECT_NEAR(c.depth_m, kDepth_m, 1e-6);
+    if (max_points >= 2) {
+      EXPECT_NEAR((contacts[0].p_G - contacts[1].p_G).norm(), 2 * r_m, 1e-9);
+    }
+  }
+  // tilted: a single point is the deepest, FCL's depth
+  const double t = 3.0 * M_PI / 180.0;
+  const auto X_tilted =
+      pose(0, 0, 0.5 * length_m * std::cos(t) + r_m * std::sin(t) - 2 * kDepth_m,
+           rot(3.0, Eigen::Vector3d(1, 2, 0)));
+  const auto one = round_on_floor(shape, X_tilted, 1);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_NEAR(one[0].depth_m, fcl_contact(shape, X_tilted).penetration_depth, 1e-6);
+  EXPECT_NEAR(one[0].depth_m, max_depth(round_on_floor(shape, X_tilted)), 1e-12);
+}
+
+// Friction anchors follow the points: a level cup must report the same rim points whichever
+// way it is tilted by rounding-sized amounts.
+TEST(CollisionManifold, BarelyTiltedCupKeepsTheSameRimPoints) {
+  constexpr double r_m = 0.035, length_m = 0.1;
+  const Shape shape = Shape::cylinder(r_m, length_m);
+  const auto level = round_on_floor(shape, pose(0, 0, 0.5 * length_m - kDepth_m));
+  ASSERT_EQ(level.size(), 4u);
+  for (int k = 0; k < 16; ++k) {
+    const double phi = 2.0 * M_PI * k / 16;
+    for (double tilt_rad : {1e-12, 1e-10, 1e-9}) {
+      const Eigen::Vector3d tilt_axis(std::cos(phi), std::sin(phi), 0.0);
+      const auto X = pose(0, 0, 0.5 * length_m - kDepth_m, rot(tilt_rad * 180.0 / M_PI, tilt_axis));
+      const auto contacts = round_on_floor(shape, X);
+      ASSERT_EQ(contacts.size(), 4u) << "direction " << k << ", tilt " << tilt_rad;
+      for (std::size_t i = 0; i < 4; ++i)
+        expect_vec_near(contacts[i].p_G, level[i].p_G, 1e-9, "point " + std::to_string(i));
+    }
+  }
+}
+
+TEST(CollisionManifold, SmallBoxOnACylinderCapRestsOnItsFourCorners) {
+  // a 40 mm cube on a drum of radius 50 mm: the cap's rim is outside the box's face
+  Scene scene;
+  scene.objects = {object("drum", false, Shape::cylinder(0.05, 0.1), pose(0, 0, -0.05)),
+                   object("cube", true, Shape::box(Eigen::Vector3d::Constant(0.04)),
+                          pose(0.003, -0.002, 0.02 - kDepth_m))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+  ASSERT_EQ(contacts.size(), 4u);
+  for (const ContactPoint& c : contacts) {
+    EXPECT_NEAR(c.depth_m, kDepth_m, kDepthTol_m);
+    expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal");
+    EXPECT_NEAR(std::abs(c.p_G.x() - 0.003), 0.02, kPointTol_m);
+    EXPECT_NEAR(std::abs(c.p_G.y() + 0.002), 0.02, kPointTol_m);
+    EXPECT_NEAR(c.p_G.z(), -0.5 * kDepth_m, kPointTol_m);
+  }
+}
+
+// Over many poses with the deepest point over the face: the manifold's deepest point is FCL's
+// depth, no point is deeper, the normal is FCL's.
+TEST(CollisionManifold, DeepestPointAgreesWithFclOverManyPoses) {
+  int checked = 0;
+  for (const Shape& shape : {Shape::cylinder(0.035, 0.1), Shape::cylinder(0.02, 0.16),
+                             Shape::capsule(0.01, 0.06)}) {
+    for (double tilt_deg : {0.0, 0.5, 2.0, 5.0, 20.0, 44.0, 46.0, 70.0, 88.0, 89.9, 90.0}) {
+      for (double dir_deg : {0.0, 10.0, 22.5, 100.0, 200.0}) {
+        for (double depth_m : {1e-4, 1e-3, 4e-3}) {
+          const double dir_rad = dir_deg * M_PI / 180.0;
+          const Eigen::Vector3d tilt_axis(std::cos(dir_rad), std::sin(dir_rad), 0.0);
+          const Eigen::Matrix3d R = rot(tilt_deg, tilt_axis) * rot(13.0, Eigen::Vector3d::UnitZ());
+          // the shape's lowest point along -z, then lowered to depth_m into the floor
+          Eigen::Isometry3d X = pose(0.05, -0.03, 0.0, R);
+          const Eigen::Vector3d a = R.col(2);
+          const double h = shape.kind == ShapeKind::kCylinder
+                               ? 0.5 * shape.length_m * std::abs(a.z()) +
+                                     shape.radius_m * std::sqrt(std::max(0.0, 1 - a.z() * a.z()))
+                               : 0.5 * shape.length_m * std::abs(a.z()) + shape.radius_m;
+          X.translation().z() = h - depth_m;
+          SCOPED_TRACE("shape " + std::to_string(static_cast<int>(shape.kind)) + " tilt " +
+                       std::to_string(tilt_deg) + " dir " + std::to_string(dir_deg) + " depth " +
+                       std::to_string(depth_m));
+          const fcl::Contactd f = fcl_contact(shape, X);
+          const auto contacts = round_on_floor(shape, X);
+          ASSERT_GE(contacts.size(), 1u);
+          ASSERT_LE(contacts.size(), 4u);
+          EXPECT_NEAR(max_depth(contacts), f.penetration_depth, 1e-6);
+          EXPECT_NEAR(max_depth(contacts), depth_m, 1e-6);
+          for (const ContactPoint& c : contacts) {
+            EXPECT_GT(c.depth_m, 0.0);
+            expect_vec_near(c.n_G, f.normal.normalized(), 1e-12, "FCL's normal");
+            EXPECT_NEAR(c.p_G.z(), -0.5 * c.depth_m, 1e-6);  // midway through the overlap
+          }
+          expect_spread(contacts, 1e-6);
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(checked, 3 * 11 * 5 * 3);
+}
+
+TEST(CollisionManifold, SamePosesGiveBitwiseIdenticalManifolds) {
+  Scene scene;
+  scene.objects = {
+      floor_box(),
+      object("cup", true, Shape::cylinder(0.035, 0.1), pose(0.1, 0.1, 0.05 - kDepth_m)),
+      object("tilted", true, Shape::cylinder(0.05, 0.1),
+             pose(-0.2, 0.1, 0.05 - kDepth_m, rot(3.0, Eigen::Vector3d(1, 1, 0)))),
+      object("can", true, Shape::cylinder(0.03, 0.15), pose(0.3, -0.3, 0.03 - kDepth_m, ry90())),
+      object("rod", true, Shape::capsule(0.01, 0.08), pose(-0.3, -0.3, 0.01 - kDepth_m, rx90())),
+      object("edge", true, Shape::cylinder(0.035, 0.1), pose(0.48, 0.0, 0.05 - kDepth_m)),
+      object("cup2", true, Shape::cylinder(0.03, 0.08), pose(0.1, 0.1, 0.1 + 0.04 - 2 * kDepth_m)),
+  };
+  const auto X_GO = initial_poses(scene);
+  CollisionWorld world(scene);
+  const auto first = step(world, X_GO);
+  auto X_moved = X_GO;
+  for (auto& X : X_moved) X.translation() += Eigen::Vector3d(0.01, 0.02, 0.003);
+  step(world, X_moved);
+  const auto again = step(world, X_GO);
+  CollisionWorld fresh(scene);
+  const auto other = step(fresh, X_GO);
+
+  std::vector<std::pair<int, int>> pairs;
+  for (const ContactPoint& c : first)
+    if (pairs.empty() || pairs.back() != std::pair{c.body_a, c.body_b})
+      pairs.emplace_back(c.body_a, c.body_b);
+  const std::vector<std::pair<int, int>> expected{{0, 1}, {0, 2}, {0, 3}, {0, 4}, {0, 5}, {1, 6}};
+  EXPECT_EQ(pairs, expected);
+  EXPECT_GE(first.size(), 4u + 1u + 2u + 2u + 3u + 4u);
+  ASSERT_EQ(again.size(), first.size());
+  ASSERT_EQ(other.size(), first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) {
+    EXPECT_TRUE(same_bits(first[i], again[i])) << "contact " << i;
+    EXPECT_TRUE(same_bits(first[i], other[i])) << "contact " << i;
   }
 }
 
@@ -240,18 +541,19 @@ std::vector<StackCase> stack_cases() {
        pose(0.02, 0.03, 0.05 - d), 4},
       {"box-sphere", slab, X_slab, Shape::sphere(0.05), pose(0.02, 0.03, 0.05 - d), 1},
       {"box-cylinder", slab, X_slab, Shape::cylinder(0.03, 0.2), pose(0.02, 0.03, 0.03 - d, ry90()),
-       1},
+       2},
       {"box-capsule", slab, X_slab, Shape::capsule(0.01, 0.05), pose(0.02, 0.03, 0.01 - d, ry90()),
-       1},
+       2},
       {"cylinder-capsule", drum, X_drum, Shape::capsule(0.01, 0.05),
-       pose(0.0, 0.01, 0.01 - d, ry90()), 1},
+       pose(0.0, 0.01, 0.01 - d, ry90()), 2},
       {"sphere-capsule", Shape::sphere(0.05), pose(0, 0, -0.05), Shape::capsule(0.01, 0.05),
        pose(0, 0, 0.01 - d, ry90()), 1},
       {"capsule-capsule", Shape::capsule(0.01, 0.05), pose(0, 0, -0.01, ry90()),
        Shape::capsule(0.01, 0.05), pose(0, 0, 0.01 - d, rx90()), 1},
       {"cylinder-sphere", drum, X_drum, Shape::sphere(0.02), pose(0.01, 0, 0.02 - d), 1},
       {"box-upright cylinder", slab, X_slab, Shape::cylinder(0.03, 0.2),
-       pose(0.02, 0.03, 0.1 - d), 1},
+       pose(0.02, 0.03, 0.1 - d), 4},
+      {"cylinder-cylinder", drum, X_drum, Shape::cylinder(0.03, 0.1), pose(0.01, 0, 0.05 - d), 4},
   };
 }
 
@@ -294,15 +596,21 @@ TEST(Collision, DeepOverlapStillGivesAUnitNormal) {
   CollisionWorld world(scene);
   const auto contacts = step(world, initial_poses(scene));
 
-  ASSERT_EQ(contacts.size(), 2u);
-  EXPECT_EQ(contacts[0].body_b, 1);
-  EXPECT_NEAR(contacts[0].depth_m, 0.03, kDepthTol_m);
-  expect_vec_near(contacts[0].n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "deep capsule normal");
-  EXPECT_EQ(contacts[1].body_a, 2);
-  EXPECT_EQ(contacts[1].body_b, 3);
-  EXPECT_TRUE(contacts[1].n_G.allFinite());
-  EXPECT_NEAR(contacts[1].n_G.norm(), 1.0, 1e-12);
-  EXPECT_GT(contacts[1].depth_m, 0.0);
+  ASSERT_GE(contacts.size(), 3u);  // the rod's two segment ends, then the pin's point(s)
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(contacts[i].body_a, 0);
+    EXPECT_EQ(contacts[i].body_b, 1);
+    EXPECT_NEAR(contacts[i].depth_m, 0.03, kDepthTol_m);
+    expect_vec_near(contacts[i].n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "deep capsule normal");
+  }
+  for (std::size_t i = 2; i < contacts.size(); ++i) {
+    EXPECT_EQ(contacts[i].body_a, 2);
+    EXPECT_EQ(contacts[i].body_b, 3);
+    EXPECT_TRUE(contacts[i].n_G.allFinite());
+    EXPECT_TRUE(contacts[i].p_G.allFinite());
+    EXPECT_NEAR(contacts[i].n_G.norm(), 1.0, 1e-12);
+    EXPECT_GT(contacts[i].depth_m, 0.0);
+  }
   EXPECT_EQ(world.skipped_contacts(), 0u);
 }
 
@@ -437,21 +745,23 @@ TEST(CollisionHand, IndexTipDipsTwoMillimetresIntoABox) {
   EXPECT_EQ(world.hand_link_body(Link::kPalm), 1);
   const auto contacts = step(world, initial_poses(scene), &X_GL);
 
-  ASSERT_EQ(contacts.size(), 1u);
-  const ContactPoint& c = contacts[0];
-  EXPECT_EQ(c.body_a, 0);
-  EXPECT_EQ(c.body_b, world.hand_link_body(Link::kIndexDistal));
-  EXPECT_TRUE(world.is_hand_body(c.body_b));
-  EXPECT_NEAR(c.depth_m, dip_m, 1e-6);
-  expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal, box -> finger");
-  // on the finger's underside, between the box's start and the capsule's end
+  // the phalanx lies on the box: its underside line from the box's edge to the segment's end
+  ASSERT_EQ(contacts.size(), 2u);
   const Eigen::Vector3d p0 = X_GL[distal].translation();
   const double r_m = hand.capsules[distal].radius_m, length_m = hand.capsules[distal].length_m;
-  EXPECT_GE(c.p_G.x(), p0.x() + 0.010 - kPointTol_m);
-  EXPECT_LE(c.p_G.x(), p0.x() + length_m + r_m);
-  EXPECT_NEAR(c.p_G.y(), p0.y(), 1e-6);
-  EXPECT_GE(c.p_G.z(), p0.z() - r_m - kPointTol_m);
-  EXPECT_LE(c.p_G.z(), p0.z() - r_m + dip_m + kPointTol_m);
+  for (const ContactPoint& c : contacts) {
+    EXPECT_EQ(c.body_a, 0);
+    EXPECT_EQ(c.body_b, world.hand_link_body(Link::kIndexDistal));
+    EXPECT_TRUE(world.is_hand_body(c.body_b));
+    EXPECT_NEAR(c.depth_m, dip_m, 1e-6);
+    expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal, box -> finger");
+    EXPECT_NEAR(c.p_G.y(), p0.y(), 1e-6);
+    EXPECT_NEAR(c.p_G.z(), p0.z() - r_m + 0.5 * dip_m, kPointTol_m);
+  }
+  const double x_lo = std::min(contacts[0].p_G.x(), contacts[1].p_G.x());
+  const double x_hi = std::max(contacts[0].p_G.x(), contacts[1].p_G.x());
+  EXPECT_NEAR(x_lo, p0.x() + 0.010, kPointTol_m);  // clipped at the box's edge
+  EXPECT_NEAR(x_hi, p0.x() + length_m, kPointTol_m);  // the segment's end sphere
 }
 
 TEST(CollisionHand, DisabledHandGivesNoHandPairs) {
@@ -463,11 +773,11 @@ TEST(CollisionHand, DisabledHandGivesNoHandPairs) {
   CollisionWorld world(scene);
   const auto X_GO = initial_poses(scene);
 
-  EXPECT_EQ(step(world, X_GO, &X_GL).size(), 1u);
+  EXPECT_EQ(step(world, X_GO, &X_GL).size(), 2u);  // the phalanx lying on the box
   // the links keep their last poses in the tree, but no pair with them may come out
   EXPECT_TRUE(step(world, X_GO, nullptr).empty());
   EXPECT_EQ(world.candidate_pair_count(), 0u);
-  EXPECT_EQ(step(world, X_GO, &X_GL).size(), 1u);  // and back
+  EXPECT_EQ(step(world, X_GO, &X_GL).size(), 2u);  // and back
 }
 
 TEST(CollisionHand, HandAgainstStaticObjectAndLinkAgainstLinkAreNeverPairs) {

@@ -1,0 +1,231 @@
+#include "physics_node/node/node_loop.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "common/clock.hpp"
+#include "common/signals.hpp"
+#include "physics_node/io/hand_input.hpp"
+#include "physics_node/node/sample_gate.hpp"
+#include "physics_node/node/state_publisher.hpp"
+
+namespace vcockpit::physics_node {
+namespace {
+
+// Everything the loop keeps between steps, in one place.
+class Node {
+ public:
+  Node(DdsParticipant& participant, physics::Scene scene, const NodeOptions& options)
+      : options_(options),
+        world_(std::move(scene)),
+        hand_(*world_.scene().hand),
+        gate_(hand_),
+        reader_(participant.make_reader<cockpit::HandSample>(options.lockstep ? "reliable"
+                                                                              : "stream")),
+        publisher_(participant, world_) {
+    publisher_.publish_object_info(world_);
+    last_status_ns_ = monotonic_now_ns();
+    last_sample_wall_ns_ = last_status_ns_;
+  }
+
+  int run_realtime();
+  int run_lockstep();
+
+ private:
+  // Takes every pending sample; the accepted ones go to `on_sample`. No allocation.
+  template <class OnSample>
+  void drain(OnSample on_sample) {
+    while (reader_.take(message_)) {
+      glove::GloveSample sample;
+      if (!gate_.accept(message_, sample)) continue;
+      ++received_;
+      last_sample_wall_ns_ = monotonic_now_ns();
+      stamps_.sample_time_ns = message_.sample_time_ns();
+      stamps_.source_stamp_ns = message_.source_stamp_ns();
+      on_sample(sample);
+    }
+  }
+
+  bool glove_alive(int64_t now_ns) const {
+    if (received_ == 0) return false;
+    const bool recent = now_ns - last_sample_wall_ns_ <= seconds_to_ns(options_.glove_timeout_s);
+    return recent && reader_.alive_writer_count() > 0;
+  }
+
+  void step_world() {
+    world_.step();
+    publisher_.publish_events(world_);
+    for (const auto& e : world_.step_events()) {
+      spdlog::info("{} {} at {:.3f} s: {}", e.grasp ? "GRASP" : "RELEASE",
+                   world_.scene().objects[e.object].name, ns_to_seconds(e.t_ns), e.text.data());
+    }
+    ++steps_in_period_;
+    for (int s = 0; s < physics::kStageCount; ++s) stage_ns_[s] += world_.stage_times().ns[s];
+  }
+
+  void publish_state(bool tracking) {
+    const int64_t start = monotonic_now_ns();
+    publisher_.publish_state(world_, stamps_, tracking);
+    publish_ns_ += monotonic_now_ns() - start;
+  }
+
+  void maybe_publish_status(int64_t now_ns, bool alive, const char* detail);
+
+  NodeOptions options_;
+  physics::World world_;
+  const physics::HandModel& hand_;
+  SampleGate gate_;
+  Reader<cockpit::HandSample> reader_;
+  StatePublisher publisher_;
+  cockpit::HandSample message_;
+  InputStamps stamps_;
+  physics::HandInput input_;
+  uint64_t received_ = 0;
+  uint64_t received_at_last_status_ = 0;
+  uint64_t late_steps_ = 0;
+  uint64_t steps_in_period_ = 0;
+  int64_t stage_ns_[physics::kStageCount] = {};
+  int64_t publish_ns_ = 0;
+  int64_t last_status_ns_ = 0;
+  int64_t last_sample_wall_ns_ = 0;
+};
+
+void Node::maybe_publish_status(int64_t now_ns, bool alive, const char* detail) {
+  if (now_ns - last_status_ns_ < 1'000'000'000) return;
+  const double period_s = ns_to_seconds(now_ns - last_status_ns_);
+  cockpit::NodeStatus status;
+  status.node_name(options_.node_name);
+  status.state(alive ? cockpit::RUNNING : cockpit::DEGRADED);
+  status.detail(detail);
+  status.stamp_ns(now_ns);
+  status.loop_rate_hz(static_cast<double>(steps_in_period_) / period_s);
+  status.input_rate_hz(static_cast<double>(received_ - received_at_last_status_) / period_s);
+  status.received(received_);
+  status.published(world_.step_count());
+  const auto& c = gate_.counts();
+  status.rejected(gate_.rejected());
+  status.rejected_nonfinite(c.rejected_nonfinite);
+  status.rejected_out_of_range(c.rejected_out_of_range + gate_.rejected_flagged_or_far());
+  status.rejected_stale(c.rejected_stale);
+  status.clamped(c.clamped);
+  status.late_steps(late_steps_);
+  status.input_alive(alive);
+  const double steps = steps_in_period_ > 0 ? static_cast<double>(steps_in_period_) : 1.0;
+  for (int s = 0; s < physics::kStageCount; ++s) {
+    status.stage_time_us()[s] = static_cast<double>(stage_ns_[s]) * 1e-3 / steps;
+    stage_ns_[s] = 0;
+  }
+  status.stage_time_us()[cockpit::STAGE_PUBLISH] = static_cast<double>(publish_ns_) * 1e-3 / steps;
+  double total = 0;
+  for (int s = 0; s < static_cast<int>(cockpit::STAGE_TOTAL); ++s) total += status.stage_time_us()[s];
+  status.stage_time_us()[cockpit::STAGE_TOTAL] = total;
+  publisher_.publish_status(status);
+  publish_ns_ = 0;
+  steps_in_period_ = 0;
+  received_at_last_status_ = received_;
+  last_status_ns_ = now_ns;
+}
+
+int Node::run_realtime() {
+  const int64_t period_ns = std::llround(1e9 / options_.rate_hz);
+  const int64_t publish_period_ns = std::llround(1e9 / options_.publish_hz);
+  int64_t next_ns = monotonic_now_ns();
+  int64_t next_publish_ns = next_ns;
+  bool tracking = false;
+  bool have_input = false;
+  spdlog::info("real time: {} Hz steps ({} substeps), world published at {} Hz", options_.rate_hz,
+               world_.substeps(), options_.publish_hz);
+  while (!shutdown_requested()) {
+    sleep_until_ns(next_ns);
+    drain([&](const glove::GloveSample& s) {
+      input_ = physics_io::hand_input_from_glove(hand_, s);
+      have_input = true;
+    });
+    const int64_t now_ns = monotonic_now_ns();
+    const bool alive = glove_alive(now_ns);
+    if (alive != tracking && have_input) {
+      spdlog::warn(alive ? "glove samples resumed: tracking" : "glove lost: holding the hand, "
+                                                               "releasing what it holds");
+    }
+    tracking = alive;
+    if (have_input) {
+      input_.tracking = tracking;
+      world_.set_hand_input(input_);
+    }
+    step_world();
+    const int64_t end_ns = monotonic_now_ns();
+    if (end_ns > next_ns + period_ns) ++late_steps_;
+    if (end_ns >= next_publish_ns) {
+      publish_state(tracking);
+      next_publish_ns += publish_period_ns;
+      if (next_publish_ns < end_ns) next_publish_ns = end_ns + publish_period_ns;
+    }
+    maybe_publish_status(end_ns, alive, alive ? "tracking" : have_input ? "glove lost" : "no glove yet");
+    next_ns += period_ns;
+    // far behind (a stall): resynchronise, counting every dropped slot as late
+    const int64_t behind = (monotonic_now_ns() - next_ns) / period_ns;
+    if (behind > kMaxCatchUpSteps) {
+      late_steps_ += static_cast<uint64_t>(behind);
+      spdlog::warn("{} steps behind the clock: resynchronised (counted as late)", behind);
+      next_ns += behind * period_ns;
+    }
+  }
+  publisher_.flush(500'000'000);
+  spdlog::info("stopped after {} steps; {} samples accepted, {} rejected, {} late steps",
+               world_.step_count(), received_, gate_.rejected(), late_steps_);
+  return 0;
+}
+
+int Node::run_lockstep() {
+  const int64_t publish_every_ns = std::llround(1e9 / options_.publish_hz);
+  int64_t t0_ns = 0;
+  bool started = false;
+  int64_t next_publish_sim_ns = 0;
+  bool dirty = false;
+  spdlog::info("lockstep: stepping to each sample's stamp ({} substeps per step)",
+               world_.substeps());
+  while (!shutdown_requested()) {
+    reader_.wait_for_data(20'000'000);
+    drain([&](const glove::GloveSample& s) {
+      if (!started) {
+        t0_ns = s.t_ns;
+        started = true;
+      }
+      while (world_.time_ns() < s.t_ns - t0_ns) {
+        step_world();
+        dirty = true;
+        if (world_.time_ns() >= next_publish_sim_ns) {
+          publish_state(true);
+          next_publish_sim_ns += publish_every_ns;
+        }
+      }
+      input_ = physics_io::hand_input_from_glove(hand_, s);
+      world_.set_hand_input(input_);
+    });
+    // caught up with the input: show where the world is
+    if (dirty) {
+      publish_state(true);
+      dirty = false;
+    }
+    const int64_t now_ns = monotonic_now_ns();
+    const bool alive = glove_alive(now_ns);
+    maybe_publish_status(now_ns, alive, alive ? "lockstep" : started ? "lockstep, input ended"
+                                                                     : "lockstep, waiting");
+  }
+  publisher_.flush(500'000'000);
+  spdlog::info("stopped at {:.3f} s simulated after {} steps; {} samples accepted, {} rejected",
+               ns_to_seconds(world_.time_ns()), world_.step_count(), received_, gate_.rejected());
+  return 0;
+}
+
+}  // namespace
+
+int run_node(DdsParticipant& participant, physics::Scene scene, const NodeOptions& options) {
+  if (!scene.hand) throw std::invalid_argument("the scene has no hand for the glove to drive");
+  Node node(participant, std::move(scene), options);
+  return options.lockstep ? node.run_lockstep() : node.run_realtime();
+}
+
+}  // namespace vcockpit::physics_node

@@ -1,0 +1,38 @@
+#pragma once
+// physics_node over DDS.
+//
+// Real time: steps at a fixed rate (1 kHz default) on the monotonic clock with the newest valid
+// hand sample, publishes the world at --publish-hz (90 default) and node_status once a second.
+// A step that ends after its slot is counted late; steps are never skipped silently: a node that
+// fell behind runs them back to back, and only beyond kMaxCatchUpSteps does it resynchronise,
+// counting every step it dropped as late and saying so in the log and the status.
+//
+// Lockstep: the world advances to each sample's stamp (world time 0 = the first sample), exactly
+// as the offline runner does with the same log, so a lockstep replay gives the same result. It
+// publishes at --publish-hz of simulated time and whenever it has caught up with its input.
+//
+// Glove lost (no sample for --glove-timeout, or the writer's liveliness lost): the hand stays
+// where it was, held objects are released ("glove lost"), the status says so; samples resume ->
+// tracking resumes.
+
+#include <string>
+
+#include "common/dds_participant.hpp"
+#include "physics_node/physics/scene.hpp"
+
+namespace vcockpit::physics_node {
+
+struct NodeOptions {
+  bool lockstep = false;
+  double rate_hz = 1000.0;
+  double publish_hz = 90.0;
+  double glove_timeout_s = 0.5;
+  std::string node_name = "physics_node";
+};
+
+constexpr int kMaxCatchUpSteps = 100;
+
+// Runs until SIGINT/SIGTERM. Returns the process exit code.
+int run_node(DdsParticipant& participant, physics::Scene scene, const NodeOptions& options);
+
+}  // namespace vcockpit::physics_node

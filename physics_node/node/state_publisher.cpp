@@ -1,0 +1,109 @@
+#include "physics_node/node/state_publisher.hpp"
+
+#include "common/idl_convert.hpp"
+
+namespace vcockpit::physics_node {
+namespace {
+
+cockpit::ShapeKind shape_to_idl(physics::ShapeKind kind) {
+  switch (kind) {
+    case physics::ShapeKind::kBox: return cockpit::BOX;
+    case physics::ShapeKind::kSphere: return cockpit::SPHERE;
+    case physics::ShapeKind::kCapsule: return cockpit::CAPSULE;
+    case physics::ShapeKind::kCylinder: return cockpit::CYLINDER;
+  }
+  return cockpit::BOX;
+}
+
+}  // namespace
+
+StatePublisher::StatePublisher(DdsParticipant& participant, const physics::World& world)
+    : info_writer_(participant.make_writer<cockpit::ObjectInfo>("state")),
+      hand_writer_(participant.make_writer<cockpit::HandState>("stream")),
+      object_writer_(participant.make_writer<cockpit::ObjectState>("state")),
+      event_writer_(participant.make_writer<cockpit::GraspEvent>("event")),
+      status_writer_(participant.make_writer<cockpit::NodeStatus>("state")) {
+  hand_msg_.hand_id(static_cast<uint32_t>(world.hand_id()));
+}
+
+void StatePublisher::publish_object_info(const physics::World& world) {
+  const auto& objects = world.scene().objects;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const physics::ObjectSpec& o = objects[i];
+    cockpit::ObjectInfo info;
+    info.object_id(static_cast<uint32_t>(i));
+    info.name(o.name.substr(0, 64));
+    info.kind(o.dynamic ? cockpit::DYNAMIC_OBJECT : cockpit::STATIC_OBJECT);
+    info.shape(shape_to_idl(o.shape.kind));
+    if (o.shape.kind == physics::ShapeKind::kBox) {
+      info.dimensions_m({o.shape.box_size_m.x(), o.shape.box_size_m.y(), o.shape.box_size_m.z()});
+    } else {
+      info.dimensions_m({o.shape.radius_m, o.shape.length_m, 0.0});
+    }
+    info.color_rgba({o.color_rgba[0], o.color_rgba[1], o.color_rgba[2], o.color_rgba[3]});
+    info.mass_kg(o.mass_kg);
+    info_writer_.write(info);
+    // static objects never move: their one state sample (transient local) places them for good
+    if (!o.dynamic) {
+      object_msg_.object_id(static_cast<uint32_t>(i));
+      object_msg_.sim_time_ns(world.time_ns());
+      object_msg_.X_GO(to_idl(world.bodies()[i].X_GO));
+      object_msg_.linear_velocity_mps(to_idl(Eigen::Vector3d::Zero()));
+      object_msg_.angular_velocity_radps(to_idl(Eigen::Vector3d::Zero()));
+      object_msg_.held_by_hand_id(cockpit::kNoObject);
+      object_writer_.write(object_msg_);
+    }
+  }
+}
+
+void StatePublisher::publish_state(const physics::World& world, const InputStamps& stamps,
+                                   bool tracking) {
+  const auto& objects = world.scene().objects;
+  int held = cockpit::kNoObject;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const physics::BodyState& b = world.bodies()[i];
+    if (b.held_by == world.hand_id()) held = static_cast<int>(i);
+    if (!objects[i].dynamic) continue;
+    object_msg_.object_id(static_cast<uint32_t>(i));
+    object_msg_.sim_time_ns(world.time_ns());
+    object_msg_.X_GO(to_idl(b.X_GO));
+    object_msg_.linear_velocity_mps(to_idl(b.v_G));
+    object_msg_.angular_velocity_radps(to_idl(b.w_G));
+    object_msg_.held_by_hand_id(b.held_by);
+    object_writer_.write(object_msg_);
+  }
+  if (!world.hand_active()) return;
+  hand_msg_.seq(hand_seq_++);
+  hand_msg_.sample_time_ns(stamps.sample_time_ns);
+  hand_msg_.source_stamp_ns(stamps.source_stamp_ns);
+  hand_msg_.sim_time_ns(world.time_ns());
+  hand_msg_.X_GH(to_idl(world.X_GH()));
+  for (int l = 0; l < physics::kLinkCount; ++l) hand_msg_.X_GL()[l] = to_idl(world.X_GL()[l]);
+  hand_msg_.grasped_object_id(held);
+  hand_msg_.tracking(tracking);
+  hand_writer_.write(hand_msg_);
+}
+
+void StatePublisher::publish_events(const physics::World& world) {
+  for (const physics::GraspEvent& e : world.step_events()) {
+    event_msg_.seq(event_seq_++);
+    event_msg_.sim_time_ns(e.t_ns);
+    event_msg_.hand_id(static_cast<uint32_t>(e.hand_id));
+    event_msg_.object_id(static_cast<uint32_t>(e.object));
+    event_msg_.kind(e.grasp ? cockpit::GRASP : cockpit::RELEASE);
+    event_msg_.reason(e.text.data());
+    event_msg_.contact_count(static_cast<uint32_t>(e.contacts));
+    event_msg_.residual_force_N(e.residual_force_N);
+    event_msg_.residual_torque_Nm(e.residual_torque_Nm);
+    event_writer_.write(event_msg_);
+  }
+}
+
+void StatePublisher::flush(int64_t timeout_ns) {
+  object_writer_.wait_for_acknowledgments(timeout_ns);
+  event_writer_.wait_for_acknowledgments(timeout_ns);
+  info_writer_.wait_for_acknowledgments(timeout_ns);
+  status_writer_.wait_for_acknowledgments(timeout_ns);
+}
+
+}  // namespace vcockpit::physics_node

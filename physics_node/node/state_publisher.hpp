@@ -1,0 +1,48 @@
+#pragma once
+// The physics node's DDS outputs: the world as topics. Messages are preallocated and fixed-size,
+// so publishing in the loop neither allocates nor throws.
+//   cockpit/object_info   every object's geometry and colour, once (state: transient local)
+//   cockpit/hand_state    the hand's 16 link poses and the sample they came from (stream)
+//   cockpit/object_state  every dynamic object's pose and velocities (state)
+//   cockpit/grasp_event   every GRASP and RELEASE with its reason (event)
+//   cockpit/node_status   rates, stage timings, counters, glove liveliness (state)
+
+#include <cstdint>
+#include <vector>
+
+#include "common/dds_participant.hpp"
+#include "physics_node/physics/world.hpp"
+
+namespace vcockpit::physics_node {
+
+// Where the hand's current input came from, for hand_state.
+struct InputStamps {
+  int64_t sample_time_ns = 0;
+  int64_t source_stamp_ns = 0;
+};
+
+class StatePublisher {
+ public:
+  StatePublisher(DdsParticipant& participant, const physics::World& world);
+
+  void publish_object_info(const physics::World& world);
+  void publish_state(const physics::World& world, const InputStamps& stamps, bool tracking);
+  void publish_events(const physics::World& world);
+  void publish_status(const cockpit::NodeStatus& status) { status_writer_.write(status); }
+  // Waits (bounded) until reliable readers have the last state and events, before shutdown.
+  void flush(int64_t timeout_ns);
+
+ private:
+  Writer<cockpit::ObjectInfo> info_writer_;
+  Writer<cockpit::HandState> hand_writer_;
+  Writer<cockpit::ObjectState> object_writer_;
+  Writer<cockpit::GraspEvent> event_writer_;
+  Writer<cockpit::NodeStatus> status_writer_;
+  cockpit::HandState hand_msg_;
+  cockpit::ObjectState object_msg_;
+  cockpit::GraspEvent event_msg_;
+  uint64_t hand_seq_ = 0;
+  uint64_t event_seq_ = 0;
+};
+
+}  // namespace vcockpit::physics_node

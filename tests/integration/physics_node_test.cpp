@@ -1,0 +1,189 @@
+// physics_node as a real process over loopback DDS: a lockstep replay gives the offline runner's
+// result; real time holds 1 kHz and the hand follows the samples; a killed glove driver releases
+// the held object ("glove lost") and a restarted one resumes tracking; invalid samples are
+// rejected and counted while the node keeps running.
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "glove_driver/glove/glove_log.hpp"
+#include "physics_node/config/scene_config.hpp"
+#include "physics_node/io/hand_input.hpp"
+#include "physics_node/io/offline_runner.hpp"
+#include "tests/support/monitor_log.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/test_env.hpp"
+
+namespace vcockpit::test {
+namespace {
+
+constexpr int64_t kSecond = 1'000'000'000;
+
+std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
+std::string grasp_log() { return source_dir() + "/config/glove_logs/reach_grasp_lift_release.csv"; }
+std::string sweep_log() { return source_dir() + "/config/glove_logs/open_hand_sweep.csv"; }
+
+class PhysicsNodeTest : public ::testing::Test {
+ protected:
+  void SetUp() override { shm_before_ = list_dev_shm(); }
+  void TearDown() override {
+    const auto leftovers = new_entries(shm_before_, list_dev_shm());
+    remove_dev_shm(leftovers);
+    if (expect_clean_shm_) {
+      EXPECT_TRUE(leftovers.empty()) << leftovers.size() << " /dev/shm files";
+    }
+  }
+  ChildProcess start(const std::string& exe, std::vector<std::string> args, const std::string& log) {
+    args.insert(args.begin(), bin_dir() + "/" + exe);
+    return ChildProcess(args, env_, dir_ + "/" + log);
+  }
+  std::string text(const std::string& name) const { return read_text(dir_ + "/" + name); }
+
+  std::string dir_ = make_temp_dir("physics_node");
+  std::map<std::string, std::string> env_ = dds_test_env();
+  std::vector<std::string> shm_before_;
+  bool expect_clean_shm_ = true;
+};
+
+TEST_F(PhysicsNodeTest, LockstepReplayGivesTheOfflineRunnersResult) {
+  physics_io::OfflineOptions offline;
+  offline.scene_path = source_dir() + "/config/cockpit.yaml";
+  offline.log_path = grasp_log();
+  offline.out_dir = dir_ + "/offline";
+  const auto summary = physics_io::run_offline(offline);
+  ASSERT_EQ(summary.grasps, 1);
+
+  ChildProcess node = start("physics_node", {"--lockstep"}, "node.log");
+  ChildProcess monitor = start("test_cockpit_monitor", {"--out", dir_ + "/monitor.txt"}, "monitor.log");
+  ChildProcess driver = start("glove_driver", {"--source", "replay", "--log", grasp_log(),
+                                               "--lockstep", "--rate", "0"},
+                              "driver.log");
+  ASSERT_EQ(driver.wait(60 * kSecond), 0) << text("driver.log");
+  // the node publishes once it has caught up; give the monitor time to take it
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  EXPECT_EQ(monitor.stop(), 0);
+  EXPECT_EQ(node.stop(), 0) << text("node.log");
+
+  const MonitorLog seen = MonitorLog::read(dir_ + "/monitor.txt");
+  const MonitorLog offline_events = MonitorLog::from_events_jsonl(offline.out_dir + "/events.jsonl");
+  ASSERT_EQ(seen.events.size(), 2u) << text("node.log");
+  ASSERT_EQ(offline_events.events.size(), 2u);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(seen.events[i].kind, offline_events.events[i].kind);
+    EXPECT_EQ(seen.events[i].t_ns, offline_events.events[i].t_ns);
+    EXPECT_EQ(seen.events[i].reason, offline_events.events[i].reason);
+  }
+  // final poses: the offline summary prints 9 decimals
+  const auto final_offline = read_final_poses(offline.out_dir + "/summary.json");
+  physics::Scene scene = load_scene(offline.scene_path);
+  ASSERT_FALSE(final_offline.empty());
+  for (const auto& [name, p] : final_offline) {
+    const int id = scene.find_object(name);
+    ASSERT_TRUE(seen.objects.count(id)) << name;
+    const auto& o = seen.objects.at(id);
+    EXPECT_NEAR(o.position.x(), p.x(), 2e-9) << name;
+    EXPECT_NEAR(o.position.y(), p.y(), 2e-9) << name;
+    EXPECT_NEAR(o.position.z(), p.z(), 2e-9) << name;
+    EXPECT_EQ(o.sim_time_ns, 8'500'000'000) << name;
+  }
+}
+
+TEST_F(PhysicsNodeTest, RealTimeHoldsOneKilohertzAndTheHandFollowsTheSamples) {
+  ChildProcess node = start("physics_node", {}, "node.log");
+  ChildProcess monitor = start("test_cockpit_monitor", {"--out", dir_ + "/monitor.txt"}, "monitor.log");
+  ChildProcess driver =
+      start("glove_driver", {"--source", "replay", "--log", sweep_log(), "--loop"}, "driver.log");
+  std::this_thread::sleep_for(std::chrono::seconds(11));
+  EXPECT_EQ(driver.stop(), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(monitor.stop(), 0);
+  EXPECT_EQ(node.stop(), 0) << text("node.log");
+
+  const MonitorLog seen = MonitorLog::read(dir_ + "/monitor.txt");
+  // the statuses of full seconds with the glove streaming
+  std::vector<double> rates;
+  uint64_t late = 0;
+  for (const auto& s : seen.statuses) {
+    if (s.node != "physics_node" || !s.alive) continue;
+    rates.push_back(s.rate_hz);
+    late = s.late;
+  }
+  ASSERT_GE(rates.size(), 8u) << "expected a status a second while streaming";
+  double sum = 0;
+  for (std::size_t i = 1; i < rates.size(); ++i) sum += rates[i];  // the first may be partial
+  const double mean_hz = sum / static_cast<double>(rates.size() - 1);
+  std::printf("physics step rate %.2f Hz over %zu s, late steps %llu\n", mean_hz, rates.size() - 1,
+              static_cast<unsigned long long>(late));
+  EXPECT_NEAR(mean_hz, 1000.0, 10.0);
+  for (std::size_t i = 1; i < rates.size(); ++i) EXPECT_NEAR(rates[i], 1000.0, 20.0) << i;
+
+  // every hand_state shows the wrist of the sample it names
+  physics::Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
+  const auto log = glove::read_glove_log(sweep_log(), *scene.hand);
+  const int64_t t0 = log.samples.front().t_ns;
+  const int64_t pass_ns = log.samples.back().t_ns - t0 + 1'000'000;
+  int tracked = 0;
+  for (const auto& h : seen.hands) {
+    if (!h.tracking) continue;
+    const int64_t in_pass = (h.sample_time_ns - t0) % pass_ns;
+    const auto index = static_cast<std::size_t>(in_pass / 1'000'000);
+    ASSERT_LT(index, log.samples.size());
+    const auto expected = physics_io::hand_input_from_glove(*scene.hand, log.samples[index]);
+    EXPECT_LT((h.position - expected.X_GH.translation()).norm(), 1e-9) << "seq " << h.seq;
+    ++tracked;
+  }
+  EXPECT_GT(tracked, 500) << "about 90 hand states a second for 10 s";
+}
+
+TEST_F(PhysicsNodeTest, KilledGloveDriverReleasesWithGloveLostAndARestartResumesTracking) {
+  expect_clean_shm_ = false;  // kill -9 leaves the driver's segments; the test cleans them
+  ChildProcess node = start("physics_node", {}, "node.log");
+  ChildProcess monitor = start("test_cockpit_monitor", {"--out", dir_ + "/monitor.txt"}, "monitor.log");
+  ChildProcess driver = start("glove_driver", {"--source", "replay", "--log", grasp_log()}, "driver.log");
+  const std::string monitor_path = dir_ + "/monitor.txt";
+  ASSERT_TRUE(wait_for_line(monitor_path, "kind=grasp", 20 * kSecond)) << text("node.log");
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // lifting it
+  driver.signal(SIGKILL);
+  EXPECT_EQ(driver.wait(5 * kSecond), 128 + SIGKILL);
+  ASSERT_TRUE(wait_for_line(monitor_path, "reason=glove lost", 5 * kSecond)) << text("node.log");
+  EXPECT_TRUE(node.running()) << "the node must keep running";
+  // the hand holds its pose, shown as not tracking, while the status reports the glove lost
+  EXPECT_TRUE(wait_for_line(monitor_path, "tracking=0", 2 * kSecond));
+  EXPECT_TRUE(wait_for_line(monitor_path, "alive=0", 2 * kSecond, "reason=glove lost"));
+  ChildProcess again = start("glove_driver", {"--source", "replay", "--log", sweep_log()}, "driver2.log");
+  ASSERT_TRUE(wait_for_line(monitor_path, "alive=1", 5 * kSecond, /*after_line=*/"reason=glove lost"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const MonitorLog seen = MonitorLog::read(monitor_path);
+  EXPECT_TRUE(seen.hands.back().tracking) << "tracking resumed";
+  EXPECT_EQ(again.stop(), 0);
+  EXPECT_EQ(monitor.stop(), 0);
+  EXPECT_EQ(node.stop(), 0) << text("node.log");
+}
+
+TEST_F(PhysicsNodeTest, NanAndStaleSamplesAreRejectedAndCounted) {
+  ChildProcess node = start("physics_node", {}, "node.log");
+  ChildProcess monitor = start("test_cockpit_monitor", {"--out", dir_ + "/monitor.txt"}, "monitor.log");
+  ChildProcess pub = start("test_hand_sample_pub", {"--profile", "stream", "--count", "2000",
+                                                    "--all-valid", "--nan-at", "500", "--stale-at",
+                                                    "900"},
+                           "pub.log");
+  EXPECT_EQ(pub.wait(30 * kSecond), 0) << text("pub.log");
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // a status after the last sample
+  EXPECT_TRUE(node.running()) << "the node must keep running";
+  EXPECT_EQ(monitor.stop(), 0);
+  EXPECT_EQ(node.stop(), 0) << text("node.log");
+  const MonitorLog seen = MonitorLog::read(dir_ + "/monitor.txt");
+  ASSERT_FALSE(seen.statuses.empty());
+  const auto& last = seen.statuses.back();
+  EXPECT_EQ(last.nonfinite, 1u);
+  EXPECT_EQ(last.stale, 1u);
+  EXPECT_EQ(last.rejected, 2u);
+  EXPECT_GT(last.received, 1500u);  // best effort: nearly all of the other 1,998 arrive
+}
+
+}  // namespace
+}  // namespace vcockpit::test

@@ -1,0 +1,167 @@
+#include "tests/support/monitor_log.hpp"
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace vcockpit::test {
+namespace {
+
+// key=value fields of a line; the value of `reason` runs to the end of the line.
+std::map<std::string, std::string> fields(const std::string& line) {
+  std::map<std::string, std::string> out;
+  std::size_t pos = line.find(' ');
+  while (pos != std::string::npos && pos < line.size()) {
+    const std::size_t start = pos + 1;
+    const std::size_t eq = line.find('=', start);
+    if (eq == std::string::npos) break;
+    const std::string key = line.substr(start, eq - start);
+    std::size_t end = key == "reason" ? std::string::npos : line.find(' ', eq + 1);
+    out[key] = line.substr(eq + 1, end == std::string::npos ? std::string::npos : end - eq - 1);
+    pos = end;
+  }
+  return out;
+}
+
+double num(const std::map<std::string, std::string>& f, const std::string& key) {
+  auto it = f.find(key);
+  return it == f.end() ? 0.0 : std::stod(it->second);
+}
+
+int64_t integer(const std::map<std::string, std::string>& f, const std::string& key) {
+  auto it = f.find(key);
+  return it == f.end() ? 0 : std::stoll(it->second);
+}
+
+Eigen::Vector3d position(const std::map<std::string, std::string>& f) {
+  return {num(f, "x"), num(f, "y"), num(f, "z")};
+}
+
+// The string value of "key": "value" in a JSON line (no escapes needed by the tests).
+std::string json_string(const std::string& line, const std::string& key) {
+  const std::string tag = "\"" + key + "\": \"";
+  const auto start = line.find(tag);
+  if (start == std::string::npos) return "";
+  const auto from = start + tag.size();
+  return line.substr(from, line.find('"', from) - from);
+}
+
+double json_number(const std::string& line, const std::string& key) {
+  const std::string tag = "\"" + key + "\": ";
+  const auto start = line.find(tag);
+  return start == std::string::npos ? 0.0 : std::stod(line.substr(start + tag.size()));
+}
+
+}  // namespace
+
+MonitorLog MonitorLog::read(const std::string& path) {
+  MonitorLog log;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::string kind = line.substr(0, line.find(' '));
+    const auto f = fields(line);
+    if (kind == "event") {
+      log.events.push_back({integer(f, "t_ns"), f.count("kind") ? f.at("kind") : "",
+                            static_cast<int>(integer(f, "object")),
+                            f.count("reason") ? f.at("reason") : ""});
+    } else if (kind == "status") {
+      SeenStatus s;
+      s.node = f.count("node") ? f.at("node") : "";
+      s.rate_hz = num(f, "rate_hz");
+      s.input_hz = num(f, "input_hz");
+      s.received = static_cast<uint64_t>(integer(f, "received"));
+      s.rejected = static_cast<uint64_t>(integer(f, "rejected"));
+      s.nonfinite = static_cast<uint64_t>(integer(f, "nonfinite"));
+      s.range = static_cast<uint64_t>(integer(f, "range"));
+      s.stale = static_cast<uint64_t>(integer(f, "stale"));
+      s.late = static_cast<uint64_t>(integer(f, "late"));
+      s.alive = integer(f, "alive") != 0;
+      log.statuses.push_back(s);
+    } else if (kind == "hand") {
+      SeenHand h;
+      h.seq = static_cast<uint64_t>(integer(f, "seq"));
+      h.sample_time_ns = integer(f, "sample_time_ns");
+      h.source_stamp_ns = integer(f, "source_stamp_ns");
+      h.tracking = integer(f, "tracking") != 0;
+      h.held = static_cast<int>(integer(f, "held"));
+      h.position = position(f);
+      log.hands.push_back(h);
+    } else if (kind == "object") {
+      SeenObject o;
+      o.sim_time_ns = integer(f, "sim_time_ns");
+      o.held = static_cast<int>(integer(f, "held"));
+      o.position = position(f);
+      o.quaternion_wxyz = {num(f, "qw"), num(f, "qx"), num(f, "qy"), num(f, "qz")};
+      log.objects[static_cast<int>(integer(f, "id"))] = o;
+    } else if (kind == "frame") {
+      SeenFrame fr;
+      fr.seq = static_cast<uint64_t>(integer(f, "seq"));
+      fr.width = static_cast<int>(integer(f, "width"));
+      fr.height = static_cast<int>(integer(f, "height"));
+      fr.source_stamp_ns = integer(f, "source_stamp_ns");
+      fr.start_ns = integer(f, "start_ns");
+      fr.end_ns = integer(f, "end_ns");
+      fr.received_ns = integer(f, "received_ns");
+      log.frames.push_back(fr);
+    }
+  }
+  return log;
+}
+
+MonitorLog MonitorLog::from_events_jsonl(const std::string& path) {
+  MonitorLog log;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    SeenEvent e;
+    e.t_ns = std::llround(json_number(line, "t_s") * 1e9);
+    e.kind = json_string(line, "event");
+    e.reason = json_string(line, "reason");
+    log.events.push_back(e);
+  }
+  return log;
+}
+
+std::map<std::string, Eigen::Vector3d> read_final_poses(const std::string& summary_path) {
+  std::map<std::string, Eigen::Vector3d> out;
+  const std::string text = read_text(summary_path);
+  const auto final_block = text.find("\"final\"");
+  if (final_block == std::string::npos) return out;
+  std::istringstream in(text.substr(final_block));
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto name_start = line.find('"');
+    const auto pos = line.find("\"position\": [");
+    if (pos == std::string::npos || name_start == std::string::npos) continue;
+    const std::string name = line.substr(name_start + 1, line.find('"', name_start + 1) - name_start - 1);
+    double x = 0, y = 0, z = 0;
+    std::sscanf(line.c_str() + pos + 13, "%lf, %lf, %lf", &x, &y, &z);
+    out[name] = {x, y, z};
+  }
+  return out;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+bool wait_for_line(const std::string& path, const std::string& needle, int64_t timeout_ns,
+                   const std::string& after_line) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::nanoseconds(timeout_ns);
+  while (std::chrono::steady_clock::now() < deadline) {
+    const std::string text = read_text(path);
+    std::size_t from = 0;
+    if (!after_line.empty()) {
+      from = text.find(after_line);
+      if (from == std::string::npos) from = text.size();
+    }
+    if (text.find(needle, from) != std::string::npos) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+}  // namespace vcockpit::test
