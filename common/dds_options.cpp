@@ -42,8 +42,10 @@ void add_dds_flags(CLI::App& app, DdsFlags& flags) {
   app.add_option("--qos", flags.qos_file,
                  "Fast DDS QoS profiles XML (default: $VCOCKPIT_QOS_FILE, else config/qos.xml)");
   app.add_option("--participant", flags.participant_profile,
-                 "participant profile in the QoS file: loopback (this machine only) or lan")
-      ->capture_default_str();
+                 "participant profile in the QoS file: loopback (this machine only) or lan "
+                 "(default: $VCOCKPIT_PARTICIPANT, else loopback)")
+      ->capture_default_str()
+      ->each([&flags](const std::string&) { flags.participant_explicit = true; });
 }
 
 DdsOptions resolve_dds_options(const DdsFlags& flags) {
@@ -67,6 +69,9 @@ DdsOptions resolve_dds_options(const DdsFlags& flags) {
     throw std::invalid_argument(origin + ": cannot read '" + out.qos_file + "'");
   }
   out.participant_profile = flags.participant_profile;
+  if (!flags.participant_explicit) {
+    if (const char* env = std::getenv("VCOCKPIT_PARTICIPANT"); env && *env) out.participant_profile = env;
+  }
   return out;
 }
 

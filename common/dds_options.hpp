@@ -2,7 +2,8 @@
 // Where a node's DDS settings come from: flags first, then environment, then defaults.
 //   --domain N        or VCOCKPIT_DOMAIN     (default 0)
 //   --qos FILE        or VCOCKPIT_QOS_FILE   (default: the project's config/qos.xml)
-//   --participant P   participant profile in the QoS file (default "loopback": 127.0.0.1 only)
+//   --participant P   or VCOCKPIT_PARTICIPANT: participant profile in the QoS file
+//                     (default "loopback": 127.0.0.1 only)
 
 #include <optional>
 #include <string>
@@ -24,6 +25,7 @@ struct DdsFlags {
   std::optional<int> domain_id;
   std::optional<std::string> qos_file;
   std::string participant_profile = "loopback";
+  bool participant_explicit = false;  // given on the command line (beats the environment)
 };
 
 // Adds --domain, --qos and --participant to a CLI11 app.

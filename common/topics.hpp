@@ -22,6 +22,7 @@ VCOCKPIT_TOPIC(ObjectState, "cockpit/object_state");
 VCOCKPIT_TOPIC(GraspEvent, "cockpit/grasp_event");
 VCOCKPIT_TOPIC(FrameInfo, "cockpit/frame_info");
 VCOCKPIT_TOPIC(NodeStatus, "cockpit/node_status");
+VCOCKPIT_TOPIC(HeadPose, "cockpit/head_pose");
 
 #undef VCOCKPIT_TOPIC
 

@@ -1,0 +1,63 @@
+// image_generator: renders the virtual cockpit off-screen in stereo for the head-mounted display
+// (OSMesa, no window, no X server), publishes cockpit/frame_info per frame and writes PNG
+// snapshots.
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "common/logging.hpp"
+#include "common/signals.hpp"
+#include "image_generator/node/ig_loop.hpp"
+#include "physics_node/config/hand_config.hpp"
+
+int main(int argc, char** argv) {
+  using namespace vcockpit;
+  CLI::App app("image_generator: off-screen stereo rendering of the virtual cockpit for the HMD");
+  DdsFlags dds_flags;
+  image_generator::IgOptions options;
+  std::string hmd_path = std::string(VCOCKPIT_CONFIG_DIR) + "/hmd.yaml";
+  std::string hand_path = std::string(VCOCKPIT_CONFIG_DIR) + "/hand.yaml";
+  std::string layout = "side";
+  std::string log_level = "info";
+  app.add_option("--hmd", hmd_path, "HMD config YAML (IPD, per-eye FOV, resolution, eye point)")
+      ->check(CLI::ExistingFile)
+      ->capture_default_str();
+  app.add_option("--hand-config", hand_path, "hand model YAML (capsule and palm sizes)")
+      ->check(CLI::ExistingFile)
+      ->capture_default_str();
+  app.add_option("--out", options.out_dir, "directory for PNG snapshots (none if not given)");
+  app.add_option("--snapshot-every", options.snapshot_every, "frames between snapshots (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--snapshot-layout", layout, "side (both eyes in one PNG), left, right, both")
+      ->check(CLI::IsMember({"side", "left", "right", "both"}))
+      ->capture_default_str();
+  app.add_option("--frames", options.frames, "render this many frames and exit (0: until Ctrl-C)");
+  app.add_option("--fps", options.fps, "frame rate to pace at (0: as fast as possible)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--wait-timeout", options.wait_timeout_s,
+                 "seconds to wait for the scene (cockpit/object_info) before giving up")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--node-name", options.node_name, "name on cockpit/node_status")
+      ->capture_default_str();
+  add_dds_flags(app, dds_flags);
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  options.layout = layout == "left"    ? image_generator::SnapshotLayout::kLeft
+                   : layout == "right" ? image_generator::SnapshotLayout::kRight
+                   : layout == "both"  ? image_generator::SnapshotLayout::kBothSeparate
+                                       : image_generator::SnapshotLayout::kSideBySide;
+  try {
+    setup_logging("image_generator", log_level);
+    install_shutdown_handlers();
+    const HmdSetup hmd = load_hmd_config(hmd_path);
+    const physics::HandModel hand = load_hand_model(hand_path);
+    DdsParticipant participant(resolve_dds_options(dds_flags), options.node_name);
+    return image_generator::run_image_generator(participant, hmd, hand, options);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+}

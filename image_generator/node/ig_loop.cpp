@@ -1,0 +1,204 @@
+#include "image_generator/node/ig_loop.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "common/clock.hpp"
+#include "common/idl_convert.hpp"
+#include "common/signals.hpp"
+#include "image_generator/node/scene_cache.hpp"
+
+namespace vcockpit::image_generator {
+namespace {
+
+class ImageGenerator {
+ public:
+  ImageGenerator(DdsParticipant& participant, const HmdSetup& hmd, const physics::HandModel& hand,
+                 const IgOptions& options)
+      : options_(options),
+        X_GHead_(hmd.X_GHead),
+        cache_(hand),
+        info_reader_(participant.make_reader<cockpit::ObjectInfo>("state")),
+        state_reader_(participant.make_reader<cockpit::ObjectState>("state")),
+        hand_reader_(participant.make_reader<cockpit::HandState>("stream")),
+        head_reader_(participant.make_reader<cockpit::HeadPose>("stream")),
+        frame_writer_(participant.make_writer<cockpit::FrameInfo>("stream")),
+        status_writer_(participant.make_writer<cockpit::NodeStatus>("state")),
+        domain_id_(participant.domain_id()),
+        hmd_(hmd.hmd) {}
+
+  int run();
+
+ private:
+  void drain() {
+    while (info_reader_.take(info_)) cache_.on_info(info_);
+    while (state_reader_.take(state_)) cache_.on_state(state_);
+    while (hand_reader_.take(hand_)) cache_.on_hand(hand_);
+    while (head_reader_.take(head_)) X_GHead_ = to_eigen(head_.X_GHead());
+  }
+  bool wait_for_scene();
+  void note_snapshot();
+  void publish_status(int64_t now_ns);
+
+  IgOptions options_;
+  Eigen::Isometry3d X_GHead_;
+  SceneCache cache_;
+  Reader<cockpit::ObjectInfo> info_reader_;
+  Reader<cockpit::ObjectState> state_reader_;
+  Reader<cockpit::HandState> hand_reader_;
+  Reader<cockpit::HeadPose> head_reader_;
+  Writer<cockpit::FrameInfo> frame_writer_;
+  Writer<cockpit::NodeStatus> status_writer_;
+  int domain_id_;
+  render::HmdConfig hmd_;
+  cockpit::ObjectInfo info_;
+  cockpit::ObjectState state_;
+  cockpit::HandState hand_;
+  cockpit::HeadPose head_;
+  cockpit::FrameInfo frame_;
+  std::vector<render::Instance> instances_;
+  uint64_t frames_ = 0;
+  uint64_t frames_at_last_status_ = 0;
+  int64_t render_ns_in_period_ = 0;
+  int64_t last_status_ns_ = 0;
+  std::unique_ptr<SnapshotWriter> snapshots_;
+  std::FILE* snapshot_index_ = nullptr;
+};
+
+// snapshots.csv: which world state each snapshot shows (the held object and where it was).
+void ImageGenerator::note_snapshot() {
+  if (!snapshot_index_) return;
+  const int held = cache_.has_hand() ? cache_.hand().grasped_object_id() : cockpit::kNoObject;
+  Eigen::Vector3d p_held = Eigen::Vector3d::Zero();
+  if (held != cockpit::kNoObject) p_held = cache_.object_position(static_cast<uint32_t>(held));
+  Eigen::Vector3d p_palm = Eigen::Vector3d::Zero();
+  if (cache_.has_hand()) p_palm = to_eigen(cache_.hand().X_GL()[0]).translation();
+  std::fprintf(snapshot_index_, "%llu,%lld,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n",
+               static_cast<unsigned long long>(frames_),
+               static_cast<long long>(cache_.newest_sim_time_ns()), held, p_held.x(), p_held.y(),
+               p_held.z(), p_palm.x(), p_palm.y(), p_palm.z());
+  std::fflush(snapshot_index_);
+}
+
+bool ImageGenerator::wait_for_scene() {
+  const int64_t deadline = monotonic_now_ns() + seconds_to_ns(options_.wait_timeout_s);
+  while (!shutdown_requested() && monotonic_now_ns() < deadline) {
+    info_reader_.wait_for_data(50'000'000);
+    drain();
+    if (!cache_.has_objects()) continue;
+    // the rest of the scene follows within a few ms: take it before the first frame
+    std::size_t count = 0;
+    while (count != cache_.object_count() && !shutdown_requested()) {
+      count = cache_.object_count();
+      info_reader_.wait_for_data(30'000'000);
+      drain();
+    }
+    return true;
+  }
+  return false;
+}
+
+void ImageGenerator::publish_status(int64_t now_ns) {
+  if (now_ns - last_status_ns_ < 1'000'000'000) return;
+  const double period_s = ns_to_seconds(now_ns - last_status_ns_);
+  const uint64_t frames = frames_ - frames_at_last_status_;
+  cockpit::NodeStatus status;
+  status.node_name(options_.node_name);
+  status.state(cockpit::RUNNING);
+  status.stamp_ns(now_ns);
+  status.loop_rate_hz(static_cast<double>(frames) / period_s);
+  status.published(frames_);
+  status.received(cache_.object_count());
+  status.input_alive(cache_.has_hand() && cache_.hand().tracking());
+  status.stage_time_us()[cockpit::STAGE_TOTAL] =
+      frames > 0 ? static_cast<double>(render_ns_in_period_) * 1e-3 / static_cast<double>(frames) : 0.0;
+  char detail[128];
+  std::snprintf(detail, sizeof detail, "%d objects, snapshots %llu written %llu skipped",
+                static_cast<int>(cache_.object_count()),
+                static_cast<unsigned long long>(snapshots_ ? snapshots_->written() : 0),
+                static_cast<unsigned long long>(snapshots_ ? snapshots_->skipped() : 0));
+  status.detail(detail);
+  status_writer_.write(status);
+  frames_at_last_status_ = frames_;
+  render_ns_in_period_ = 0;
+  last_status_ns_ = now_ns;
+}
+
+int ImageGenerator::run() {
+  spdlog::info("waiting for the scene on {} (domain {})",
+               TopicTraits<cockpit::ObjectInfo>::kName, domain_id_);
+  if (!wait_for_scene()) {
+    if (shutdown_requested()) return 0;
+    spdlog::error("no {} on domain {} within {} s: is physics_node running on this domain?",
+                  TopicTraits<cockpit::ObjectInfo>::kName, domain_id_, options_.wait_timeout_s);
+    return 3;
+  }
+  std::unique_ptr<render::StereoRenderer> renderer;
+  try {
+    renderer = std::make_unique<render::StereoRenderer>(hmd_);
+  } catch (const std::exception& e) {
+    spdlog::error("rendering: {}", e.what());
+    return 4;
+  }
+  spdlog::info("{} objects; rendering {}x{} per eye with {}", cache_.object_count(),
+               hmd_.width_px, hmd_.height_px, renderer->gl_renderer());
+  if (!options_.out_dir.empty() && options_.snapshot_every > 0) {
+    std::filesystem::create_directories(options_.out_dir);
+    snapshots_ = std::make_unique<SnapshotWriter>(options_.out_dir, options_.layout,
+                                                  hmd_.width_px, hmd_.height_px);
+    snapshot_index_ = std::fopen((options_.out_dir + "/snapshots.csv").c_str(), "w");
+    if (snapshot_index_) {
+      std::fprintf(snapshot_index_,
+                   "frame,sim_time_ns,held_object,held_x,held_y,held_z,palm_x,palm_y,palm_z\n");
+    }
+  }
+  const int64_t period_ns = options_.fps > 0 ? std::llround(1e9 / options_.fps) : 0;
+  int64_t next_ns = monotonic_now_ns();
+  last_status_ns_ = next_ns;
+  while (!shutdown_requested() && (options_.frames == 0 || frames_ < options_.frames)) {
+    if (period_ns > 0) {
+      sleep_until_ns(next_ns);
+      next_ns += period_ns;
+      if (next_ns < monotonic_now_ns()) next_ns = monotonic_now_ns();  // do not burst after a stall
+    }
+    drain();
+    cache_.build(instances_);
+    const int64_t start_ns = monotonic_now_ns();
+    renderer->render(instances_, X_GHead_);
+    const int64_t end_ns = monotonic_now_ns();
+    render_ns_in_period_ += end_ns - start_ns;
+    frame_.frame_seq(frames_);
+    frame_.width_px(static_cast<uint32_t>(hmd_.width_px));
+    frame_.height_px(static_cast<uint32_t>(hmd_.height_px));
+    frame_.sim_time_ns(cache_.newest_sim_time_ns());
+    frame_.sample_time_ns(cache_.has_hand() ? cache_.hand().sample_time_ns() : 0);
+    frame_.source_stamp_ns(cache_.has_hand() ? cache_.hand().source_stamp_ns() : 0);
+    frame_.render_start_ns(start_ns);
+    frame_.render_end_ns(end_ns);
+    frame_writer_.write(frame_);
+    if (snapshots_ && frames_ % static_cast<uint64_t>(options_.snapshot_every) == 0 &&
+        snapshots_->submit(frames_, renderer->pixels())) {
+      note_snapshot();
+    }
+    ++frames_;
+    publish_status(end_ns);
+  }
+  const uint64_t written = snapshots_ ? snapshots_->written() : 0;
+  snapshots_.reset();  // finishes the queued PNGs
+  if (snapshot_index_) std::fclose(snapshot_index_);
+  spdlog::info("rendered {} frames; snapshots written {}", frames_, written);
+  return 0;
+}
+
+}  // namespace
+
+int run_image_generator(DdsParticipant& participant, const HmdSetup& hmd,
+                        const physics::HandModel& hand, const IgOptions& options) {
+  ImageGenerator ig(participant, hmd, hand, options);
+  return ig.run();
+}
+
+}  // namespace vcockpit::image_generator

@@ -1,0 +1,31 @@
+#pragma once
+// image_generator over DDS: the scene from cockpit/object_info + object_state + hand_state (a
+// late starter gets it from the transient-local topics), the head from cockpit/head_pose or the
+// design eye point, stereo frames rendered off-screen, cockpit/frame_info for every frame, PNG
+// snapshots every N frames, node_status once a second.
+
+#include <cstdint>
+#include <string>
+
+#include "common/dds_participant.hpp"
+#include "image_generator/node/hmd_yaml.hpp"
+#include "image_generator/node/snapshot_writer.hpp"
+#include "physics_node/physics/hand_model.hpp"
+
+namespace vcockpit::image_generator {
+
+struct IgOptions {
+  std::string out_dir;           // snapshots; empty: none
+  int snapshot_every = 30;       // frames between snapshots; 0: none
+  SnapshotLayout layout = SnapshotLayout::kSideBySide;
+  uint64_t frames = 0;           // render this many and exit; 0: until a signal
+  double fps = 60.0;             // frame pacing; 0: as fast as possible
+  double wait_timeout_s = 10.0;  // for the first object_info
+  std::string node_name = "image_generator";
+};
+
+// Exit codes: 0 done, 3 no scene arrived in time, 4 rendering failed.
+int run_image_generator(DdsParticipant& participant, const HmdSetup& hmd,
+                        const physics::HandModel& hand, const IgOptions& options);
+
+}  // namespace vcockpit::image_generator

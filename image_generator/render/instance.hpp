@@ -1,0 +1,23 @@
+#pragma once
+// What the renderer draws: primitives with a pose, a size and a colour. Built by the caller
+// every frame from the scene and its state; the renderer keeps no reference to it.
+
+#include <Eigen/Geometry>
+
+#include <array>
+
+namespace vcockpit::render {
+
+enum class Primitive { kBox, kSphere, kCylinder, kCapsule };
+
+struct Instance {
+  Primitive primitive = Primitive::kBox;
+  Eigen::Isometry3d X_GO = Eigen::Isometry3d::Identity();  // pose of the centroid frame in G
+  // Metres. Box: full extents (x, y, z). Sphere: (radius, 0, 0). Cylinder and capsule:
+  // (radius, length, 0) along the object's z; a capsule's length excludes its end caps.
+  Eigen::Vector3d size_m = Eigen::Vector3d::Zero();
+  std::array<float, 4> rgba{0.6f, 0.6f, 0.6f, 1.0f};  // 0..1; alpha is ignored (drawn opaque)
+  bool highlight = false;  // drawn brighter, as if glowing (held or hovered object)
+};
+
+}  // namespace vcockpit::render

@@ -1,0 +1,73 @@
+#include "image_generator/render/instance_packing.hpp"
+
+namespace vcockpit::render {
+namespace {
+
+void count(std::span<const Instance> instances, std::array<int, kUnitMeshCount>& counts) {
+  counts.fill(0);
+  for (const Instance& instance : instances) {
+    switch (instance.primitive) {
+      case Primitive::kBox: ++counts[0]; break;
+      case Primitive::kSphere: ++counts[1]; break;
+      case Primitive::kCylinder: ++counts[2]; break;
+      case Primitive::kCapsule:
+        counts[1] += 2;
+        ++counts[2];
+        break;
+    }
+  }
+}
+
+InstanceRecord make_record(const Eigen::Isometry3d& X_GO, const Eigen::Vector3d& scale,
+                           const Instance& instance) {
+  InstanceRecord record;
+  Eigen::Map<Eigen::Matrix4f>(record.X_GO.data()) = X_GO.matrix().cast<float>();
+  record.scale_highlight = {static_cast<float>(scale.x()), static_cast<float>(scale.y()),
+                            static_cast<float>(scale.z()), instance.highlight ? 1.0f : 0.0f};
+  record.rgba = instance.rgba;
+  return record;
+}
+
+}  // namespace
+
+void pack_instances(std::span<const Instance> instances, PackedInstances& packed) {
+  std::array<int, kUnitMeshCount> counts;
+  count(instances, counts);
+  int first = 0;
+  for (int m = 0; m < kUnitMeshCount; ++m) {
+    packed.ranges[m] = {first, counts[m]};
+    first += counts[m];
+  }
+  packed.records.resize(static_cast<size_t>(first));  // no allocation within capacity
+
+  std::array<int, kUnitMeshCount> next{packed.ranges[0].first, packed.ranges[1].first,
+                                       packed.ranges[2].first};
+  auto put = [&](UnitMesh mesh, const Eigen::Isometry3d& X_GO, const Eigen::Vector3d& scale,
+                 const Instance& instance) {
+    packed.records[static_cast<size_t>(next[static_cast<int>(mesh)]++)] =
+        make_record(X_GO, scale, instance);
+  };
+  for (const Instance& instance : instances) {
+    const Eigen::Vector3d& s = instance.size_m;
+    switch (instance.primitive) {
+      case Primitive::kBox: put(UnitMesh::kBox, instance.X_GO, s, instance); break;
+      case Primitive::kSphere:
+        put(UnitMesh::kSphere, instance.X_GO, Eigen::Vector3d::Constant(s.x()), instance);
+        break;
+      case Primitive::kCylinder:
+        put(UnitMesh::kCylinder, instance.X_GO, {s.x(), s.x(), s.y()}, instance);
+        break;
+      case Primitive::kCapsule: {
+        const double half_length_m = 0.5 * s.y();
+        put(UnitMesh::kCylinder, instance.X_GO, {s.x(), s.x(), s.y()}, instance);
+        for (const double z_m : {half_length_m, -half_length_m}) {
+          put(UnitMesh::kSphere, instance.X_GO * Eigen::Translation3d(0.0, 0.0, z_m),
+              Eigen::Vector3d::Constant(s.x()), instance);
+        }
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace vcockpit::render

@@ -1,0 +1,40 @@
+#pragma once
+// Instances -> per-instance GPU records grouped by unit mesh, so that each mesh is drawn with one
+// instanced call. A capsule becomes a cylinder plus two sphere caps (uniformly scaled, so caps
+// stay round whatever the capsule's proportions). Reuses the records' capacity: no allocation
+// once the instance count has peaked.
+
+#include <array>
+#include <span>
+#include <vector>
+
+#include "image_generator/render/instance.hpp"
+
+namespace vcockpit::render {
+
+enum class UnitMesh { kBox, kSphere, kCylinder };
+constexpr int kUnitMeshCount = 3;
+
+// Matches the shader's per-instance attributes (see shaders.hpp).
+struct InstanceRecord {
+  std::array<float, 16> X_GO;            // column-major 4x4 pose
+  std::array<float, 4> scale_highlight;  // unit mesh scale (x, y, z), highlight 0 or 1
+  std::array<float, 4> rgba;
+};
+static_assert(sizeof(InstanceRecord) == 24 * sizeof(float), "tightly packed for the GPU");
+
+struct MeshRange {
+  int first = 0;
+  int count = 0;
+};
+
+struct PackedInstances {
+  std::vector<InstanceRecord> records;  // boxes, then spheres, then cylinders
+  std::array<MeshRange, kUnitMeshCount> ranges{};
+
+  const MeshRange& range(UnitMesh mesh) const { return ranges[static_cast<int>(mesh)]; }
+};
+
+void pack_instances(std::span<const Instance> instances, PackedInstances& packed);
+
+}  // namespace vcockpit::render

@@ -1,0 +1,102 @@
+#include "image_generator/render/mesh_buffers.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+#include "image_generator/render/meshes.hpp"
+#include "image_generator/render/shaders.hpp"
+
+namespace vcockpit::render {
+namespace {
+
+const void* offset(size_t bytes) { return reinterpret_cast<const void*>(bytes); }
+
+// per-instance attributes from the instance buffer, bound to the current vertex array
+void bind_instance_attributes(GLuint instance_buffer) {
+  glBindBuffer(GL_ARRAY_BUFFER, instance_buffer);
+  constexpr GLsizei kStride = sizeof(InstanceRecord);
+  for (GLuint column = 0; column < 4; ++column) {
+    const GLuint location = attrib::kX_GO + column;
+    glEnableVertexAttribArray(location);
+    glVertexAttribPointer(location, 4, GL_FLOAT, GL_FALSE, kStride,
+                          offset(offsetof(InstanceRecord, X_GO) + column * 4 * sizeof(float)));
+    glVertexAttribDivisor(location, 1);
+  }
+  glEnableVertexAttribArray(attrib::kScaleHighlight);
+  glVertexAttribPointer(attrib::kScaleHighlight, 4, GL_FLOAT, GL_FALSE, kStride,
+                        offset(offsetof(InstanceRecord, scale_highlight)));
+  glVertexAttribDivisor(attrib::kScaleHighlight, 1);
+  glEnableVertexAttribArray(attrib::kRgba);
+  glVertexAttribPointer(attrib::kRgba, 4, GL_FLOAT, GL_FALSE, kStride,
+                        offset(offsetof(InstanceRecord, rgba)));
+  glVertexAttribDivisor(attrib::kRgba, 1);
+}
+
+void bind_vertex_attributes(GLuint vertex_buffer) {
+  glBindBuffer(GL_ARRAY_BUFFER, vertex_buffer);
+  constexpr GLsizei kStride = sizeof(Vertex);
+  glEnableVertexAttribArray(attrib::kPosition);
+  glVertexAttribPointer(attrib::kPosition, 3, GL_FLOAT, GL_FALSE, kStride,
+                        offset(offsetof(Vertex, position)));
+  glEnableVertexAttribArray(attrib::kNormal);
+  glVertexAttribPointer(attrib::kNormal, 3, GL_FLOAT, GL_FALSE, kStride,
+                        offset(offsetof(Vertex, normal)));
+}
+
+}  // namespace
+
+MeshBuffers::MeshBuffers() {
+  glGenBuffers(1, &instance_buffer_);
+  const std::array<MeshData, kUnitMeshCount> data{unit_box(), unit_sphere(), unit_cylinder()};
+  for (int m = 0; m < kUnitMeshCount; ++m) {
+    GpuMesh& mesh = meshes_[m];
+    glGenVertexArrays(1, &mesh.vertex_array);
+    glBindVertexArray(mesh.vertex_array);
+    glGenBuffers(1, &mesh.vertex_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, mesh.vertex_buffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data[m].vertices.size() * sizeof(Vertex)),
+                 data[m].vertices.data(), GL_STATIC_DRAW);
+    glGenBuffers(1, &mesh.index_buffer);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.index_buffer);  // recorded in the vertex array
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(data[m].indices.size() * sizeof(uint32_t)),
+                 data[m].indices.data(), GL_STATIC_DRAW);
+    mesh.index_count = static_cast<GLsizei>(data[m].indices.size());
+    bind_vertex_attributes(mesh.vertex_buffer);
+    bind_instance_attributes(instance_buffer_);
+  }
+  glBindVertexArray(0);
+}
+
+MeshBuffers::~MeshBuffers() {
+  for (GpuMesh& mesh : meshes_) {
+    glDeleteVertexArrays(1, &mesh.vertex_array);
+    glDeleteBuffers(1, &mesh.vertex_buffer);
+    glDeleteBuffers(1, &mesh.index_buffer);
+  }
+  glDeleteBuffers(1, &instance_buffer_);
+}
+
+void MeshBuffers::upload(const PackedInstances& packed) {
+  const size_t count = packed.records.size();
+  if (count == 0) return;
+  glBindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
+  if (count > instance_capacity_) {
+    // grow with headroom so a slowly growing scene reallocates rarely
+    instance_capacity_ = std::max<size_t>({count, 2 * instance_capacity_, 64});
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(instance_capacity_ * sizeof(InstanceRecord)),
+                 nullptr, GL_DYNAMIC_DRAW);
+  }
+  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(InstanceRecord)),
+                  packed.records.data());
+}
+
+void MeshBuffers::draw(UnitMesh mesh, const MeshRange& range) const {
+  if (range.count == 0) return;
+  const GpuMesh& gpu = meshes_[static_cast<int>(mesh)];
+  glBindVertexArray(gpu.vertex_array);
+  glDrawElementsInstancedBaseInstance(GL_TRIANGLES, gpu.index_count, GL_UNSIGNED_INT, nullptr,
+                                      range.count, static_cast<GLuint>(range.first));
+}
+
+}  // namespace vcockpit::render

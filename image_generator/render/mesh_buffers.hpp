@@ -1,0 +1,41 @@
+#pragma once
+// The unit meshes on the GPU (one vertex array each) and the one instance buffer they all read
+// their per-instance attributes from. The instance buffer grows when the count grows, never
+// shrinks, and is otherwise updated in place.
+
+#include <array>
+#include <cstddef>
+
+#include "image_generator/render/gl.hpp"
+#include "image_generator/render/instance_packing.hpp"
+
+namespace vcockpit::render {
+
+class MeshBuffers {
+ public:
+  // Uploads the unit box, sphere and cylinder; needs a current context.
+  MeshBuffers();
+  ~MeshBuffers();
+  MeshBuffers(const MeshBuffers&) = delete;
+  MeshBuffers& operator=(const MeshBuffers&) = delete;
+
+  void upload(const PackedInstances& packed);
+  // One instanced draw of `mesh` for the records in `range`; nothing if the range is empty.
+  void draw(UnitMesh mesh, const MeshRange& range) const;
+
+  int triangle_count(UnitMesh mesh) const { return meshes_[static_cast<int>(mesh)].index_count / 3; }
+
+ private:
+  struct GpuMesh {
+    GLuint vertex_array = 0;
+    GLuint vertex_buffer = 0;
+    GLuint index_buffer = 0;
+    GLsizei index_count = 0;
+  };
+
+  GLuint instance_buffer_ = 0;
+  size_t instance_capacity_ = 0;  // records
+  std::array<GpuMesh, kUnitMeshCount> meshes_{};
+};
+
+}  // namespace vcockpit::render

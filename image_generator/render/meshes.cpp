@@ -1,0 +1,105 @@
+#include "image_generator/render/meshes.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace vcockpit::render {
+namespace {
+
+constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
+
+uint32_t index_of(const MeshData& mesh) { return static_cast<uint32_t>(mesh.vertices.size()); }
+
+void add_triangle(MeshData& mesh, uint32_t a, uint32_t b, uint32_t c) {
+  mesh.indices.insert(mesh.indices.end(), {a, b, c});
+}
+
+// one face of the box: normal n, in-plane axes u, v with u x v = n
+void add_box_face(MeshData& mesh, const std::array<float, 3>& n, const std::array<float, 3>& u,
+                  const std::array<float, 3>& v) {
+  const uint32_t first = index_of(mesh);
+  constexpr float kSigns[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  for (const auto& s : kSigns) {
+    Vertex vertex{{}, n};
+    for (int i = 0; i < 3; ++i) vertex.position[i] = 0.5f * (n[i] + s[0] * u[i] + s[1] * v[i]);
+    mesh.vertices.push_back(vertex);
+  }
+  add_triangle(mesh, first, first + 1, first + 2);
+  add_triangle(mesh, first, first + 2, first + 3);
+}
+
+// a flat disc at height z facing +z (up) or -z
+void add_cap(MeshData& mesh, int slices, float z, bool up) {
+  const std::array<float, 3> n{0.0f, 0.0f, up ? 1.0f : -1.0f};
+  const uint32_t centre = index_of(mesh);
+  mesh.vertices.push_back({{0.0f, 0.0f, z}, n});
+  for (int j = 0; j <= slices; ++j) {
+    const float phi = kTwoPi * static_cast<float>(j) / static_cast<float>(slices);
+    mesh.vertices.push_back({{std::cos(phi), std::sin(phi), z}, n});
+  }
+  for (uint32_t j = 0; j < static_cast<uint32_t>(slices); ++j) {
+    const uint32_t a = centre + 1 + j, b = a + 1;
+    if (up) {
+      add_triangle(mesh, centre, a, b);
+    } else {
+      add_triangle(mesh, centre, b, a);
+    }
+  }
+}
+
+}  // namespace
+
+MeshData unit_box() {
+  MeshData mesh;
+  add_box_face(mesh, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  add_box_face(mesh, {-1, 0, 0}, {0, 0, 1}, {0, 1, 0});
+  add_box_face(mesh, {0, 1, 0}, {0, 0, 1}, {1, 0, 0});
+  add_box_face(mesh, {0, -1, 0}, {1, 0, 0}, {0, 0, 1});
+  add_box_face(mesh, {0, 0, 1}, {1, 0, 0}, {0, 1, 0});
+  add_box_face(mesh, {0, 0, -1}, {0, 1, 0}, {1, 0, 0});
+  return mesh;
+}
+
+MeshData unit_sphere(int slices, int stacks) {
+  MeshData mesh;
+  // latitude theta from the north pole (+z) down, longitude phi counter-clockwise from +x
+  for (int i = 0; i <= stacks; ++i) {
+    const float theta = std::numbers::pi_v<float> * static_cast<float>(i) / static_cast<float>(stacks);
+    for (int j = 0; j <= slices; ++j) {
+      const float phi = kTwoPi * static_cast<float>(j) / static_cast<float>(slices);
+      const std::array<float, 3> p{std::sin(theta) * std::cos(phi),
+                                   std::sin(theta) * std::sin(phi), std::cos(theta)};
+      mesh.vertices.push_back({p, p});
+    }
+  }
+  const auto row = static_cast<uint32_t>(slices + 1);
+  for (uint32_t i = 0; i < static_cast<uint32_t>(stacks); ++i) {
+    for (uint32_t j = 0; j < static_cast<uint32_t>(slices); ++j) {
+      const uint32_t a = i * row + j, b = a + row, c = b + 1, d = a + 1;
+      // skip the triangles that collapse at the poles
+      if (i + 1 < static_cast<uint32_t>(stacks)) add_triangle(mesh, a, b, c);
+      if (i > 0) add_triangle(mesh, a, c, d);
+    }
+  }
+  return mesh;
+}
+
+MeshData unit_cylinder(int slices) {
+  MeshData mesh;
+  for (int j = 0; j <= slices; ++j) {
+    const float phi = kTwoPi * static_cast<float>(j) / static_cast<float>(slices);
+    const float x = std::cos(phi), y = std::sin(phi);
+    mesh.vertices.push_back({{x, y, -0.5f}, {x, y, 0.0f}});
+    mesh.vertices.push_back({{x, y, 0.5f}, {x, y, 0.0f}});
+  }
+  for (uint32_t j = 0; j < static_cast<uint32_t>(slices); ++j) {
+    const uint32_t a = 2 * j, b = a + 2, c = b + 1, d = a + 1;  // bottom j, bottom j+1, tops
+    add_triangle(mesh, a, b, c);
+    add_triangle(mesh, a, c, d);
+  }
+  add_cap(mesh, slices, 0.5f, true);
+  add_cap(mesh, slices, -0.5f, false);
+  return mesh;
+}
+
+}  // namespace vcockpit::render

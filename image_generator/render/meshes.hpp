@@ -1,0 +1,31 @@
+#pragma once
+// Unit meshes on the CPU, scaled per instance in the vertex shader. Triangles wind
+// counter-clockwise seen from outside, normals point outwards.
+//   box: [-0.5, 0.5]^3, flat faces
+//   sphere: radius 1, centred
+//   cylinder: radius 1, z in [-0.5, 0.5], with flat end caps
+// llvmpipe's front end (vertex shading, clipping, binning) is single-threaded and costs about
+// 0.25 us per triangle here whatever the batching, so the defaults are coarse: 224 triangles a
+// sphere, 64 a cylinder. Sphere and cylinder share 16 slices so capsule caps meet the tube's rim.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace vcockpit::render {
+
+struct Vertex {
+  std::array<float, 3> position;
+  std::array<float, 3> normal;
+};
+
+struct MeshData {
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;  // triangles
+};
+
+MeshData unit_box();
+MeshData unit_sphere(int slices = 16, int stacks = 8);
+MeshData unit_cylinder(int slices = 16);
+
+}  // namespace vcockpit::render

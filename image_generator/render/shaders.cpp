@@ -1,0 +1,136 @@
+#include "image_generator/render/shaders.hpp"
+
+#include <string>
+
+#include "image_generator/render/render_error.hpp"
+
+namespace vcockpit::render {
+namespace {
+
+constexpr const char* kVertexSource = R"glsl(#version 450 core
+layout(location = 0) in vec3 a_position_O;
+layout(location = 1) in vec3 a_normal_O;
+layout(location = 2) in mat4 a_X_GO;
+layout(location = 6) in vec4 a_scale_highlight;
+layout(location = 7) in vec4 a_rgba;
+
+uniform mat4 u_view_projection;
+
+out vec3 v_position_G;
+out vec3 v_normal_G;
+out vec3 v_rgb;
+out float v_highlight;
+
+void main() {
+  vec3 scale = max(a_scale_highlight.xyz, vec3(1e-6));
+  vec4 p_G = a_X_GO * vec4(a_position_O * scale, 1.0);
+  // inverse transpose of R * S is R * S^-1: normals stay normal under non-uniform scale
+  v_normal_G = mat3(a_X_GO) * (a_normal_O / scale);
+  v_position_G = p_G.xyz;
+  v_rgb = a_rgba.rgb;
+  v_highlight = a_scale_highlight.w;
+  gl_Position = u_view_projection * p_G;
+}
+)glsl";
+
+constexpr const char* kFragmentSource = R"glsl(#version 450 core
+in vec3 v_position_G;
+in vec3 v_normal_G;
+in vec3 v_rgb;
+in float v_highlight;
+
+uniform vec3 u_eye_position_G;
+
+out vec4 frag_rgba;
+
+// towards the key light: mostly overhead, somewhat from the pilot's side and left
+const vec3 kToLight_G = normalize(vec3(-0.5, 0.3, 1.0));
+const float kAmbient = 0.35;
+const float kKey = 0.75;
+const float kSpecular = 0.2;
+const float kShininess = 32.0;
+
+void main() {
+  vec3 n = normalize(v_normal_G);
+  vec3 to_eye = normalize(u_eye_position_G - v_position_G);
+  float lambert = max(dot(n, kToLight_G), 0.0);
+  float blinn = lambert > 0.0 ? pow(max(dot(n, normalize(kToLight_G + to_eye)), 0.0), kShininess)
+                              : 0.0;
+  vec3 rgb = v_rgb * (kAmbient + kKey * lambert) + vec3(kSpecular * blinn);
+  // highlighted: brighter and self-lit, so it reads even in shadow
+  rgb = mix(rgb, rgb * 1.3 + v_rgb * 0.4 + vec3(0.08), v_highlight);
+  frag_rgba = vec4(clamp(rgb, 0.0, 1.0), 1.0);
+}
+)glsl";
+
+GLuint compile(GLenum stage, const char* source, const char* name) {
+  const GLuint shader = glCreateShader(stage);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok == GL_TRUE) return shader;
+  GLint length = 0;
+  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+  std::string log(static_cast<size_t>(length > 0 ? length : 1), '\0');
+  glGetShaderInfoLog(shader, length, nullptr, log.data());
+  glDeleteShader(shader);
+  throw RenderError(std::string("GL: ") + name + " shader does not compile: " + log.c_str());
+}
+
+GLuint link(GLuint vertex, GLuint fragment) {
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vertex);
+  glAttachShader(program, fragment);
+  glLinkProgram(program);
+  glDeleteShader(vertex);  // flagged; freed with the program
+  glDeleteShader(fragment);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok == GL_TRUE) return program;
+  GLint length = 0;
+  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+  std::string log(static_cast<size_t>(length > 0 ? length : 1), '\0');
+  glGetProgramInfoLog(program, length, nullptr, log.data());
+  glDeleteProgram(program);
+  throw RenderError(std::string("GL: shader program does not link: ") + log.c_str());
+}
+
+GLint uniform(GLuint program, const char* name) {
+  const GLint location = glGetUniformLocation(program, name);
+  if (location < 0) {
+    glDeleteProgram(program);
+    throw RenderError(std::string("GL: shader program has no uniform ") + name);
+  }
+  return location;
+}
+
+}  // namespace
+
+LitProgram::LitProgram() {
+  const GLuint vertex = compile(GL_VERTEX_SHADER, kVertexSource, "vertex");
+  GLuint fragment = 0;
+  try {
+    fragment = compile(GL_FRAGMENT_SHADER, kFragmentSource, "fragment");
+  } catch (...) {
+    glDeleteShader(vertex);
+    throw;
+  }
+  program_ = link(vertex, fragment);
+  view_projection_ = uniform(program_, "u_view_projection");
+  eye_position_G_ = uniform(program_, "u_eye_position_G");
+}
+
+LitProgram::~LitProgram() { glDeleteProgram(program_); }
+
+void LitProgram::use() const { glUseProgram(program_); }
+
+void LitProgram::set_view_projection(const Eigen::Matrix4f& P_V) const {
+  glUniformMatrix4fv(view_projection_, 1, GL_FALSE, P_V.data());  // column-major, as Eigen
+}
+
+void LitProgram::set_eye_position(const Eigen::Vector3f& p_GE) const {
+  glUniform3fv(eye_position_G_, 1, p_GE.data());
+}
+
+}  // namespace vcockpit::render

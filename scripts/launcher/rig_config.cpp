@@ -1,0 +1,79 @@
+#include "scripts/launcher/rig_config.hpp"
+
+#include <filesystem>
+
+#include "common/yaml_config.hpp"
+
+namespace vcockpit::rig {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string relative_to(const std::string& dir, const std::string& path) {
+  return fs::path(path).is_absolute() ? path : (fs::path(dir) / path).lexically_normal().string();
+}
+
+NodeSpec parse_node(const ConfigNode& node) {
+  node.expect_keys({"name", "command", "required", "restart_delay_s", "ends_run", "start_delay_s"});
+  NodeSpec spec;
+  spec.name = node.get_string("name");
+  if (spec.name.empty() || spec.name.find_first_of("/ ") != std::string::npos) {
+    node["name"].fail("a node name must be non-empty, without spaces or '/'");
+  }
+  for (const ConfigNode& arg : node["command"].elements()) spec.command.push_back(arg.as_string());
+  if (spec.command.empty()) node["command"].fail("needs at least the executable");
+  spec.required = node.get_bool("required", true);
+  spec.ends_run = node.get_bool("ends_run", false);
+  if (auto delay = node.find("restart_delay_s")) {
+    spec.restart_delay_s = delay->as_double();
+    if (*spec.restart_delay_s < 0) delay->fail("must be >= 0");
+  }
+  spec.start_delay_s = node.get_double("start_delay_s", 0.0);
+  if (spec.start_delay_s < 0) node["start_delay_s"].fail("must be >= 0");
+  return spec;
+}
+
+}  // namespace
+
+RigConfig load_rig_config(const std::string& path) {
+  const ConfigNode root = ConfigNode::load_file(path);
+  root.expect_keys({"domain", "qos", "participant", "log", "nodes"});
+  RigConfig rig;
+  rig.path = path;
+  rig.config_dir = fs::absolute(fs::path(path)).parent_path().lexically_normal().string();
+  rig.domain_id = static_cast<int>(root.get_int("domain", rig.domain_id));
+  if (rig.domain_id < 0 || rig.domain_id > 232) root["domain"].fail("must be in 0..232");
+  rig.qos_file = relative_to(rig.config_dir, root.get_string("qos", "qos.xml"));
+  if (!fs::exists(rig.qos_file)) root["qos"].fail("no such file: " + rig.qos_file);
+  rig.participant_profile = root.get_string("participant", rig.participant_profile);
+  if (auto log = root.find("log")) rig.log_path = relative_to(rig.config_dir, log->as_string());
+  const ConfigNode nodes = root["nodes"];
+  for (const ConfigNode& node : nodes.elements()) {
+    NodeSpec spec = parse_node(node);
+    for (const auto& other : rig.nodes) {
+      if (other.name == spec.name) node["name"].fail("duplicate node name '" + spec.name + "'");
+    }
+    rig.nodes.push_back(std::move(spec));
+  }
+  if (rig.nodes.empty()) nodes.fail("the rig needs at least one node");
+  return rig;
+}
+
+std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& rig,
+                                        const std::string& out_dir) {
+  std::vector<std::string> out;
+  for (std::string arg : node.command) {
+    for (const auto& [key, value] : {std::pair<std::string, std::string>{"{log}", rig.log_path},
+                                     {"{out}", out_dir},
+                                     {"{config}", rig.config_dir}}) {
+      for (std::size_t at = arg.find(key); at != std::string::npos; at = arg.find(key, at)) {
+        arg.replace(at, key.size(), value);
+        at += value.size();
+      }
+    }
+    out.push_back(arg);
+  }
+  return out;
+}
+
+}  // namespace vcockpit::rig

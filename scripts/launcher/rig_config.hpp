@@ -1,0 +1,36 @@
+#pragma once
+// config/rig.yaml: which nodes the launcher starts, how, and what happens when one ends.
+// Every bad value is a ConfigError naming file, line and key.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vcockpit::rig {
+
+struct NodeSpec {
+  std::string name;
+  std::vector<std::string> command;  // command[0] is an executable in the build's bin directory
+  bool required = true;
+  std::optional<double> restart_delay_s;
+  bool ends_run = false;
+  double start_delay_s = 0.0;
+};
+
+struct RigConfig {
+  std::string path;
+  std::string config_dir;  // directory of the rig file: {config}
+  int domain_id = 7;
+  std::string qos_file;
+  std::string participant_profile = "loopback";
+  std::string log_path;  // {log}
+  std::vector<NodeSpec> nodes;
+};
+
+RigConfig load_rig_config(const std::string& path);
+
+// {log}, {out} and {config} replaced in every argument.
+std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& rig,
+                                        const std::string& out_dir);
+
+}  // namespace vcockpit::rig

@@ -1,0 +1,61 @@
+#pragma once
+// The launcher's view of the running rig over DDS: node statuses, grasp events, and the
+// glove-to-frame latency of every hand sample the image generator drew (render end minus the
+// glove driver's stamp, first frame that drew it; both monotonic on this machine).
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "common/dds_participant.hpp"
+
+namespace vcockpit::rig {
+
+struct SeenEvent {
+  double t_s = 0;
+  bool grasp = true;
+  std::string object;
+  std::string reason;
+};
+
+class RigMonitor {
+ public:
+  explicit RigMonitor(DdsParticipant& participant);
+
+  void poll();  // takes everything pending
+  std::string status_line(double elapsed_s) const;
+
+  const std::map<std::string, cockpit::NodeStatus>& statuses() const { return statuses_; }
+  const std::vector<SeenEvent>& events() const { return events_; }
+  const std::vector<double>& latencies_ms() const { return latencies_ms_; }
+  uint64_t frames_seen() const { return frames_seen_; }
+  // mean physics step rate over the statuses while the glove was alive, and the last late count
+  double mean_step_rate_hz() const;
+  uint64_t late_steps() const;
+  std::string object_name(uint32_t id) const;
+  // the last state of every dynamic object, by name
+  const std::map<std::string, cockpit::ObjectState>& final_states() const { return final_; }
+
+ private:
+  Reader<cockpit::NodeStatus> status_reader_;
+  Reader<cockpit::GraspEvent> event_reader_;
+  Reader<cockpit::FrameInfo> frame_reader_;
+  Reader<cockpit::ObjectInfo> info_reader_;
+  Reader<cockpit::ObjectState> state_reader_;
+  std::map<uint32_t, bool> dynamic_;
+  std::map<std::string, cockpit::ObjectState> final_;
+  std::map<std::string, cockpit::NodeStatus> statuses_;
+  std::vector<double> step_rates_hz_;
+  std::map<uint32_t, std::string> names_;
+  std::vector<SeenEvent> events_;
+  std::vector<double> latencies_ms_;
+  int64_t last_source_stamp_ns_ = 0;
+  uint64_t frames_seen_ = 0;
+  std::string held_;
+};
+
+// p in [0, 1]; 0 for an empty set.
+double percentile(std::vector<double> values, double p);
+
+}  // namespace vcockpit::rig

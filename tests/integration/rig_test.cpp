@@ -1,0 +1,229 @@
+// The rig as users run it: rig_launcher with real nodes over loopback DDS.
+//  - the full rig replaying the grasping log in lockstep: GRASP then RELEASE of the cup, the
+//    cup's final pose equal to the offline runner's, frames rendered, and snapshots whose pixels
+//    show the hand next to the cup while it is held;
+//  - kill -9 of the image generator mid-run: the launcher restarts it, it rebuilds the scene from
+//    the transient-local topics and renders again within 2 s; nothing else stops;
+//  - kill -9 of the glove driver: the physics node reports the glove lost and keeps running;
+//  - SIGINT to the launcher: every node exits within 3 s, no processes or /dev/shm files left.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <thread>
+
+#include "image_generator/node/hmd_yaml.hpp"
+#include "image_generator/render/camera.hpp"
+#include "physics_node/config/scene_config.hpp"
+#include "physics_node/io/offline_runner.hpp"
+#include "tests/support/monitor_log.hpp"
+#include "tests/support/png_read.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/test_env.hpp"
+
+namespace vcockpit::test {
+namespace {
+
+constexpr int64_t kSecond = 1'000'000'000;
+std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
+std::string config(const std::string& name) { return source_dir() + "/config/" + name; }
+
+// A rig file for this test's domain; `glove` is the glove driver's node block.
+std::string rig_yaml(const std::string& domain, bool lockstep, const std::string& glove) {
+  std::string text = "domain: " + domain + "\nqos: " + config("qos.xml") +
+                     "\nparticipant: loopback\nlog: " + config("glove_logs/reach_grasp_lift_release.csv") +
+                     "\nnodes:\n";
+  text += "  - {name: physics_node, command: [physics_node" + std::string(lockstep ? ", --lockstep" : "") +
+          ", --scene, " + config("cockpit.yaml") + "], required: true, start_delay_s: 0.3}\n";
+  text += "  - {name: image_generator, command: [image_generator, --hmd, " + config("hmd.yaml") +
+          ", --fps, '30', --out, '{out}/frames', --snapshot-every, '15'], required: false, "
+          "restart_delay_s: 0.2, start_delay_s: 0.3}\n";
+  return text + glove;
+}
+
+pid_t pid_of(const std::string& rig_log, const std::string& node, int nth = 1) {
+  const std::regex pattern((nth == 1 ? "started " : "restarted ") + node + " \\(pid ([0-9]+)\\)");
+  const std::string text = read_text(rig_log);
+  std::smatch m;
+  if (std::regex_search(text, m, pattern)) return static_cast<pid_t>(std::stoi(m[1]));
+  return -1;
+}
+
+bool process_exists(pid_t pid) { return pid > 0 && ::kill(pid, 0) == 0; }
+
+class RigTest : public ::testing::Test {
+ protected:
+  void SetUp() override { shm_before_ = list_dev_shm(); }
+  void TearDown() override {
+    // the launcher removes what its killed nodes left; anything else here is a leak
+    const auto leftovers = new_entries(shm_before_, list_dev_shm());
+    remove_dev_shm(leftovers);
+    EXPECT_TRUE(leftovers.empty()) << leftovers.size() << " /dev/shm files left, e.g. "
+                                   << (leftovers.empty() ? "" : leftovers.front());
+  }
+  ChildProcess launch(const std::string& rig_text) {
+    std::ofstream(dir_ + "/rig.yaml") << rig_text;
+    return ChildProcess({bin_dir() + "/rig_launcher", dir_ + "/rig.yaml", "--out", dir_ + "/out",
+                         "--quiet"},
+                        {}, dir_ + "/launcher.log");
+  }
+  std::string launcher_log() const { return read_text(dir_ + "/launcher.log"); }
+
+  std::string dir_ = make_temp_dir("rig");
+  std::string domain_ = std::getenv("VCOCKPIT_DOMAIN");
+  std::vector<std::string> shm_before_;
+};
+
+const std::string kLockstepGlove =
+    "  - {name: glove_driver, command: [glove_driver, --source, replay, --log, '{log}', "
+    "--lockstep, --rate, '1'], required: true, ends_run: true}\n";
+
+TEST_F(RigTest, FullRigReplaysTheGraspInLockstepLikeTheOfflineRunner) {
+  ChildProcess rig = launch(rig_yaml(domain_, true, kLockstepGlove));
+  ASSERT_EQ(rig.wait(90 * kSecond), 0) << launcher_log();
+  const std::string summary = read_text(dir_ + "/out/summary.json");
+  ASSERT_FALSE(summary.empty()) << launcher_log();
+  EXPECT_NE(summary.find("\"grasps\": 1,"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"releases\": 1,"), std::string::npos) << summary;
+  const auto grasp_at = summary.find("\"event\": \"grasp\", \"object\": \"cup\"");
+  const auto release_at = summary.find("\"event\": \"release\", \"object\": \"cup\"");
+  ASSERT_NE(grasp_at, std::string::npos) << summary;
+  ASSERT_NE(release_at, std::string::npos) << summary;
+  EXPECT_LT(grasp_at, release_at);
+
+  // the final poses are the offline runner's
+  physics_io::OfflineOptions offline;
+  offline.scene_path = config("cockpit.yaml");
+  offline.log_path = config("glove_logs/reach_grasp_lift_release.csv");
+  offline.out_dir = dir_ + "/offline";
+  physics_io::run_offline(offline);
+  const auto expected = read_final_poses(offline.out_dir + "/summary.json");
+  const auto seen = read_final_poses(dir_ + "/out/summary.json");
+  ASSERT_TRUE(expected.count("cup") && seen.count("cup")) << summary;
+  for (const auto& [name, p] : expected) {
+    ASSERT_TRUE(seen.count(name)) << name;
+    EXPECT_LT((seen.at(name) - p).norm(), 1e-8) << name;
+  }
+
+  // frames and snapshots; a snapshot taken while the cup was held shows hand and cup together
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(summary, m, std::regex("\"frames_rendered\": ([0-9]+)")));
+  EXPECT_GT(std::stoi(m[1]), 100);
+  std::ifstream index(dir_ + "/out/frames/snapshots.csv");
+  std::string line;
+  std::getline(index, line);  // header
+  const physics::Scene scene = load_scene(config("cockpit.yaml"));
+  const int cup = scene.find_object("cup");
+  const HmdSetup hmd = load_hmd_config(config("hmd.yaml"));
+  int held_snapshots = 0;
+  while (std::getline(index, line)) {
+    unsigned long long frame = 0;
+    long long sim_ns = 0;
+    int held = -1;
+    double cx, cy, cz, px, py, pz;
+    if (std::sscanf(line.c_str(), "%llu,%lld,%d,%lf,%lf,%lf,%lf,%lf,%lf", &frame, &sim_ns, &held,
+                    &cx, &cy, &cz, &px, &py, &pz) != 9 || held != cup) {
+      continue;
+    }
+    RgbaImage image;
+    char name[64];
+    std::snprintf(name, sizeof name, "/out/frames/frame_%06llu.png", frame);
+    ASSERT_TRUE(read_png(dir_ + name, image)) << name;
+    Eigen::Vector2d pixel;
+    ASSERT_TRUE(render::project_to_pixel(hmd.hmd, render::Eye::kLeft, hmd.X_GHead,
+                                         Eigen::Vector3d(cx, cy, cz), pixel));
+    // around the cup's centre: the white cup and the skin-coloured fingers holding it
+    int white = 0, skin = 0;
+    for (int dr = -25; dr <= 25; ++dr) {
+      for (int dc = -25; dc <= 25; ++dc) {
+        const int c = static_cast<int>(pixel.x()) + dc, r = static_cast<int>(pixel.y()) + dr;
+        if (c < 0 || r < 0 || c >= image.width / 2 || r >= image.height) continue;
+        const auto px_rgba = image.at(c, r);
+        if (px_rgba[0] > 170 && px_rgba[1] > 170 && px_rgba[2] > 160) ++white;
+        if (px_rgba[0] > px_rgba[2] + 40 && px_rgba[1] > px_rgba[2] + 10 && px_rgba[0] > 110) ++skin;
+      }
+    }
+    EXPECT_GT(white, 20) << name << ": no cup at its projected pixel";
+    EXPECT_GT(skin, 20) << name << ": no hand next to the held cup";
+    ++held_snapshots;
+  }
+  EXPECT_GE(held_snapshots, 2) << "snapshots taken while the cup was held";
+}
+
+TEST_F(RigTest, KilledImageGeneratorIsRestartedAndRendersAgainWithinTwoSeconds) {
+  ChildProcess monitor({bin_dir() + "/test_cockpit_monitor", "--out", dir_ + "/monitor.txt"},
+                       dds_test_env(), dir_ + "/monitor.log");
+  ChildProcess rig = launch(rig_yaml(domain_, true, kLockstepGlove));
+  const std::string rig_log = dir_ + "/out/logs/rig.log";
+  ASSERT_TRUE(wait_for_line(dir_ + "/monitor.txt", "frame seq=30 ", 20 * kSecond)) << launcher_log();
+  const pid_t ig = pid_of(dir_ + "/launcher.log", "image_generator");
+  ASSERT_GT(ig, 0) << launcher_log();
+  const auto killed_at = std::chrono::steady_clock::now();
+  ::kill(ig, SIGKILL);
+  // a restarted image generator numbers its frames from 0 again
+  ASSERT_TRUE(wait_for_line(dir_ + "/monitor.txt", "frame seq=0 ", 5 * kSecond, "frame seq=30 "));
+  const double restart_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - killed_at).count();
+  std::printf("image generator rendering again %.2f s after kill -9\n", restart_s);
+  EXPECT_LT(restart_s, 2.0);
+  ASSERT_EQ(rig.wait(90 * kSecond), 0) << launcher_log();
+  EXPECT_EQ(monitor.stop(), 0);
+  const std::string summary = read_text(dir_ + "/out/summary.json");
+  EXPECT_NE(summary.find("\"image_generator\": {\"exit_status\": 0, \"restarts\": 1}"), std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("\"physics_node\": {\"exit_status\": 0, \"restarts\": 0}"), std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("\"grasps\": 1,"), std::string::npos) << "the run went on: " << summary;
+}
+
+TEST_F(RigTest, KilledGloveDriverIsReportedLostAndThePhysicsKeepsRunning) {
+  const std::string glove =
+      "  - {name: glove_driver, command: [glove_driver, --source, replay, --log, '{log}', --loop], "
+      "required: false}\n";
+  ChildProcess monitor({bin_dir() + "/test_cockpit_monitor", "--out", dir_ + "/monitor.txt"},
+                       dds_test_env(), dir_ + "/monitor.log");
+  ChildProcess rig = launch(rig_yaml(domain_, false, glove));
+  ASSERT_TRUE(wait_for_line(dir_ + "/monitor.txt", "node=physics_node state=1", 20 * kSecond))
+      << launcher_log();
+  const pid_t glove_pid = pid_of(dir_ + "/launcher.log", "glove_driver");
+  ASSERT_GT(glove_pid, 0);
+  ::kill(glove_pid, SIGKILL);
+  ASSERT_TRUE(wait_for_line(dir_ + "/monitor.txt", "alive=0", 5 * kSecond, "node=physics_node state=1"));
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  EXPECT_TRUE(rig.running()) << "the rig keeps running without the glove";
+  const MonitorLog seen = MonitorLog::read(dir_ + "/monitor.txt");
+  int after = 0;
+  for (const auto& s : seen.statuses) {
+    if (s.node == "physics_node" && !s.alive && s.rate_hz > 900) ++after;
+  }
+  EXPECT_GE(after, 1) << "physics still stepping at 1 kHz with the glove lost";
+  rig.signal(SIGINT);
+  EXPECT_EQ(rig.wait(10 * kSecond), 0) << launcher_log();
+  EXPECT_EQ(monitor.stop(), 0);
+}
+
+TEST_F(RigTest, CtrlCStopsEveryNodeWithinThreeSecondsAndLeavesNothingBehind) {
+  ChildProcess rig = launch(rig_yaml(domain_, true, kLockstepGlove));
+  ASSERT_TRUE(wait_for_line(dir_ + "/launcher.log", "started glove_driver", 20 * kSecond));
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  std::vector<pid_t> pids;
+  for (const char* node : {"physics_node", "image_generator", "glove_driver"}) {
+    pids.push_back(pid_of(dir_ + "/launcher.log", node));
+    ASSERT_TRUE(process_exists(pids.back())) << node;
+  }
+  const auto sent = std::chrono::steady_clock::now();
+  rig.signal(SIGINT);
+  ASSERT_EQ(rig.wait(10 * kSecond), 0) << launcher_log();
+  const double stop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  std::printf("rig stopped %.2f s after SIGINT\n", stop_s);
+  EXPECT_LT(stop_s, 3.5);
+  for (pid_t pid : pids) EXPECT_FALSE(process_exists(pid)) << "pid " << pid << " still running";
+  EXPECT_NE(launcher_log().find("interrupted"), std::string::npos);
+  EXPECT_EQ(launcher_log().find("did not stop within 3 s"), std::string::npos) << launcher_log();
+}
+
+}  // namespace
+}  // namespace vcockpit::test

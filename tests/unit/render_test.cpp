@@ -1,0 +1,781 @@
+// The render library: off-axis stereo camera maths against closed forms (tan of the FOV angles,
+// glFrustum), config validation, instance packing, unit meshes, then real OSMesa frames checked
+// pixel by pixel where project_to_pixel says objects land, and the PNG export.
+
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <new>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "image_generator/render/instance_packing.hpp"
+#include "image_generator/render/meshes.hpp"
+#include "image_generator/render/render.hpp"
+
+// Counts C++ heap allocations on a thread while asked to, to show render() allocates nothing
+// once warmed up. Not under AddressSanitizer, which owns operator new itself.
+namespace {
+thread_local bool g_count_allocations = false;
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kCountingAllocations = false;
+#else
+constexpr bool kCountingAllocations = true;
+// GCC pairs the malloc below with the free in delete after inlining and warns; they do match
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void* operator new(std::size_t size) {
+  if (g_count_allocations) ++g_allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
+#endif
+
+namespace vcockpit::render {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kHeadHeightM = 1.2;
+
+// llvmpipe reads this when the first context is made; respect a value set by the caller
+const bool kThreadsSet = [] { return setenv("LP_NUM_THREADS", "2", 0) == 0; }();
+
+Eigen::Isometry3d head_pose() {
+  return Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, kHeadHeightM));
+}
+
+Eigen::Isometry3d at(double x_m, double y_m, double z_m) {
+  return Eigen::Isometry3d(Eigen::Translation3d(x_m, y_m, z_m));
+}
+
+Instance make(Primitive primitive, const Eigen::Isometry3d& X_GO, const Eigen::Vector3d& size_m,
+              std::array<float, 4> rgba, bool highlight = false) {
+  return Instance{primitive, X_GO, size_m, rgba, highlight};
+}
+
+constexpr std::array<float, 4> kRed{1.0f, 0.0f, 0.0f, 1.0f};
+constexpr std::array<float, 4> kGreen{0.0f, 1.0f, 0.0f, 1.0f};
+constexpr std::array<float, 4> kBlue{0.0f, 0.0f, 1.0f, 1.0f};
+constexpr std::array<float, 4> kYellow{1.0f, 1.0f, 0.0f, 1.0f};
+
+// ---------------------------------------------------------------------------------------------
+// camera maths
+
+TEST(Camera, EyesAreIpdApartLeftEyeOnPlusY) {
+  const HmdConfig config;
+  const Eigen::Isometry3d X_GHead =
+      at(1.0, 2.0, 3.0) * Eigen::AngleAxisd(30 * kDeg, Eigen::Vector3d::UnitZ());
+  const Eigen::Vector3d p_L = eye_pose(config, Eye::kLeft, X_GHead).translation();
+  const Eigen::Vector3d p_R = eye_pose(config, Eye::kRight, X_GHead).translation();
+  EXPECT_NEAR((p_L - p_R).norm(), 0.063, 1e-12);
+  EXPECT_TRUE((X_GHead.inverse() * p_L).isApprox(Eigen::Vector3d(0, 0.0315, 0), 1e-12));
+  EXPECT_TRUE(eye_pose(config, Eye::kLeft, X_GHead).linear().isApprox(X_GHead.linear(), 1e-12));
+}
+
+// A point on an eye's optical axis lands where the tangents put it: for an asymmetric FOV that
+// is not the image centre.
+TEST(Camera, OnAxisPointLandsWhereTheTangentsPutIt) {
+  const HmdConfig config;
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    const EyeFov& fov = config.eye_fov(eye);
+    const double tl = std::tan(fov.left_rad), tr = std::tan(fov.right_rad);
+    const double tu = std::tan(fov.up_rad), td = std::tan(fov.down_rad);
+    const Eigen::Isometry3d X_GE = eye_pose(config, eye, head_pose());
+    Eigen::Vector2d pixel;
+    ASSERT_TRUE(project_to_pixel(config, eye, head_pose(), X_GE * Eigen::Vector3d(2, 0, 0), pixel));
+    EXPECT_NEAR(pixel.x(), -tl / (tr - tl) * 1280, 1e-9);
+    EXPECT_NEAR(pixel.y(), tu / (tu - td) * 720, 1e-9);
+    EXPECT_GT(std::abs(pixel.x() - 640.0), 50.0) << "asymmetric FOV: axis is off centre";
+    EXPECT_GT(std::abs(pixel.y() - 360.0), 20.0);
+  }
+  // left eye sees further left than right, so its axis lands right of centre; right eye mirrors
+  Eigen::Vector2d left, right;
+  ASSERT_TRUE(project_to_pixel(config, Eye::kLeft, head_pose(),
+                               eye_pose(config, Eye::kLeft, head_pose()) * Eigen::Vector3d(2, 0, 0),
+                               left));
+  ASSERT_TRUE(project_to_pixel(config, Eye::kRight, head_pose(),
+                               eye_pose(config, Eye::kRight, head_pose()) * Eigen::Vector3d(2, 0, 0),
+                               right));
+  EXPECT_GT(left.x(), 640.0);
+  EXPECT_LT(right.x(), 640.0);
+  EXPECT_NEAR(left.x() + right.x(), 1280.0, 1e-9);
+}
+
+TEST(Camera, AngleOffAxisMapsLinearlyInTangent) {
+  const HmdConfig config;
+  const EyeFov& fov = config.eye_fov(Eye::kLeft);
+  const double tl = std::tan(fov.left_rad), tr = std::tan(fov.right_rad);
+  const double tu = std::tan(fov.up_rad), td = std::tan(fov.down_rad);
+  // 20 deg right of and 10 deg above the axis, 3 m away
+  const Eigen::Vector3d p_E(3.0, -3.0 * std::tan(20 * kDeg), 3.0 * std::tan(10 * kDeg));
+  Eigen::Vector2d pixel;
+  ASSERT_TRUE(project_to_pixel(config, Eye::kLeft, head_pose(),
+                               eye_pose(config, Eye::kLeft, head_pose()) * p_E, pixel));
+  EXPECT_NEAR(pixel.x(), (std::tan(20 * kDeg) - tl) / (tr - tl) * 1280, 1e-9);
+  EXPECT_NEAR(pixel.y(), (tu - std::tan(10 * kDeg)) / (tu - td) * 720, 1e-9);
+}
+
+TEST(Camera, BehindOrOutsideTheImageIsNotProjected) {
+  const HmdConfig config;
+  Eigen::Vector2d pixel(-1, -1);
+  const Eigen::Vector3d p_H_behind(-1.0, 0.0, 0.0), p_H_too_near(0.01, 0.0, 0.0);
+  EXPECT_FALSE(project_to_pixel(config, Eye::kLeft, head_pose(), head_pose() * p_H_behind, pixel));
+  EXPECT_FALSE(project_to_pixel(config, Eye::kLeft, head_pose(), head_pose() * p_H_too_near, pixel));
+  // 60 deg to the right is past the left eye's 45 deg
+  const Eigen::Vector3d p_H_outside(1.0, -std::tan(60 * kDeg), 0.0);
+  EXPECT_FALSE(project_to_pixel(config, Eye::kLeft, head_pose(), head_pose() * p_H_outside, pixel));
+  EXPECT_EQ(pixel, Eigen::Vector2d(-1, -1)) << "untouched when false";
+}
+
+TEST(Camera, OffAxisProjectionIsGlFrustum) {
+  const EyeFov fov{-52 * kDeg, 45 * kDeg, 42 * kDeg, -48 * kDeg};
+  const double n = 0.05, f = 20.0;
+  const double l = n * std::tan(fov.left_rad), r = n * std::tan(fov.right_rad);
+  const double b = n * std::tan(fov.down_rad), t = n * std::tan(fov.up_rad);
+  Eigen::Matrix4d expected;  // glFrustum(l, r, b, t, n, f), OpenGL reference pages
+  expected << 2 * n / (r - l), 0, (r + l) / (r - l), 0,  //
+      0, 2 * n / (t - b), (t + b) / (t - b), 0,          //
+      0, 0, -(f + n) / (f - n), -2 * f * n / (f - n),    //
+      0, 0, -1, 0;
+  const Eigen::Matrix4f P = off_axis_projection(fov, n, f);
+  EXPECT_TRUE(P.cast<double>().isApprox(expected, 1e-6)) << P;
+  EXPECT_NE(P(0, 2), 0.0f) << "asymmetric: skewed, not a centred (toed-in) frustum";
+  // the frustum's corners and depth range land on the NDC cube's faces
+  auto ndc = [&](const Eigen::Vector3d& p_gl) {
+    const Eigen::Vector4d c = P.cast<double>() * p_gl.homogeneous();
+    return Eigen::Vector3d(c.head<3>() / c.w());
+  };
+  EXPECT_TRUE(ndc({r, t, -n}).isApprox(Eigen::Vector3d(1, 1, -1), 1e-5));
+  EXPECT_TRUE(ndc({l * f / n, b * f / n, -f}).isApprox(Eigen::Vector3d(-1, -1, 1), 1e-5));
+}
+
+TEST(Camera, ViewMatrixMapsHeadAxesToOpenGlEyeAxes) {
+  const HmdConfig config;
+  const Eigen::Isometry3d X_GHead = at(0.4, -0.2, 1.1) *
+                                    Eigen::AngleAxisd(40 * kDeg, Eigen::Vector3d::UnitZ()) *
+                                    Eigen::AngleAxisd(-15 * kDeg, Eigen::Vector3d::UnitY());
+  const Eigen::Isometry3d X_GE = eye_pose(config, Eye::kRight, X_GHead);
+  const Eigen::Matrix4d V = view_matrix(X_GE).cast<double>();
+  auto eye_space = [&](const Eigen::Vector3d& p_E) {
+    return Eigen::Vector3d((V * (X_GE * p_E).homogeneous()).head<3>());
+  };
+  EXPECT_TRUE(eye_space({0, 0, 0}).isZero(1e-6));
+  EXPECT_TRUE(eye_space({1, 0, 0}).isApprox(Eigen::Vector3d(0, 0, -1), 1e-6)) << "forward -> -z";
+  EXPECT_TRUE(eye_space({0, 1, 0}).isApprox(Eigen::Vector3d(-1, 0, 0), 1e-6)) << "left -> -x";
+  EXPECT_TRUE(eye_space({0, 0, 1}).isApprox(Eigen::Vector3d(0, 1, 0), 1e-6)) << "up -> +y";
+}
+
+// The GL pipeline (P * V, viewport, top-down rows) and project_to_pixel agree.
+TEST(Camera, MatricesAgreeWithProjectToPixel) {
+  const HmdConfig config;
+  const Eigen::Isometry3d X_GHead =
+      at(0.1, 0.3, 1.25) * Eigen::AngleAxisd(-25 * kDeg, Eigen::Vector3d::UnitZ());
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    const Eigen::Matrix4d PV =
+        (off_axis_projection(config.eye_fov(eye), config.near_m, config.far_m) *
+         view_matrix(eye_pose(config, eye, X_GHead)))
+            .cast<double>();
+    for (const Eigen::Vector3d& p_H : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0.7, 0.3, -0.2),
+                                      Eigen::Vector3d(2.5, -1.1, 0.9)}) {
+      const Eigen::Vector3d p_G = X_GHead * p_H;
+      const Eigen::Vector4d clip = PV * p_G.homogeneous();
+      const Eigen::Vector2d ndc = clip.head<2>() / clip.w();
+      const Eigen::Vector2d expected((ndc.x() + 1) / 2 * 1280, (1 - ndc.y()) / 2 * 720);
+      Eigen::Vector2d pixel;
+      ASSERT_TRUE(project_to_pixel(config, eye, X_GHead, p_G, pixel));
+      EXPECT_LT((pixel - expected).norm(), 1e-3) << pixel.transpose() << " vs " << expected.transpose();
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// config
+
+TEST(HmdConfig, DefaultIsValidAndMirrored) {
+  const HmdConfig config;
+  EXPECT_NO_THROW(config.validate());
+  EXPECT_NEAR(config.fov[0].left_rad, -52 * kDeg, 1e-12);
+  EXPECT_NEAR(config.fov[0].right_rad, 45 * kDeg, 1e-12);
+  EXPECT_EQ(config.fov[0].left_rad, -config.fov[1].right_rad);
+  EXPECT_EQ(config.fov[0].right_rad, -config.fov[1].left_rad);
+  EXPECT_EQ(config.fov[0].up_rad, config.fov[1].up_rad);
+}
+
+TEST(HmdConfig, RejectsEachBadValue) {
+  struct Case {
+    const char* field;
+    std::function<void(HmdConfig&)> spoil;
+  };
+  const std::vector<Case> cases{
+      {"ipd_m", [](HmdConfig& c) { c.ipd_m = 0.0; }},
+      {"ipd_m", [](HmdConfig& c) { c.ipd_m = -0.06; }},
+      {"ipd_m", [](HmdConfig& c) { c.ipd_m = 0.11; }},
+      {"ipd_m", [](HmdConfig& c) { c.ipd_m = std::nan(""); }},
+      {"fov[left].left_rad", [](HmdConfig& c) { c.fov[0].left_rad = 0.1; }},
+      {"fov[left].left_rad", [](HmdConfig& c) { c.fov[0].left_rad = -86 * kDeg; }},
+      {"fov[left].right_rad", [](HmdConfig& c) { c.fov[0].right_rad = -0.1; }},
+      {"fov[right].right_rad", [](HmdConfig& c) { c.fov[1].right_rad = 90 * kDeg; }},
+      {"fov[right].up_rad", [](HmdConfig& c) { c.fov[1].up_rad = 0.0; }},
+      {"fov[right].up_rad", [](HmdConfig& c) { c.fov[1].up_rad = 86 * kDeg; }},
+      {"fov[left].down_rad", [](HmdConfig& c) { c.fov[0].down_rad = 0.2; }},
+      {"fov[right].down_rad", [](HmdConfig& c) { c.fov[1].down_rad = -1.6; }},
+      {"width_px", [](HmdConfig& c) { c.width_px = 0; }},
+      {"width_px", [](HmdConfig& c) { c.width_px = 8193; }},
+      {"height_px", [](HmdConfig& c) { c.height_px = -720; }},
+      {"height_px", [](HmdConfig& c) { c.height_px = 10000; }},
+      {"near_m", [](HmdConfig& c) { c.near_m = 0.0; }},
+      {"near_m", [](HmdConfig& c) { c.near_m = -0.1; }},
+      {"far_m", [](HmdConfig& c) { c.far_m = c.near_m; }},
+      {"far_m", [](HmdConfig& c) { c.far_m = 0.01; }},
+      {"far_m", [](HmdConfig& c) { c.far_m = INFINITY; }},
+  };
+  for (const Case& bad : cases) {
+    HmdConfig config;
+    bad.spoil(config);
+    try {
+      config.validate();
+      ADD_FAILURE() << "accepted a bad " << bad.field;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.field), std::string::npos)
+          << "message names " << bad.field << ": " << e.what();
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// CPU side of the draw: packing and unit meshes
+
+TEST(InstancePacking, CapsuleIsACylinderAndTwoRoundCaps) {
+  const Eigen::Isometry3d X_GO =
+      at(1.0, 0.5, 0.2) * Eigen::AngleAxisd(90 * kDeg, Eigen::Vector3d::UnitX());
+  const std::vector<Instance> instances{
+      make(Primitive::kBox, at(0, 0, 0), {0.1, 0.2, 0.3}, kRed),
+      make(Primitive::kCapsule, X_GO, {0.02, 0.10, 0.0}, kYellow, true),
+      make(Primitive::kSphere, at(0, 0, 0), {0.05, 0.0, 0.0}, kGreen)};
+  PackedInstances packed;
+  pack_instances(instances, packed);
+  ASSERT_EQ(packed.records.size(), 5u);
+  EXPECT_EQ(packed.range(UnitMesh::kBox).count, 1);
+  EXPECT_EQ(packed.range(UnitMesh::kSphere).count, 3);
+  EXPECT_EQ(packed.range(UnitMesh::kCylinder).count, 1);
+
+  const InstanceRecord& cylinder = packed.records[packed.range(UnitMesh::kCylinder).first];
+  EXPECT_EQ(cylinder.scale_highlight, (std::array<float, 4>{0.02f, 0.02f, 0.10f, 1.0f}));
+  EXPECT_EQ(cylinder.rgba, kYellow);
+  std::vector<Eigen::Vector3d> cap_centres;
+  for (int i = 0; i < 3; ++i) {
+    const InstanceRecord& s = packed.records[packed.range(UnitMesh::kSphere).first + i];
+    if (s.rgba != kYellow) continue;
+    EXPECT_EQ(s.scale_highlight, (std::array<float, 4>{0.02f, 0.02f, 0.02f, 1.0f}));
+    cap_centres.push_back(Eigen::Map<const Eigen::Matrix4f>(s.X_GO.data()).col(3).head<3>().cast<double>());
+  }
+  ASSERT_EQ(cap_centres.size(), 2u);
+  // the capsule's z axis is world -y after the 90 deg roll
+  for (const Eigen::Vector3d& c : cap_centres) {
+    EXPECT_NEAR(std::abs(c.y() - 0.5), 0.05, 1e-6);
+    EXPECT_NEAR(c.x(), 1.0, 1e-6);
+    EXPECT_NEAR(c.z(), 0.2, 1e-6);
+  }
+}
+
+TEST(InstancePacking, ReusesItsBuffer) {
+  std::vector<Instance> instances(50, make(Primitive::kCapsule, at(0, 0, 0), {0.01, 0.05, 0}, kRed));
+  PackedInstances packed;
+  pack_instances(instances, packed);
+  const InstanceRecord* data = packed.records.data();
+  instances.resize(20);
+  pack_instances(instances, packed);
+  EXPECT_EQ(packed.records.size(), 60u);
+  EXPECT_EQ(packed.records.data(), data);
+}
+
+// Closed, outward-wound meshes: backface culling relies on it.
+void expect_outward(const MeshData& mesh, const char* name) {
+  ASSERT_EQ(mesh.indices.size() % 3, 0u) << name;
+  for (const Vertex& v : mesh.vertices) {
+    EXPECT_NEAR(Eigen::Vector3f(v.normal.data()).norm(), 1.0f, 1e-5f) << name;
+  }
+  for (size_t i = 0; i < mesh.indices.size(); i += 3) {
+    const Eigen::Vector3f a(mesh.vertices[mesh.indices[i]].position.data());
+    const Eigen::Vector3f b(mesh.vertices[mesh.indices[i + 1]].position.data());
+    const Eigen::Vector3f c(mesh.vertices[mesh.indices[i + 2]].position.data());
+    const Eigen::Vector3f n(mesh.vertices[mesh.indices[i]].normal.data());
+    const Eigen::Vector3f winding = (b - a).cross(c - a);
+    ASSERT_GT(winding.norm(), 1e-7f) << name << " degenerate triangle " << i / 3;
+    EXPECT_GT(winding.dot(n), 0.0f) << name << " triangle " << i / 3 << " winds inwards";
+  }
+}
+
+TEST(Meshes, UnitMeshesAreOutwardWoundAndUnitSized) {
+  expect_outward(unit_box(), "box");
+  expect_outward(unit_sphere(), "sphere");
+  expect_outward(unit_cylinder(), "cylinder");
+  EXPECT_EQ(unit_box().indices.size(), 36u);
+  for (const Vertex& v : unit_sphere().vertices) {
+    EXPECT_NEAR(Eigen::Vector3f(v.position.data()).norm(), 1.0f, 1e-5f);
+  }
+  for (const Vertex& v : unit_cylinder().vertices) {
+    EXPECT_LE(std::abs(v.position[2]), 0.5f);
+    EXPECT_LE(std::hypot(v.position[0], v.position[1]), 1.0f + 1e-6f);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// rendering
+
+struct Rgb {
+  int r, g, b;
+};
+
+Rgb pixel_at(const StereoRenderer& renderer, Eye eye, int column, int row) {
+  const size_t width = static_cast<size_t>(renderer.width_px());
+  const uint8_t* p = renderer.pixels() +
+                     (static_cast<size_t>(row) * 2 * width + eye_index(eye) * width +
+                      static_cast<size_t>(column)) * 4;
+  return {p[0], p[1], p[2]};
+}
+
+Rgb pixel_at(const StereoRenderer& renderer, Eye eye, const Eigen::Vector2d& pixel) {
+  return pixel_at(renderer, eye, static_cast<int>(pixel.x()), static_cast<int>(pixel.y()));
+}
+
+std::ostream& operator<<(std::ostream& os, const Rgb& c) {
+  return os << "(" << c.r << ", " << c.g << ", " << c.b << ")";
+}
+
+bool is_background(const Rgb& c) {
+  auto near = [](int value, float expected) {
+    return std::abs(value - static_cast<int>(std::lround(expected * 255))) <= 1;
+  };
+  return near(c.r, kBackgroundRgb[0]) && near(c.g, kBackgroundRgb[1]) &&
+         near(c.b, kBackgroundRgb[2]);
+}
+
+// lit, so darker than the base colour, but that channel clearly dominates
+bool is_red(const Rgb& c) { return c.r > 100 && c.r > 3 * c.g && c.r > 3 * c.b; }
+bool is_green(const Rgb& c) { return c.g > 100 && c.g > 3 * c.r && c.g > 3 * c.b; }
+bool is_blue(const Rgb& c) { return c.b > 100 && c.b > 3 * c.r && c.b > 3 * c.g; }
+bool is_yellow(const Rgb& c) { return c.r > 100 && c.g > 100 && c.r > 3 * c.b && c.g > 3 * c.b; }
+
+Eigen::Vector2d projected(const HmdConfig& config, Eye eye, const Eigen::Vector3d& p_G) {
+  Eigen::Vector2d pixel(-1, -1);
+  EXPECT_TRUE(project_to_pixel(config, eye, head_pose(), p_G, pixel)) << p_G.transpose();
+  return pixel;
+}
+
+// Columns [first, last] of the run of red pixels through `pixel` on its row.
+std::pair<int, int> red_run(const StereoRenderer& renderer, Eye eye, const Eigen::Vector2d& pixel) {
+  const int row = static_cast<int>(pixel.y());
+  int first = static_cast<int>(pixel.x()), last = first;
+  while (first > 0 && is_red(pixel_at(renderer, eye, first - 1, row))) --first;
+  while (last + 1 < renderer.width_px() && is_red(pixel_at(renderer, eye, last + 1, row))) ++last;
+  return {first, last};
+}
+
+class RenderTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { renderer_ = std::make_unique<StereoRenderer>(HmdConfig{}); }
+  static void TearDownTestSuite() { renderer_.reset(); }
+
+  static StereoRenderer& renderer() { return *renderer_; }
+  static const HmdConfig& config() { return renderer_->config(); }
+
+  static std::unique_ptr<StereoRenderer> renderer_;
+};
+std::unique_ptr<StereoRenderer> RenderTest::renderer_;
+
+TEST_F(RenderTest, ContextIsOsMesaCoreProfile) {
+  EXPECT_EQ(renderer().gl_version().rfind("4.5 (Core Profile) Mesa", 0), 0u) << renderer().gl_version();
+  EXPECT_FALSE(renderer().gl_renderer().empty());
+  EXPECT_EQ(renderer().width_px(), 1280);
+  EXPECT_EQ(renderer().height_px(), 720);
+  std::printf("[ renderer ] %s, %s, LP_NUM_THREADS=%s\n", renderer().gl_renderer().c_str(),
+              renderer().gl_version().c_str(), std::getenv("LP_NUM_THREADS"));
+}
+
+TEST_F(RenderTest, EmptySceneIsBackgroundEverywhere) {
+  renderer().render({}, head_pose());
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    constexpr std::array<std::pair<int, int>, 5> kCorners{
+        {{0, 0}, {1279, 0}, {0, 719}, {1279, 719}, {640, 360}}};
+    for (const auto& [c, r] : kCorners) {
+      EXPECT_TRUE(is_background(pixel_at(renderer(), eye, c, r))) << pixel_at(renderer(), eye, c, r);
+    }
+  }
+  EXPECT_EQ(renderer().last_draw_calls(), 0);
+}
+
+// A red 0.1 m cube 1 m ahead at head height shows, lit, where project_to_pixel says, in both
+// eyes, against the background elsewhere.
+TEST_F(RenderTest, RedBoxAppearsAtItsProjectionInBothEyes) {
+  const Eigen::Vector3d p_G(1.0, 0.0, kHeadHeightM);
+  renderer().render({make(Primitive::kBox, at(1.0, 0.0, kHeadHeightM), {0.1, 0.1, 0.1}, kRed)},
+                    head_pose());
+  EXPECT_EQ(renderer().last_draw_calls(), 2) << "one box draw per eye";
+  EXPECT_EQ(renderer().gl_error_count(), 0u);
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    const Rgb centre = pixel_at(renderer(), eye, projected(config(), eye, p_G));
+    EXPECT_TRUE(is_red(centre)) << centre;
+    EXPECT_LT(centre.r, 250) << "lit, not flat";
+    EXPECT_TRUE(is_background(pixel_at(renderer(), eye, 100, 100)));
+    EXPECT_TRUE(is_background(pixel_at(renderer(), eye, 1200, 650)));
+  }
+}
+
+// The red run through the box's centre row spans exactly the columns of its outermost corners
+// (vertical edges stay vertical: the head does not pitch or roll).
+void expect_run_matches_corners(const StereoRenderer& renderer, Eye eye, double x_m,
+                                std::pair<int, int> run) {
+  double min_column = 1e9, max_column = -1e9;
+  for (const double dx : {-0.05, 0.05}) {
+    for (const double dy : {-0.05, 0.05}) {
+      const Eigen::Vector2d c =
+          projected(renderer.config(), eye, Eigen::Vector3d(x_m + dx, dy, kHeadHeightM + 0.04));
+      min_column = std::min(min_column, c.x());
+      max_column = std::max(max_column, c.x());
+    }
+  }
+  EXPECT_NEAR(run.first, min_column, 1.5) << "x " << x_m;
+  EXPECT_NEAR(run.second + 1, max_column, 1.5) << "x " << x_m;
+}
+
+// Stereo geometry: a point ahead appears further right to the left eye; nearer, more so.
+TEST_F(RenderTest, DisparityGrowsAsTheBoxComesCloser) {
+  std::array<double, 2> projected_disparity{}, rendered_disparity{};
+  const std::array<double, 2> distances_m{1.0, 0.5};
+  for (int i = 0; i < 2; ++i) {
+    const double x_m = distances_m[i];
+    const Eigen::Vector3d p_G(x_m, 0.0, kHeadHeightM);
+    renderer().render({make(Primitive::kBox, at(x_m, 0.0, kHeadHeightM), {0.1, 0.1, 0.1}, kRed)},
+                      head_pose());
+    const Eigen::Vector2d left = projected(config(), Eye::kLeft, p_G);
+    const Eigen::Vector2d right = projected(config(), Eye::kRight, p_G);
+    EXPECT_GT(left.x(), right.x()) << "x " << x_m;
+    EXPECT_NEAR(left.y(), right.y(), 1e-9) << "no vertical disparity";
+    const auto run_left = red_run(renderer(), Eye::kLeft, left);
+    const auto run_right = red_run(renderer(), Eye::kRight, right);
+    expect_run_matches_corners(renderer(), Eye::kLeft, x_m, run_left);
+    expect_run_matches_corners(renderer(), Eye::kRight, x_m, run_right);
+    const double mid_left = 0.5 * (run_left.first + run_left.second + 1);
+    const double mid_right = 0.5 * (run_right.first + run_right.second + 1);
+    EXPECT_GT(mid_left, mid_right) << "x " << x_m;
+    projected_disparity[i] = left.x() - right.x();
+    rendered_disparity[i] = mid_left - mid_right;
+    std::printf("[ disparity ] box at %.1f m: projected %.1f px, rendered %.1f px\n", x_m,
+                projected_disparity[i], rendered_disparity[i]);
+  }
+  EXPECT_GT(projected_disparity[1], projected_disparity[0]);
+  EXPECT_GT(rendered_disparity[1], rendered_disparity[0]);
+  // closed form: the ipd over the distance, in pixels per unit tangent, on top of the FOVs'
+  // constant offset (their axes land at different columns)
+  const EyeFov& fov = config().eye_fov(Eye::kLeft);
+  const double px_per_tan = 1280 / (std::tan(fov.right_rad) - std::tan(fov.left_rad));
+  EXPECT_NEAR(projected_disparity[1] - projected_disparity[0], 0.063 * (2.0 - 1.0) * px_per_tan, 1e-6);
+}
+
+// Sphere, cylinder and capsule each show at their projected centres; the capsule's round caps
+// reach past its length, where an equally long cylinder ends.
+TEST_F(RenderTest, EachPrimitiveRenders) {
+  const Eigen::Vector3d sphere_G(1.0, 0.25, kHeadHeightM), cylinder_G(1.0, 0.0, kHeadHeightM);
+  const Eigen::Vector3d capsule_G(1.0, -0.25, kHeadHeightM);
+  const double r_m = 0.04, length_m = 0.15;
+  const std::vector<Instance> scene{
+      make(Primitive::kSphere, at(1.0, 0.25, kHeadHeightM), {0.05, 0, 0}, kGreen),
+      make(Primitive::kCylinder, at(1.0, 0.0, kHeadHeightM), {r_m, length_m, 0}, kBlue),
+      make(Primitive::kCapsule, at(1.0, -0.25, kHeadHeightM), {r_m, length_m, 0}, kYellow)};
+  renderer().render(scene, head_pose());
+  EXPECT_EQ(renderer().last_draw_calls(), 4) << "sphere and cylinder meshes, two eyes";
+  const Eigen::Vector3d past_end_G(0.0, 0.0, 0.5 * length_m + 0.5 * r_m);
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    const Rgb sphere = pixel_at(renderer(), eye, projected(config(), eye, sphere_G));
+    const Rgb cylinder = pixel_at(renderer(), eye, projected(config(), eye, cylinder_G));
+    const Rgb capsule = pixel_at(renderer(), eye, projected(config(), eye, capsule_G));
+    EXPECT_TRUE(is_green(sphere)) << sphere;
+    EXPECT_TRUE(is_blue(cylinder)) << cylinder;
+    EXPECT_TRUE(is_yellow(capsule)) << capsule;
+    const Rgb cap = pixel_at(renderer(), eye, projected(config(), eye, capsule_G + past_end_G));
+    const Rgb cylinder_end =
+        pixel_at(renderer(), eye, projected(config(), eye, cylinder_G + past_end_G));
+    EXPECT_TRUE(is_yellow(cap)) << cap;
+    EXPECT_TRUE(is_background(cylinder_end)) << cylinder_end;
+  }
+}
+
+// A capsule lying along y: its caps follow its axis and stay round (no stretched spheres).
+TEST_F(RenderTest, CapsuleCapsFollowItsAxis) {
+  const double r_m = 0.03, length_m = 0.3;
+  const Eigen::Isometry3d X_GO =
+      at(1.0, 0.0, kHeadHeightM) * Eigen::AngleAxisd(90 * kDeg, Eigen::Vector3d::UnitX());
+  renderer().render({make(Primitive::kCapsule, X_GO, {r_m, length_m, 0}, kYellow)}, head_pose());
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    for (const double side : {-1.0, 1.0}) {
+      const Eigen::Vector3d inside_cap(1.0 - 0.5 * r_m, side * (0.5 * length_m + 0.7 * r_m),
+                                       kHeadHeightM);
+      const Eigen::Vector3d past_cap(1.0, side * (0.5 * length_m + 1.3 * r_m), kHeadHeightM);
+      const Eigen::Vector3d above_cap(1.0, side * 0.5 * length_m, kHeadHeightM + 1.3 * r_m);
+      EXPECT_TRUE(is_yellow(pixel_at(renderer(), eye, projected(config(), eye, inside_cap))));
+      EXPECT_TRUE(is_background(pixel_at(renderer(), eye, projected(config(), eye, past_cap))));
+      EXPECT_TRUE(is_background(pixel_at(renderer(), eye, projected(config(), eye, above_cap))));
+    }
+  }
+}
+
+TEST_F(RenderTest, HighlightedInstancesAreBrighter) {
+  const Eigen::Vector3d p_G(1.0, 0.0, kHeadHeightM);
+  const Instance box = make(Primitive::kBox, at(1.0, 0.0, kHeadHeightM), {0.1, 0.1, 0.1},
+                            {0.6f, 0.3f, 0.1f, 1.0f});
+  Instance highlighted = box;
+  highlighted.highlight = true;
+  renderer().render({box}, head_pose());
+  const Rgb plain = pixel_at(renderer(), Eye::kLeft, projected(config(), Eye::kLeft, p_G));
+  renderer().render({highlighted}, head_pose());
+  const Rgb bright = pixel_at(renderer(), Eye::kLeft, projected(config(), Eye::kLeft, p_G));
+  EXPECT_GT(bright.r + bright.g + bright.b, (plain.r + plain.g + plain.b) * 5 / 4)
+      << plain << " -> " << bright;
+}
+
+// Nearer objects hide farther ones.
+TEST_F(RenderTest, DepthTestHidesTheFartherBox) {
+  const Eigen::Vector3d p_G(1.0, 0.0, kHeadHeightM);
+  // the far (blue) one is drawn after the near (red) one: same mesh, later instance
+  renderer().render({make(Primitive::kBox, at(0.8, 0.0, kHeadHeightM), {0.1, 0.1, 0.1}, kRed),
+                     make(Primitive::kBox, at(1.2, 0.0, kHeadHeightM), {0.3, 0.3, 0.3}, kBlue)},
+                    head_pose());
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    EXPECT_TRUE(is_red(pixel_at(renderer(), eye, projected(config(), eye, p_G))));
+  }
+}
+
+// 200 instances of all four kinds in one render(), each at its projection in both eyes, with at
+// most one draw call per unit mesh per eye.
+TEST_F(RenderTest, TwoHundredInstancesInOneCall) {
+  struct Kind {
+    Primitive primitive;
+    Eigen::Vector3d size_m;
+    std::array<float, 4> rgba;
+    bool (*looks_right)(const Rgb&);
+  };
+  const std::array<Kind, 4> kinds{Kind{Primitive::kBox, {0.05, 0.05, 0.05}, kRed, is_red},
+                                  Kind{Primitive::kSphere, {0.03, 0, 0}, kGreen, is_green},
+                                  Kind{Primitive::kCylinder, {0.025, 0.05, 0}, kBlue, is_blue},
+                                  Kind{Primitive::kCapsule, {0.02, 0.03, 0}, kYellow, is_yellow}};
+  std::vector<Instance> scene;
+  std::vector<int> kind_of;
+  for (int row = 0; row < 10; ++row) {
+    for (int column = 0; column < 20; ++column) {
+      const int k = (row + column) % 4;
+      const Eigen::Vector3d p_G(1.5, 0.95 - 0.1 * column, kHeadHeightM + 0.45 - 0.1 * row);
+      scene.push_back(make(kinds[k].primitive, at(p_G.x(), p_G.y(), p_G.z()), kinds[k].size_m,
+                           kinds[k].rgba));
+      kind_of.push_back(k);
+    }
+  }
+  ASSERT_EQ(scene.size(), 200u);
+  renderer().render(scene, head_pose());
+  EXPECT_EQ(renderer().last_draw_calls(), 6);
+  EXPECT_EQ(renderer().gl_error_count(), 0u);
+  int wrong = 0;
+  for (size_t i = 0; i < scene.size(); ++i) {
+    for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+      const Rgb c = pixel_at(renderer(), eye, projected(config(), eye, scene[i].X_GO.translation()));
+      if (!kinds[kind_of[i]].looks_right(c)) {
+        ++wrong;
+        ADD_FAILURE() << "instance " << i << " eye " << eye_index(eye) << ": " << c;
+      }
+      if (wrong > 5) return;
+    }
+  }
+}
+
+// ~40 instances: a panel, switches, levers and two hands' worth of capsules.
+std::vector<Instance> cockpit_scene() {
+  std::vector<Instance> scene;
+  scene.push_back(make(Primitive::kBox, at(0.9, 0.0, 0.85), {0.1, 1.2, 0.5}, {0.25f, 0.27f, 0.3f, 1}));
+  for (int i = 0; i < 9; ++i) {
+    scene.push_back(make(Primitive::kBox, at(0.83, -0.4 + 0.1 * i, 1.0), {0.03, 0.04, 0.02},
+                         {0.8f, 0.8f, 0.2f, 1}));
+  }
+  for (int i = 0; i < 4; ++i) {
+    scene.push_back(make(Primitive::kCylinder, at(0.8, -0.3 + 0.2 * i, 0.9), {0.02, 0.08, 0},
+                         {0.1f, 0.4f, 0.9f, 1}, i == 1));
+  }
+  for (int i = 0; i < 6; ++i) {
+    scene.push_back(make(Primitive::kSphere, at(0.75, -0.25 + 0.1 * i, 0.8), {0.025, 0, 0},
+                         {0.9f, 0.2f, 0.2f, 1}));
+  }
+  for (int hand = 0; hand < 2; ++hand) {
+    for (int link = 0; link < 10; ++link) {
+      const Eigen::Isometry3d X_GO =
+          at(0.55 + 0.02 * (link % 5), (hand ? -0.2 : 0.2) + 0.02 * (link / 5), 1.0) *
+          Eigen::AngleAxisd(80 * kDeg, Eigen::Vector3d::UnitY());
+      scene.push_back(make(Primitive::kCapsule, X_GO, {0.009, 0.03, 0}, {0.9f, 0.75f, 0.6f, 1}));
+    }
+  }
+  return scene;
+}
+
+TEST_F(RenderTest, NoHeapAllocationOnceWarmedUp) {
+  if (!kCountingAllocations) GTEST_SKIP() << "operator new belongs to the sanitizer";
+  const std::vector<Instance> scene = cockpit_scene();
+  for (int i = 0; i < 3; ++i) renderer().render(scene, head_pose());
+  const uint8_t* pixels = renderer().pixels();
+  g_allocations = 0;
+  g_count_allocations = true;
+  static void* volatile sink = nullptr;  // control: the counter sees an allocation kept alive
+  sink = ::operator new(16);
+  ::operator delete(sink);
+  ASSERT_EQ(g_allocations.load(), 1);
+  g_allocations = 0;
+  for (int i = 0; i < 10; ++i) renderer().render(scene, head_pose());
+  g_count_allocations = false;
+  EXPECT_EQ(g_allocations.load(), 0);
+  EXPECT_EQ(renderer().pixels(), pixels) << "same buffer every frame";
+}
+
+// Mean ms per stereo frame, the head turning slowly.
+double frame_ms(StereoRenderer& renderer, const std::vector<Instance>& scene) {
+  for (int i = 0; i < 5; ++i) renderer.render(scene, head_pose());  // shader variants, caches
+  constexpr int kFrames = 60;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < kFrames; ++i) {
+    renderer.render(scene, head_pose() * Eigen::AngleAxisd(0.002 * i, Eigen::Vector3d::UnitZ()));
+  }
+  const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
+  return elapsed.count() / kFrames;
+}
+
+// Printed, not asserted: the machine is shared.
+TEST_F(RenderTest, FrameTime) {
+  const std::vector<Instance> scene = cockpit_scene();
+  const double empty_ms = frame_ms(renderer(), {});
+  const double scene_ms = frame_ms(renderer(), scene);
+  std::printf("[ timing ] 1280x720 per eye, stereo, LP_NUM_THREADS=%s: empty %.2f ms, "
+              "%zu instances %.2f ms/frame (%.0f fps, %d draws)\n",
+              std::getenv("LP_NUM_THREADS"), empty_ms, scene.size(), scene_ms, 1000.0 / scene_ms,
+              renderer().last_draw_calls());
+  EXPECT_EQ(renderer().gl_error_count(), 0u);
+}
+
+// Two renderers in one process each keep their own context and buffer.
+TEST_F(RenderTest, SecondRendererHasItsOwnContext) {
+  HmdConfig small;
+  small.width_px = 320;
+  small.height_px = 240;
+  StereoRenderer other(small);
+  other.render({make(Primitive::kSphere, at(1.0, 0.0, kHeadHeightM), {0.1, 0, 0}, kGreen)}, head_pose());
+  renderer().render({}, head_pose());
+  other.render({make(Primitive::kSphere, at(1.0, 0.0, kHeadHeightM), {0.1, 0, 0}, kGreen)}, head_pose());
+  const Eigen::Vector2d c = projected(small, Eye::kRight, Eigen::Vector3d(1.0, 0.0, kHeadHeightM));
+  EXPECT_TRUE(is_green(pixel_at(other, Eye::kRight, c)));
+  EXPECT_TRUE(is_background(pixel_at(renderer(), Eye::kRight, 640, 360)));
+}
+
+TEST(StereoRenderer, RejectsABadConfig) {
+  HmdConfig config;
+  config.ipd_m = 0.5;
+  EXPECT_THROW(StereoRenderer{config}, std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------------
+// frame export
+
+std::filesystem::path test_dir() {
+  const char* tmp = std::getenv("VCOCKPIT_TEST_TMP");
+  const std::filesystem::path dir =
+      std::filesystem::path(tmp ? tmp : std::filesystem::temp_directory_path().string()) / "render";
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::vector<uint8_t> read_png(const std::string& path, int& width, int& height) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) return {};
+  image.format = PNG_FORMAT_RGBA;
+  std::vector<uint8_t> rgba(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, rgba.data(), 0, nullptr)) return {};
+  width = static_cast<int>(image.width);
+  height = static_cast<int>(image.height);
+  return rgba;
+}
+
+TEST_F(RenderTest, PngRoundTripOfARenderedFrame) {
+  renderer().render(cockpit_scene(), head_pose());
+  const int width = 2 * renderer().width_px(), height = renderer().height_px();
+  const std::string path = (test_dir() / "stereo.png").string();
+  std::filesystem::remove(path);
+  const auto start = std::chrono::steady_clock::now();
+  write_png(path, renderer().pixels(), width, height);
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  std::printf("[ timing ] PNG level 1, 2560x720 side by side: %.1f ms\n", ms);
+  EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+  int read_width = 0, read_height = 0;
+  const std::vector<uint8_t> back = read_png(path, read_width, read_height);
+  ASSERT_EQ(read_width, width);
+  ASSERT_EQ(read_height, height);
+  ASSERT_EQ(back.size(), static_cast<size_t>(width) * height * 4);
+  EXPECT_TRUE(std::equal(back.begin(), back.end(), renderer().pixels()));
+
+  // one eye, cut out and written on its own
+  std::vector<uint8_t> right;
+  copy_eye(renderer().pixels(), renderer().width_px(), height, Eye::kRight, right);
+  const std::string eye_path = (test_dir() / "right.png").string();
+  write_png(eye_path, right.data(), renderer().width_px(), height);
+  const std::vector<uint8_t> eye_back = read_png(eye_path, read_width, read_height);
+  ASSERT_EQ(read_width, renderer().width_px());
+  EXPECT_EQ(eye_back, right);
+}
+
+TEST(CopyEye, TakesTheRightHalfOfEachRow) {
+  // 2 eyes of 3 x 2 px; each pixel's red channel is its side-by-side column, green its row
+  std::vector<uint8_t> frame;
+  for (int row = 0; row < 2; ++row) {
+    for (int column = 0; column < 6; ++column) {
+      frame.insert(frame.end(), {static_cast<uint8_t>(column), static_cast<uint8_t>(row), 0, 255});
+    }
+  }
+  std::vector<uint8_t> left, right;
+  copy_eye(frame.data(), 3, 2, Eye::kLeft, left);
+  copy_eye(frame.data(), 3, 2, Eye::kRight, right);
+  ASSERT_EQ(left.size(), 24u);
+  ASSERT_EQ(right.size(), 24u);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(left[i * 4], i % 3);
+    EXPECT_EQ(right[i * 4], 3 + i % 3);
+    EXPECT_EQ(right[i * 4 + 1], i / 3);
+  }
+}
+
+TEST(WritePng, FailureNamesThePathAndLeavesNoPartial) {
+  const std::vector<uint8_t> rgba(4 * 4 * 4, 128);
+  const std::string path = (test_dir() / "no_such_dir" / "frame.png").string();
+  try {
+    write_png(path, rgba.data(), 4, 4);
+    FAIL() << "wrote into a missing directory";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(write_png((test_dir() / "x.png").string(), rgba.data(), 4, 4, 10),
+               std::invalid_argument);
+  EXPECT_THROW(write_png((test_dir() / "x.png").string(), rgba.data(), 0, 4), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vcockpit::render
