@@ -93,7 +93,7 @@ bool ImageGenerator::wait_for_scene() {
     std::size_t count = 0;
     while (count != cache_.object_count() && !shutdown_requested()) {
       count = cache_.object_count();
-      info_reader_.wait_for_data(30'000'000);
+      info_reader_.wait_for_data(100'000'000);
       drain();
     }
     return true;

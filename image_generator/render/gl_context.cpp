@@ -14,25 +14,29 @@ std::string gl_string(GLenum name) {
   return text ? text : "";
 }
 
-}  // namespace
-
-GlContext::GlContext(int width_px, int height_px)
-    : width_px_(width_px),
-      height_px_(height_px),
-      buffer_(static_cast<size_t>(width_px) * static_cast<size_t>(height_px) * 4, 0) {
+size_t buffer_bytes(int width_px, int height_px) {
   if (width_px <= 0 || height_px <= 0) {
     throw RenderError("OSMesa: bad buffer size " + std::to_string(width_px) + "x" +
                       std::to_string(height_px));
   }
+  return static_cast<size_t>(width_px) * static_cast<size_t>(height_px) * 4;
+}
+
+}  // namespace
+
+GlContext::GlContext(int width_px, int height_px)
+    : width_px_(width_px), height_px_(height_px), buffer_(buffer_bytes(width_px, height_px), 0) {
   // 4.6 is refused by Mesa 22.3; 4.5 core is what llvmpipe offers
-  const int attribs[] = {OSMESA_FORMAT,       OSMESA_RGBA,
-                         OSMESA_DEPTH_BITS,   24,
+  // clang-format off
+  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS, 24,
                          OSMESA_STENCIL_BITS, 0,
-                         OSMESA_ACCUM_BITS,   0,
-                         OSMESA_PROFILE,      OSMESA_CORE_PROFILE,
+                         OSMESA_ACCUM_BITS, 0,
+                         OSMESA_PROFILE, OSMESA_CORE_PROFILE,
                          OSMESA_CONTEXT_MAJOR_VERSION, 4,
                          OSMESA_CONTEXT_MINOR_VERSION, 5,
                          0};
+  // clang-format on
   context_ = OSMesaCreateContextAttribs(attribs, nullptr);
   if (!context_) throw RenderError("OSMesa: could not create a 4.5 core-profile context");
   if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, width_px, height_px)) {

@@ -54,7 +54,8 @@ void HmdConfig::validate() const {
   check_size("width_px", width_px);
   check_size("height_px", height_px);
   if (!(near_m > 0.0)) fail("near_m", "must be > 0 m", near_m);
-  if (!(far_m > near_m) || !std::isfinite(far_m)) fail("far_m", "must be finite and > near_m", far_m);
+  if (!(far_m > near_m) || !std::isfinite(far_m))
+    fail("far_m", "must be finite and > near_m", far_m);
 }
 
 }  // namespace vcockpit::render

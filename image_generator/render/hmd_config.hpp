@@ -8,7 +8,9 @@ namespace vcockpit::render {
 
 enum class Eye { kLeft, kRight };
 
-inline int eye_index(Eye eye) { return eye == Eye::kLeft ? 0 : 1; }
+inline int eye_index(Eye eye) {
+  return eye == Eye::kLeft ? 0 : 1;
+}
 
 // OpenXR XrFovf convention, radians from the eye's optical axis: left_rad < 0 < right_rad,
 // down_rad < 0 < up_rad. Unequal magnitudes make the frustum asymmetric (off-axis).
@@ -25,7 +27,7 @@ EyeFov default_fov(Eye eye);
 struct HmdConfig {
   double ipd_m = 0.063;  // inter-pupillary distance
   std::array<EyeFov, 2> fov{default_fov(Eye::kLeft), default_fov(Eye::kRight)};  // [kLeft, kRight]
-  int width_px = 1280;   // per eye
+  int width_px = 1280;                                                           // per eye
   int height_px = 720;
   double near_m = 0.05;
   double far_m = 20.0;

@@ -3,7 +3,6 @@
 // every frame from the scene and its state; the renderer keeps no reference to it.
 
 #include <Eigen/Geometry>
-
 #include <array>
 
 namespace vcockpit::render {

@@ -7,9 +7,15 @@ void count(std::span<const Instance> instances, std::array<int, kUnitMeshCount>&
   counts.fill(0);
   for (const Instance& instance : instances) {
     switch (instance.primitive) {
-      case Primitive::kBox: ++counts[0]; break;
-      case Primitive::kSphere: ++counts[1]; break;
-      case Primitive::kCylinder: ++counts[2]; break;
+      case Primitive::kBox:
+        ++counts[0];
+        break;
+      case Primitive::kSphere:
+        ++counts[1];
+        break;
+      case Primitive::kCylinder:
+        ++counts[2];
+        break;
       case Primitive::kCapsule:
         counts[1] += 2;
         ++counts[2];
@@ -50,7 +56,9 @@ void pack_instances(std::span<const Instance> instances, PackedInstances& packed
   for (const Instance& instance : instances) {
     const Eigen::Vector3d& s = instance.size_m;
     switch (instance.primitive) {
-      case Primitive::kBox: put(UnitMesh::kBox, instance.X_GO, s, instance); break;
+      case Primitive::kBox:
+        put(UnitMesh::kBox, instance.X_GO, s, instance);
+        break;
       case Primitive::kSphere:
         put(UnitMesh::kSphere, instance.X_GO, Eigen::Vector3d::Constant(s.x()), instance);
         break;

@@ -9,7 +9,9 @@
 namespace vcockpit::render {
 namespace {
 
-const void* offset(size_t bytes) { return reinterpret_cast<const void*>(bytes); }
+const void* offset(size_t bytes) {
+  return reinterpret_cast<const void*>(bytes);
+}
 
 // per-instance attributes from the instance buffer, bound to the current vertex array
 void bind_instance_attributes(GLuint instance_buffer) {
@@ -84,8 +86,9 @@ void MeshBuffers::upload(const PackedInstances& packed) {
   if (count > instance_capacity_) {
     // grow with headroom so a slowly growing scene reallocates rarely
     instance_capacity_ = std::max<size_t>({count, 2 * instance_capacity_, 64});
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(instance_capacity_ * sizeof(InstanceRecord)),
-                 nullptr, GL_DYNAMIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(instance_capacity_ * sizeof(InstanceRecord)), nullptr,
+                 GL_DYNAMIC_DRAW);
   }
   glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(InstanceRecord)),
                   packed.records.data());

@@ -23,7 +23,9 @@ class MeshBuffers {
   // One instanced draw of `mesh` for the records in `range`; nothing if the range is empty.
   void draw(UnitMesh mesh, const MeshRange& range) const;
 
-  int triangle_count(UnitMesh mesh) const { return meshes_[static_cast<int>(mesh)].index_count / 3; }
+  int triangle_count(UnitMesh mesh) const {
+    return meshes_[static_cast<int>(mesh)].index_count / 3;
+  }
 
  private:
   struct GpuMesh {

@@ -8,7 +8,9 @@ namespace {
 
 constexpr float kTwoPi = 2.0f * std::numbers::pi_v<float>;
 
-uint32_t index_of(const MeshData& mesh) { return static_cast<uint32_t>(mesh.vertices.size()); }
+uint32_t index_of(const MeshData& mesh) {
+  return static_cast<uint32_t>(mesh.vertices.size());
+}
 
 void add_triangle(MeshData& mesh, uint32_t a, uint32_t b, uint32_t c) {
   mesh.indices.insert(mesh.indices.end(), {a, b, c});
@@ -21,7 +23,8 @@ void add_box_face(MeshData& mesh, const std::array<float, 3>& n, const std::arra
   constexpr float kSigns[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
   for (const auto& s : kSigns) {
     Vertex vertex{{}, n};
-    for (int i = 0; i < 3; ++i) vertex.position[i] = 0.5f * (n[i] + s[0] * u[i] + s[1] * v[i]);
+    for (int i = 0; i < 3; ++i)
+      vertex.position[i] = 0.5f * (n[i] + s[0] * u[i] + s[1] * v[i]);
     mesh.vertices.push_back(vertex);
   }
   add_triangle(mesh, first, first + 1, first + 2);
@@ -64,11 +67,12 @@ MeshData unit_sphere(int slices, int stacks) {
   MeshData mesh;
   // latitude theta from the north pole (+z) down, longitude phi counter-clockwise from +x
   for (int i = 0; i <= stacks; ++i) {
-    const float theta = std::numbers::pi_v<float> * static_cast<float>(i) / static_cast<float>(stacks);
+    const float theta =
+        std::numbers::pi_v<float> * static_cast<float>(i) / static_cast<float>(stacks);
     for (int j = 0; j <= slices; ++j) {
       const float phi = kTwoPi * static_cast<float>(j) / static_cast<float>(slices);
-      const std::array<float, 3> p{std::sin(theta) * std::cos(phi),
-                                   std::sin(theta) * std::sin(phi), std::cos(theta)};
+      const std::array<float, 3> p{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                   std::cos(theta)};
       mesh.vertices.push_back({p, p});
     }
   }

@@ -2,9 +2,9 @@
 // The render library in one include: HMD config, camera maths, instances, the stereo renderer
 // and frame export. Pure: no DDS, no YAML.
 
-#include "image_generator/render/camera.hpp"         // IWYU pragma: export
-#include "image_generator/render/hmd_config.hpp"     // IWYU pragma: export
-#include "image_generator/render/instance.hpp"       // IWYU pragma: export
-#include "image_generator/render/png_writer.hpp"     // IWYU pragma: export
-#include "image_generator/render/render_error.hpp"   // IWYU pragma: export
+#include "image_generator/render/camera.hpp"           // IWYU pragma: export
+#include "image_generator/render/hmd_config.hpp"       // IWYU pragma: export
+#include "image_generator/render/instance.hpp"         // IWYU pragma: export
+#include "image_generator/render/png_writer.hpp"       // IWYU pragma: export
+#include "image_generator/render/render_error.hpp"     // IWYU pragma: export
 #include "image_generator/render/stereo_renderer.hpp"  // IWYU pragma: export

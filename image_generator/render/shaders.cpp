@@ -121,9 +121,13 @@ LitProgram::LitProgram() {
   eye_position_G_ = uniform(program_, "u_eye_position_G");
 }
 
-LitProgram::~LitProgram() { glDeleteProgram(program_); }
+LitProgram::~LitProgram() {
+  glDeleteProgram(program_);
+}
 
-void LitProgram::use() const { glUseProgram(program_); }
+void LitProgram::use() const {
+  glUseProgram(program_);
+}
 
 void LitProgram::set_view_projection(const Eigen::Matrix4f& P_V) const {
   glUniformMatrix4fv(view_projection_, 1, GL_FALSE, P_V.data());  // column-major, as Eigen

@@ -63,7 +63,8 @@ void StereoRenderer::render(const std::vector<Instance>& instances,
   draw_eye(Eye::kLeft, X_GHead);
   draw_eye(Eye::kRight, X_GHead);
   glFinish();  // llvmpipe renders lazily: the buffer is complete only after this
-  while (glGetError() != GL_NO_ERROR) ++gl_error_count_;
+  while (glGetError() != GL_NO_ERROR)
+    ++gl_error_count_;
 }
 
 void StereoRenderer::draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead) {
@@ -79,10 +80,16 @@ void StereoRenderer::draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead) {
   }
 }
 
-const uint8_t* StereoRenderer::pixels() const { return context_->pixels(); }
+const uint8_t* StereoRenderer::pixels() const {
+  return context_->pixels();
+}
 
-std::string StereoRenderer::gl_renderer() const { return context_->renderer(); }
+std::string StereoRenderer::gl_renderer() const {
+  return context_->renderer();
+}
 
-std::string StereoRenderer::gl_version() const { return context_->version(); }
+std::string StereoRenderer::gl_version() const {
+  return context_->version();
+}
 
 }  // namespace vcockpit::render

@@ -8,7 +8,6 @@
 // used from another thread rebinds it there (one thread at a time).
 
 #include <Eigen/Geometry>
-
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -58,7 +57,7 @@ class StereoRenderer {
 
   HmdConfig config_;
   std::array<Eigen::Matrix4f, 2> projection_;  // per eye, constant
-  std::unique_ptr<GlContext> context_;          // declared first: destroyed last
+  std::unique_ptr<GlContext> context_;         // declared first: destroyed last
   std::unique_ptr<LitProgram> program_;
   std::unique_ptr<MeshBuffers> meshes_;
   PackedInstances packed_;

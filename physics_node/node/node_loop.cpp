@@ -34,17 +34,27 @@ class Node {
   int run_lockstep();
 
  private:
-  // Takes every pending sample; the accepted ones go to `on_sample`. No allocation.
+  // Takes every pending sample; the accepted ones go to `on_sample(sample, new_source)`.
+  // A different writer (a restarted glove driver) starts its own timeline: time order is checked
+  // per source. No allocation.
   template <class OnSample>
   void drain(OnSample on_sample) {
-    while (reader_.take(message_)) {
+    dds::SampleInfo info;
+    while (reader_.take(message_, &info)) {
+      const bool new_source = !have_source_ || info.publication_handle != source_;
+      if (new_source) gate_.reset_time();
       glove::GloveSample sample;
       if (!gate_.accept(message_, sample)) continue;
+      if (new_source) {
+        if (have_source_) spdlog::info("hand samples from a new source: following its timeline");
+        source_ = info.publication_handle;
+        have_source_ = true;
+      }
       ++received_;
       last_sample_wall_ns_ = monotonic_now_ns();
       stamps_.sample_time_ns = message_.sample_time_ns();
       stamps_.source_stamp_ns = message_.source_stamp_ns();
-      on_sample(sample);
+      on_sample(sample, new_source);
     }
   }
 
@@ -80,6 +90,8 @@ class Node {
   Reader<cockpit::HandSample> reader_;
   StatePublisher publisher_;
   cockpit::HandSample message_;
+  dds::InstanceHandle_t source_;
+  bool have_source_ = false;
   InputStamps stamps_;
   physics::HandInput input_;
   uint64_t received_ = 0;
@@ -139,7 +151,7 @@ int Node::run_realtime() {
                world_.substeps(), options_.publish_hz);
   while (!shutdown_requested()) {
     sleep_until_ns(next_ns);
-    drain([&](const glove::GloveSample& s) {
+    drain([&](const glove::GloveSample& s, bool) {
       input_ = physics_io::hand_input_from_glove(hand_, s);
       have_input = true;
     });
@@ -188,9 +200,10 @@ int Node::run_lockstep() {
                world_.substeps());
   while (!shutdown_requested()) {
     reader_.wait_for_data(20'000'000);
-    drain([&](const glove::GloveSample& s) {
-      if (!started) {
-        t0_ns = s.t_ns;
+    drain([&](const glove::GloveSample& s, bool new_source) {
+      // world time 0 is the first sample; a later source continues from where the world is
+      if (!started || new_source) {
+        t0_ns = s.t_ns - world_.time_ns();
         started = true;
       }
       while (world_.time_ns() < s.t_ns - t0_ns) {

@@ -19,6 +19,8 @@ class SampleGate {
   // True and `out` filled when the sample is accepted.
   bool accept(const cockpit::HandSample& sample, glove::GloveSample& out);
   const glove::ValidationCounts& counts() const { return validator_.counts(); }
+  // A new source: its stamps are compared with its own from now on.
+  void reset_time() { validator_.reset_time(); }
   uint64_t rejected_flagged_or_far() const { return rejected_flagged_or_far_; }
   uint64_t rejected() const { return validator_.counts().rejected() + rejected_flagged_or_far_; }
 

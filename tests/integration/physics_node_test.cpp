@@ -155,7 +155,9 @@ TEST_F(PhysicsNodeTest, KilledGloveDriverReleasesWithGloveLostAndARestartResumes
   EXPECT_TRUE(wait_for_line(monitor_path, "tracking=0", 2 * kSecond));
   EXPECT_TRUE(wait_for_line(monitor_path, "alive=0", 2 * kSecond, "reason=glove lost"));
   ChildProcess again = start("glove_driver", {"--source", "replay", "--log", sweep_log()}, "driver2.log");
-  ASSERT_TRUE(wait_for_line(monitor_path, "alive=1", 5 * kSecond, /*after_line=*/"reason=glove lost"));
+  ASSERT_TRUE(wait_for_line(monitor_path, "node=physics_node state=1", 5 * kSecond,
+                            /*after_line=*/"reason=glove lost"))
+      << text("node.log");
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   const MonitorLog seen = MonitorLog::read(monitor_path);
   EXPECT_TRUE(seen.hands.back().tracking) << "tracking resumed";

@@ -2,6 +2,8 @@
 // glFrustum), config validation, instance packing, unit meshes, then real OSMesa frames checked
 // pixel by pixel where project_to_pixel says objects land, and the PNG export.
 
+#include "image_generator/render/render.hpp"
+
 #include <gtest/gtest.h>
 #include <png.h>
 
@@ -21,7 +23,6 @@
 
 #include "image_generator/render/instance_packing.hpp"
 #include "image_generator/render/meshes.hpp"
-#include "image_generator/render/render.hpp"
 
 // Counts C++ heap allocations on a thread while asked to, to show render() allocates nothing
 // once warmed up. Not under AddressSanitizer, which owns operator new itself.
@@ -32,6 +33,11 @@ std::atomic<long> g_allocations{0};
 
 #if defined(__SANITIZE_ADDRESS__)
 constexpr bool kCountingAllocations = false;
+// OSMesa keeps one framebuffer record per pixel format in a global list it never frees (a few
+// hundred bytes, bounded); not ours to fix.
+extern "C" const char* __lsan_default_suppressions() {
+  return "leak:libOSMesa.so\n";
+}
 #else
 constexpr bool kCountingAllocations = true;
 // GCC pairs the malloc below with the free in delete after inlining and warns; they do match
@@ -42,8 +48,12 @@ void* operator new(std::size_t size) {
   if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
   throw std::bad_alloc();
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
 #pragma GCC diagnostic pop
 #endif
 
@@ -109,9 +119,9 @@ TEST(Camera, OnAxisPointLandsWhereTheTangentsPutIt) {
   ASSERT_TRUE(project_to_pixel(config, Eye::kLeft, head_pose(),
                                eye_pose(config, Eye::kLeft, head_pose()) * Eigen::Vector3d(2, 0, 0),
                                left));
-  ASSERT_TRUE(project_to_pixel(config, Eye::kRight, head_pose(),
-                               eye_pose(config, Eye::kRight, head_pose()) * Eigen::Vector3d(2, 0, 0),
-                               right));
+  ASSERT_TRUE(project_to_pixel(
+      config, Eye::kRight, head_pose(),
+      eye_pose(config, Eye::kRight, head_pose()) * Eigen::Vector3d(2, 0, 0), right));
   EXPECT_GT(left.x(), 640.0);
   EXPECT_LT(right.x(), 640.0);
   EXPECT_NEAR(left.x() + right.x(), 1280.0, 1e-9);
@@ -136,7 +146,8 @@ TEST(Camera, BehindOrOutsideTheImageIsNotProjected) {
   Eigen::Vector2d pixel(-1, -1);
   const Eigen::Vector3d p_H_behind(-1.0, 0.0, 0.0), p_H_too_near(0.01, 0.0, 0.0);
   EXPECT_FALSE(project_to_pixel(config, Eye::kLeft, head_pose(), head_pose() * p_H_behind, pixel));
-  EXPECT_FALSE(project_to_pixel(config, Eye::kLeft, head_pose(), head_pose() * p_H_too_near, pixel));
+  EXPECT_FALSE(
+      project_to_pixel(config, Eye::kLeft, head_pose(), head_pose() * p_H_too_near, pixel));
   // 60 deg to the right is past the left eye's 45 deg
   const Eigen::Vector3d p_H_outside(1.0, -std::tan(60 * kDeg), 0.0);
   EXPECT_FALSE(project_to_pixel(config, Eye::kLeft, head_pose(), head_pose() * p_H_outside, pixel));
@@ -192,14 +203,15 @@ TEST(Camera, MatricesAgreeWithProjectToPixel) {
          view_matrix(eye_pose(config, eye, X_GHead)))
             .cast<double>();
     for (const Eigen::Vector3d& p_H : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0.7, 0.3, -0.2),
-                                      Eigen::Vector3d(2.5, -1.1, 0.9)}) {
+                                       Eigen::Vector3d(2.5, -1.1, 0.9)}) {
       const Eigen::Vector3d p_G = X_GHead * p_H;
       const Eigen::Vector4d clip = PV * p_G.homogeneous();
       const Eigen::Vector2d ndc = clip.head<2>() / clip.w();
       const Eigen::Vector2d expected((ndc.x() + 1) / 2 * 1280, (1 - ndc.y()) / 2 * 720);
       Eigen::Vector2d pixel;
       ASSERT_TRUE(project_to_pixel(config, eye, X_GHead, p_G, pixel));
-      EXPECT_LT((pixel - expected).norm(), 1e-3) << pixel.transpose() << " vs " << expected.transpose();
+      EXPECT_LT((pixel - expected).norm(), 1e-3)
+          << pixel.transpose() << " vs " << expected.transpose();
     }
   }
 }
@@ -283,7 +295,8 @@ TEST(InstancePacking, CapsuleIsACylinderAndTwoRoundCaps) {
     const InstanceRecord& s = packed.records[packed.range(UnitMesh::kSphere).first + i];
     if (s.rgba != kYellow) continue;
     EXPECT_EQ(s.scale_highlight, (std::array<float, 4>{0.02f, 0.02f, 0.02f, 1.0f}));
-    cap_centres.push_back(Eigen::Map<const Eigen::Matrix4f>(s.X_GO.data()).col(3).head<3>().cast<double>());
+    cap_centres.push_back(
+        Eigen::Map<const Eigen::Matrix4f>(s.X_GO.data()).col(3).head<3>().cast<double>());
   }
   ASSERT_EQ(cap_centres.size(), 2u);
   // the capsule's z axis is world -y after the 90 deg roll
@@ -295,7 +308,8 @@ TEST(InstancePacking, CapsuleIsACylinderAndTwoRoundCaps) {
 }
 
 TEST(InstancePacking, ReusesItsBuffer) {
-  std::vector<Instance> instances(50, make(Primitive::kCapsule, at(0, 0, 0), {0.01, 0.05, 0}, kRed));
+  std::vector<Instance> instances(50,
+                                  make(Primitive::kCapsule, at(0, 0, 0), {0.01, 0.05, 0}, kRed));
   PackedInstances packed;
   pack_instances(instances, packed);
   const InstanceRecord* data = packed.records.data();
@@ -345,9 +359,9 @@ struct Rgb {
 
 Rgb pixel_at(const StereoRenderer& renderer, Eye eye, int column, int row) {
   const size_t width = static_cast<size_t>(renderer.width_px());
-  const uint8_t* p = renderer.pixels() +
-                     (static_cast<size_t>(row) * 2 * width + eye_index(eye) * width +
-                      static_cast<size_t>(column)) * 4;
+  const uint8_t* p = renderer.pixels() + (static_cast<size_t>(row) * 2 * width +
+                                          eye_index(eye) * width + static_cast<size_t>(column)) *
+                                             4;
   return {p[0], p[1], p[2]};
 }
 
@@ -368,10 +382,18 @@ bool is_background(const Rgb& c) {
 }
 
 // lit, so darker than the base colour, but that channel clearly dominates
-bool is_red(const Rgb& c) { return c.r > 100 && c.r > 3 * c.g && c.r > 3 * c.b; }
-bool is_green(const Rgb& c) { return c.g > 100 && c.g > 3 * c.r && c.g > 3 * c.b; }
-bool is_blue(const Rgb& c) { return c.b > 100 && c.b > 3 * c.r && c.b > 3 * c.g; }
-bool is_yellow(const Rgb& c) { return c.r > 100 && c.g > 100 && c.r > 3 * c.b && c.g > 3 * c.b; }
+bool is_red(const Rgb& c) {
+  return c.r > 100 && c.r > 3 * c.g && c.r > 3 * c.b;
+}
+bool is_green(const Rgb& c) {
+  return c.g > 100 && c.g > 3 * c.r && c.g > 3 * c.b;
+}
+bool is_blue(const Rgb& c) {
+  return c.b > 100 && c.b > 3 * c.r && c.b > 3 * c.g;
+}
+bool is_yellow(const Rgb& c) {
+  return c.r > 100 && c.g > 100 && c.r > 3 * c.b && c.g > 3 * c.b;
+}
 
 Eigen::Vector2d projected(const HmdConfig& config, Eye eye, const Eigen::Vector3d& p_G) {
   Eigen::Vector2d pixel(-1, -1);
@@ -383,8 +405,10 @@ Eigen::Vector2d projected(const HmdConfig& config, Eye eye, const Eigen::Vector3
 std::pair<int, int> red_run(const StereoRenderer& renderer, Eye eye, const Eigen::Vector2d& pixel) {
   const int row = static_cast<int>(pixel.y());
   int first = static_cast<int>(pixel.x()), last = first;
-  while (first > 0 && is_red(pixel_at(renderer, eye, first - 1, row))) --first;
-  while (last + 1 < renderer.width_px() && is_red(pixel_at(renderer, eye, last + 1, row))) ++last;
+  while (first > 0 && is_red(pixel_at(renderer, eye, first - 1, row)))
+    --first;
+  while (last + 1 < renderer.width_px() && is_red(pixel_at(renderer, eye, last + 1, row)))
+    ++last;
   return {first, last};
 }
 
@@ -401,7 +425,8 @@ class RenderTest : public ::testing::Test {
 std::unique_ptr<StereoRenderer> RenderTest::renderer_;
 
 TEST_F(RenderTest, ContextIsOsMesaCoreProfile) {
-  EXPECT_EQ(renderer().gl_version().rfind("4.5 (Core Profile) Mesa", 0), 0u) << renderer().gl_version();
+  EXPECT_EQ(renderer().gl_version().rfind("4.5 (Core Profile) Mesa", 0), 0u)
+      << renderer().gl_version();
   EXPECT_FALSE(renderer().gl_renderer().empty());
   EXPECT_EQ(renderer().width_px(), 1280);
   EXPECT_EQ(renderer().height_px(), 720);
@@ -415,7 +440,8 @@ TEST_F(RenderTest, EmptySceneIsBackgroundEverywhere) {
     constexpr std::array<std::pair<int, int>, 5> kCorners{
         {{0, 0}, {1279, 0}, {0, 719}, {1279, 719}, {640, 360}}};
     for (const auto& [c, r] : kCorners) {
-      EXPECT_TRUE(is_background(pixel_at(renderer(), eye, c, r))) << pixel_at(renderer(), eye, c, r);
+      EXPECT_TRUE(is_background(pixel_at(renderer(), eye, c, r)))
+          << pixel_at(renderer(), eye, c, r);
     }
   }
   EXPECT_EQ(renderer().last_draw_calls(), 0);
@@ -486,7 +512,8 @@ TEST_F(RenderTest, DisparityGrowsAsTheBoxComesCloser) {
   // constant offset (their axes land at different columns)
   const EyeFov& fov = config().eye_fov(Eye::kLeft);
   const double px_per_tan = 1280 / (std::tan(fov.right_rad) - std::tan(fov.left_rad));
-  EXPECT_NEAR(projected_disparity[1] - projected_disparity[0], 0.063 * (2.0 - 1.0) * px_per_tan, 1e-6);
+  EXPECT_NEAR(projected_disparity[1] - projected_disparity[0], 0.063 * (2.0 - 1.0) * px_per_tan,
+              1e-6);
 }
 
 // Sphere, cylinder and capsule each show at their projected centres; the capsule's round caps
@@ -538,8 +565,8 @@ TEST_F(RenderTest, CapsuleCapsFollowItsAxis) {
 
 TEST_F(RenderTest, HighlightedInstancesAreBrighter) {
   const Eigen::Vector3d p_G(1.0, 0.0, kHeadHeightM);
-  const Instance box = make(Primitive::kBox, at(1.0, 0.0, kHeadHeightM), {0.1, 0.1, 0.1},
-                            {0.6f, 0.3f, 0.1f, 1.0f});
+  const Instance box =
+      make(Primitive::kBox, at(1.0, 0.0, kHeadHeightM), {0.1, 0.1, 0.1}, {0.6f, 0.3f, 0.1f, 1.0f});
   Instance highlighted = box;
   highlighted.highlight = true;
   renderer().render({box}, head_pose());
@@ -581,8 +608,8 @@ TEST_F(RenderTest, TwoHundredInstancesInOneCall) {
     for (int column = 0; column < 20; ++column) {
       const int k = (row + column) % 4;
       const Eigen::Vector3d p_G(1.5, 0.95 - 0.1 * column, kHeadHeightM + 0.45 - 0.1 * row);
-      scene.push_back(make(kinds[k].primitive, at(p_G.x(), p_G.y(), p_G.z()), kinds[k].size_m,
-                           kinds[k].rgba));
+      scene.push_back(
+          make(kinds[k].primitive, at(p_G.x(), p_G.y(), p_G.z()), kinds[k].size_m, kinds[k].rgba));
       kind_of.push_back(k);
     }
   }
@@ -593,7 +620,8 @@ TEST_F(RenderTest, TwoHundredInstancesInOneCall) {
   int wrong = 0;
   for (size_t i = 0; i < scene.size(); ++i) {
     for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
-      const Rgb c = pixel_at(renderer(), eye, projected(config(), eye, scene[i].X_GO.translation()));
+      const Rgb c =
+          pixel_at(renderer(), eye, projected(config(), eye, scene[i].X_GO.translation()));
       if (!kinds[kind_of[i]].looks_right(c)) {
         ++wrong;
         ADD_FAILURE() << "instance " << i << " eye " << eye_index(eye) << ": " << c;
@@ -606,7 +634,8 @@ TEST_F(RenderTest, TwoHundredInstancesInOneCall) {
 // ~40 instances: a panel, switches, levers and two hands' worth of capsules.
 std::vector<Instance> cockpit_scene() {
   std::vector<Instance> scene;
-  scene.push_back(make(Primitive::kBox, at(0.9, 0.0, 0.85), {0.1, 1.2, 0.5}, {0.25f, 0.27f, 0.3f, 1}));
+  scene.push_back(
+      make(Primitive::kBox, at(0.9, 0.0, 0.85), {0.1, 1.2, 0.5}, {0.25f, 0.27f, 0.3f, 1}));
   for (int i = 0; i < 9; ++i) {
     scene.push_back(make(Primitive::kBox, at(0.83, -0.4 + 0.1 * i, 1.0), {0.03, 0.04, 0.02},
                          {0.8f, 0.8f, 0.2f, 1}));
@@ -633,7 +662,8 @@ std::vector<Instance> cockpit_scene() {
 TEST_F(RenderTest, NoHeapAllocationOnceWarmedUp) {
   if (!kCountingAllocations) GTEST_SKIP() << "operator new belongs to the sanitizer";
   const std::vector<Instance> scene = cockpit_scene();
-  for (int i = 0; i < 3; ++i) renderer().render(scene, head_pose());
+  for (int i = 0; i < 3; ++i)
+    renderer().render(scene, head_pose());
   const uint8_t* pixels = renderer().pixels();
   g_allocations = 0;
   g_count_allocations = true;
@@ -642,7 +672,8 @@ TEST_F(RenderTest, NoHeapAllocationOnceWarmedUp) {
   ::operator delete(sink);
   ASSERT_EQ(g_allocations.load(), 1);
   g_allocations = 0;
-  for (int i = 0; i < 10; ++i) renderer().render(scene, head_pose());
+  for (int i = 0; i < 10; ++i)
+    renderer().render(scene, head_pose());
   g_count_allocations = false;
   EXPECT_EQ(g_allocations.load(), 0);
   EXPECT_EQ(renderer().pixels(), pixels) << "same buffer every frame";
@@ -650,13 +681,15 @@ TEST_F(RenderTest, NoHeapAllocationOnceWarmedUp) {
 
 // Mean ms per stereo frame, the head turning slowly.
 double frame_ms(StereoRenderer& renderer, const std::vector<Instance>& scene) {
-  for (int i = 0; i < 5; ++i) renderer.render(scene, head_pose());  // shader variants, caches
+  for (int i = 0; i < 5; ++i)
+    renderer.render(scene, head_pose());  // shader variants, caches
   constexpr int kFrames = 60;
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < kFrames; ++i) {
     renderer.render(scene, head_pose() * Eigen::AngleAxisd(0.002 * i, Eigen::Vector3d::UnitZ()));
   }
-  const std::chrono::duration<double, std::milli> elapsed = std::chrono::steady_clock::now() - start;
+  const std::chrono::duration<double, std::milli> elapsed =
+      std::chrono::steady_clock::now() - start;
   return elapsed.count() / kFrames;
 }
 
@@ -665,10 +698,11 @@ TEST_F(RenderTest, FrameTime) {
   const std::vector<Instance> scene = cockpit_scene();
   const double empty_ms = frame_ms(renderer(), {});
   const double scene_ms = frame_ms(renderer(), scene);
-  std::printf("[ timing ] 1280x720 per eye, stereo, LP_NUM_THREADS=%s: empty %.2f ms, "
-              "%zu instances %.2f ms/frame (%.0f fps, %d draws)\n",
-              std::getenv("LP_NUM_THREADS"), empty_ms, scene.size(), scene_ms, 1000.0 / scene_ms,
-              renderer().last_draw_calls());
+  std::printf(
+      "[ timing ] 1280x720 per eye, stereo, LP_NUM_THREADS=%s: empty %.2f ms, "
+      "%zu instances %.2f ms/frame (%.0f fps, %d draws)\n",
+      std::getenv("LP_NUM_THREADS"), empty_ms, scene.size(), scene_ms, 1000.0 / scene_ms,
+      renderer().last_draw_calls());
   EXPECT_EQ(renderer().gl_error_count(), 0u);
 }
 
@@ -678,9 +712,11 @@ TEST_F(RenderTest, SecondRendererHasItsOwnContext) {
   small.width_px = 320;
   small.height_px = 240;
   StereoRenderer other(small);
-  other.render({make(Primitive::kSphere, at(1.0, 0.0, kHeadHeightM), {0.1, 0, 0}, kGreen)}, head_pose());
+  other.render({make(Primitive::kSphere, at(1.0, 0.0, kHeadHeightM), {0.1, 0, 0}, kGreen)},
+               head_pose());
   renderer().render({}, head_pose());
-  other.render({make(Primitive::kSphere, at(1.0, 0.0, kHeadHeightM), {0.1, 0, 0}, kGreen)}, head_pose());
+  other.render({make(Primitive::kSphere, at(1.0, 0.0, kHeadHeightM), {0.1, 0, 0}, kGreen)},
+               head_pose());
   const Eigen::Vector2d c = projected(small, Eye::kRight, Eigen::Vector3d(1.0, 0.0, kHeadHeightM));
   EXPECT_TRUE(is_green(pixel_at(other, Eye::kRight, c)));
   EXPECT_TRUE(is_background(pixel_at(renderer(), Eye::kRight, 640, 360)));
@@ -774,7 +810,8 @@ TEST(WritePng, FailureNamesThePathAndLeavesNoPartial) {
   }
   EXPECT_THROW(write_png((test_dir() / "x.png").string(), rgba.data(), 4, 4, 10),
                std::invalid_argument);
-  EXPECT_THROW(write_png((test_dir() / "x.png").string(), rgba.data(), 0, 4), std::invalid_argument);
+  EXPECT_THROW(write_png((test_dir() / "x.png").string(), rgba.data(), 0, 4),
+               std::invalid_argument);
 }
 
 }  // namespace
