@@ -10,23 +10,11 @@
 
 #include "tests/support/hand_sample_pattern.hpp"
 #include "tests/support/process.hpp"
+#include "tests/support/process_test.hpp"
 #include "tests/support/test_env.hpp"
 
 namespace vcockpit::test {
 namespace {
-
-std::vector<std::vector<uint8_t>> read_records(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<std::vector<uint8_t>> records;
-  uint32_t size = 0;
-  while (in.read(reinterpret_cast<char*>(&size), sizeof size)) {
-    std::vector<uint8_t> record(size);
-    in.read(reinterpret_cast<char*>(record.data()), size);
-    if (!in) break;
-    records.push_back(std::move(record));
-  }
-  return records;
-}
 
 TEST(DdsLoopback, ThousandHandSamplesAtOneKilohertzReliableNoneLost) {
   constexpr int kCount = 1000;

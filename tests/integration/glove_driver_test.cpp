@@ -15,50 +15,16 @@
 #include "physics_node/config/hand_config.hpp"
 #include "tests/support/hand_sample_pattern.hpp"
 #include "tests/support/process.hpp"
+#include "tests/support/process_test.hpp"
 #include "tests/support/test_env.hpp"
 
 namespace vcockpit::test {
 namespace {
 
-constexpr int64_t kSecond = 1'000'000'000;
-
-std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-std::vector<std::vector<uint8_t>> read_records(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<std::vector<uint8_t>> records;
-  uint32_t size = 0;
-  while (in.read(reinterpret_cast<char*>(&size), sizeof size)) {
-    std::vector<uint8_t> record(size);
-    if (!in.read(reinterpret_cast<char*>(record.data()), size)) break;
-    records.push_back(std::move(record));
-  }
-  return records;
-}
-
-class GloveDriverTest : public ::testing::Test {
+class GloveDriverTest : public ProcessTest {
  protected:
-  void SetUp() override { shm_before_ = list_dev_shm(); }
-  void TearDown() override {
-    const auto leftovers = new_entries(shm_before_, list_dev_shm());
-    remove_dev_shm(leftovers);
-    // a test that kills a process on purpose only cleans up after it
-    if (expect_clean_shm_) {
-      EXPECT_TRUE(leftovers.empty()) << leftovers.size() << " files left in /dev/shm";
-    }
-  }
-
-  bool expect_clean_shm_ = true;
-
   std::string glove_driver() const { return bin_dir() + "/glove_driver"; }
-  std::vector<std::string> shm_before_;
   physics::HandModel hand_ = load_hand_model(source_dir() + "/config/hand.yaml");
-  std::map<std::string, std::string> env_ = dds_test_env();
 };
 
 TEST_F(GloveDriverTest, LockstepReplayOfFiveThousandSamplesAtFullSpeedIsCompleteAndIdentical) {

@@ -14,12 +14,12 @@
 #include "tests/support/monitor_log.hpp"
 #include "tests/support/png_read.hpp"
 #include "tests/support/process.hpp"
+#include "tests/support/process_test.hpp"
 #include "tests/support/test_env.hpp"
 
 namespace vcockpit::test {
 namespace {
 
-constexpr int64_t kSecond = 1'000'000'000;
 
 // Head at (0, 0, 1) looking along +x; 640x360 per eye keeps the test quick.
 constexpr const char* kTestHmd = R"(ipd_m: 0.063
@@ -62,26 +62,12 @@ double mean_column_of(const RgbaImage& image, int channel) {
   return count > 0 ? sum / count : -1.0;
 }
 
-class ImageGeneratorTest : public ::testing::Test {
+class ImageGeneratorTest : public ProcessTest {
  protected:
   void SetUp() override {
-    shm_before_ = list_dev_shm();
+    ProcessTest::SetUp();
     std::ofstream(dir_ + "/hmd.yaml") << kTestHmd;
   }
-  void TearDown() override {
-    const auto leftovers = new_entries(shm_before_, list_dev_shm());
-    remove_dev_shm(leftovers);
-    EXPECT_TRUE(leftovers.empty()) << leftovers.size() << " /dev/shm files left";
-  }
-  ChildProcess start(const std::string& exe, std::vector<std::string> args, const std::string& log) {
-    args.insert(args.begin(), bin_dir() + "/" + exe);
-    return ChildProcess(args, env_, dir_ + "/" + log);
-  }
-  std::string text(const std::string& name) const { return read_text(dir_ + "/" + name); }
-
-  std::string dir_ = make_temp_dir("image_generator");
-  std::map<std::string, std::string> env_ = dds_test_env();
-  std::vector<std::string> shm_before_;
 };
 
 TEST_F(ImageGeneratorTest, BoxesShowAtTheirProjectedPixelsWithStereoDisparity) {

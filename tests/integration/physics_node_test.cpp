@@ -16,38 +16,16 @@
 #include "physics_node/io/offline_runner.hpp"
 #include "tests/support/monitor_log.hpp"
 #include "tests/support/process.hpp"
+#include "tests/support/process_test.hpp"
 #include "tests/support/test_env.hpp"
 
 namespace vcockpit::test {
 namespace {
 
-constexpr int64_t kSecond = 1'000'000'000;
-
-std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
 std::string grasp_log() { return source_dir() + "/config/glove_logs/reach_grasp_lift_release.csv"; }
 std::string sweep_log() { return source_dir() + "/config/glove_logs/open_hand_sweep.csv"; }
 
-class PhysicsNodeTest : public ::testing::Test {
- protected:
-  void SetUp() override { shm_before_ = list_dev_shm(); }
-  void TearDown() override {
-    const auto leftovers = new_entries(shm_before_, list_dev_shm());
-    remove_dev_shm(leftovers);
-    if (expect_clean_shm_) {
-      EXPECT_TRUE(leftovers.empty()) << leftovers.size() << " /dev/shm files";
-    }
-  }
-  ChildProcess start(const std::string& exe, std::vector<std::string> args, const std::string& log) {
-    args.insert(args.begin(), bin_dir() + "/" + exe);
-    return ChildProcess(args, env_, dir_ + "/" + log);
-  }
-  std::string text(const std::string& name) const { return read_text(dir_ + "/" + name); }
-
-  std::string dir_ = make_temp_dir("physics_node");
-  std::map<std::string, std::string> env_ = dds_test_env();
-  std::vector<std::string> shm_before_;
-  bool expect_clean_shm_ = true;
-};
+class PhysicsNodeTest : public ProcessTest {};
 
 TEST_F(PhysicsNodeTest, LockstepReplayGivesTheOfflineRunnersResult) {
   physics_io::OfflineOptions offline;
