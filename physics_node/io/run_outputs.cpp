@@ -2,30 +2,12 @@
 
 #include <cstdio>
 
+#include "common/json.hpp"
+
 namespace vcockpit::physics_io {
 
 std::string hand_name(int hand_id) { return hand_id == 1 ? "left" : "right"; }
 
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
 
 TrajectoryWriter::TrajectoryWriter(const std::string& path) : file_(path) {
   std::fprintf(file_.get(), "t_s,object,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,held_by\n");

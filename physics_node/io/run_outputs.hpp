@@ -60,7 +60,4 @@ struct RunSummary {
 
 void write_summary(const std::string& path, const RunSummary& summary, const physics::World& world);
 
-// JSON string literal with escapes.
-std::string json_string(const std::string& text);
-
 }  // namespace vcockpit::physics_io

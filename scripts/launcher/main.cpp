@@ -17,6 +17,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/clock.hpp"
+#include "common/json.hpp"
 #include "common/logging.hpp"
 #include "common/signals.hpp"
 #include "scripts/launcher/node_process.hpp"
@@ -205,17 +206,18 @@ void Launcher::write_summary(double elapsed_s) {
 
   AtomicFile file(options_.out_dir + "/summary.json");
   std::FILE* f = file.get();
-  std::fprintf(f, "{\n  \"rig\": \"%s\",\n  \"log\": \"%s\",\n  \"domain\": %d,\n", rig_.path.c_str(),
-               rig_.log_path.c_str(), rig_.domain_id);
-  std::fprintf(f, "  \"ended\": \"%s\",\n  \"ok\": %s,\n  \"wall_s\": %.3f,\n", end_reason_.c_str(),
-               failed_ ? "false" : "true", elapsed_s);
+  std::fprintf(f, "{\n  \"rig\": %s,\n  \"log\": %s,\n  \"domain\": %d,\n",
+               json_string(rig_.path).c_str(), json_string(rig_.log_path).c_str(), rig_.domain_id);
+  std::fprintf(f, "  \"ended\": %s,\n  \"ok\": %s,\n  \"wall_s\": %.3f,\n",
+               json_string(end_reason_).c_str(), failed_ ? "false" : "true", elapsed_s);
   std::fprintf(f, "  \"samples_replayed\": %llu,\n  \"grasps\": %d,\n  \"releases\": %d,\n", samples,
                grasps, releases);
   std::fprintf(f, "  \"events\": [");
   for (std::size_t i = 0; i < monitor_->events().size(); ++i) {
     const auto& e = monitor_->events()[i];
-    std::fprintf(f, "%s\n    {\"t_s\": %.3f, \"event\": \"%s\", \"object\": \"%s\", \"reason\": \"%s\"}",
-                 i ? "," : "", e.t_s, e.grasp ? "grasp" : "release", e.object.c_str(), e.reason.c_str());
+    std::fprintf(f, "%s\n    {\"t_s\": %.3f, \"event\": \"%s\", \"object\": %s, \"reason\": %s}",
+                 i ? "," : "", e.t_s, e.grasp ? "grasp" : "release", json_string(e.object).c_str(),
+                 json_string(e.reason).c_str());
   }
   std::fprintf(f, "\n  ],\n  \"frames_rendered\": %llu,\n  \"snapshots_written\": %d,\n", frames, snapshots);
   std::fprintf(f, "  \"physics_step_rate_hz\": %.2f,\n  \"late_steps\": %llu,\n",
@@ -231,17 +233,18 @@ void Launcher::write_summary(double elapsed_s) {
     const auto& p = st.X_GO().position_m();
     const auto& q = st.X_GO().orientation();
     std::fprintf(f,
-                 "%s\n    \"%s\": {\"sim_time_s\": %.3f, \"position\": [%.9f, %.9f, %.9f], "
+                 "%s\n    %s: {\"sim_time_s\": %.3f, \"position\": [%.9f, %.9f, %.9f], "
                  "\"quaternion_wxyz\": [%.9f, %.9f, %.9f, %.9f], \"held_by\": %d}",
-                 first ? "" : ",", name.c_str(), static_cast<double>(st.sim_time_ns()) * 1e-9,
+                 first ? "" : ",", json_string(name).c_str(), static_cast<double>(st.sim_time_ns()) * 1e-9,
                  p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), st.held_by_hand_id());
     first = false;
   }
   std::fprintf(f, "\n  },\n");
   std::fprintf(f, "  \"nodes\": {");
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    std::fprintf(f, "%s\n    \"%s\": {\"exit_status\": %d, \"restarts\": %d}", i ? "," : "",
-                 nodes_[i]->spec().name.c_str(), nodes_[i]->exit_status(), nodes_[i]->restarts());
+    std::fprintf(f, "%s\n    %s: {\"exit_status\": %d, \"restarts\": %d}", i ? "," : "",
+                 json_string(nodes_[i]->spec().name).c_str(), nodes_[i]->exit_status(),
+                 nodes_[i]->restarts());
   }
   std::fprintf(f, "\n  }\n}\n");
   file.commit();

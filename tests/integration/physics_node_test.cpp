@@ -41,8 +41,10 @@ TEST_F(PhysicsNodeTest, LockstepReplayGivesTheOfflineRunnersResult) {
                                                "--lockstep", "--rate", "0"},
                               "driver.log");
   ASSERT_EQ(driver.wait(60 * kSecond), 0) << text("driver.log");
-  // the node publishes once it has caught up; give the monitor time to take it
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  // the node publishes once it has caught up with the last sample (8.5 s into the log)
+  EXPECT_TRUE(wait_for_line(dir_ + "/monitor.txt", "sim_time_ns=8500000000 ", 120 * kSecond))
+      << text("node.log");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
   EXPECT_EQ(monitor.stop(), 0);
   EXPECT_EQ(node.stop(), 0) << text("node.log");
 
@@ -96,8 +98,10 @@ TEST_F(PhysicsNodeTest, RealTimeHoldsOneKilohertzAndTheHandFollowsTheSamples) {
   const double mean_hz = sum / static_cast<double>(rates.size() - 1);
   std::printf("physics step rate %.2f Hz over %zu s, late steps %llu\n", mean_hz, rates.size() - 1,
               static_cast<unsigned long long>(late));
-  EXPECT_NEAR(mean_hz, 1000.0, 10.0);
-  for (std::size_t i = 1; i < rates.size(); ++i) EXPECT_NEAR(rates[i], 1000.0, 20.0) << i;
+  if (!sanitized()) {
+    EXPECT_NEAR(mean_hz, 1000.0, 10.0);
+    for (std::size_t i = 1; i < rates.size(); ++i) EXPECT_NEAR(rates[i], 1000.0, 20.0) << i;
+  }
 
   // every hand_state shows the wrist of the sample it names
   physics::Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
@@ -114,7 +118,7 @@ TEST_F(PhysicsNodeTest, RealTimeHoldsOneKilohertzAndTheHandFollowsTheSamples) {
     EXPECT_LT((h.position - expected.X_GH.translation()).norm(), 1e-9) << "seq " << h.seq;
     ++tracked;
   }
-  EXPECT_GT(tracked, 500) << "about 90 hand states a second for 10 s";
+  EXPECT_GT(tracked, sanitized() ? 50 : 500) << "about 90 hand states a second for 10 s";
 }
 
 TEST_F(PhysicsNodeTest, KilledGloveDriverReleasesWithGloveLostAndARestartResumesTracking) {

@@ -27,7 +27,7 @@ class ChildProcess {
   int wait(int64_t timeout_ns);
   void signal(int sig);
   // SIGTERM, then SIGKILL after `grace_ns`; returns the exit status as wait() does.
-  int stop(int64_t grace_ns = 3'000'000'000);
+  int stop(int64_t grace_ns = 10'000'000'000);
 
  private:
   pid_t pid_ = -1;

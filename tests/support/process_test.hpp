@@ -23,6 +23,12 @@ constexpr int64_t kSecond = 1'000'000'000;
 inline std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
 inline std::string config_path(const std::string& name) { return source_dir() + "/config/" + name; }
 
+// True in the sanitizer build, where wall-clock limits (rates, restart times) are not asserted.
+inline bool sanitized() {
+  const char* value = std::getenv("VCOCKPIT_SANITIZED");
+  return value && std::string(value) == "1";
+}
+
 class ProcessTest : public ::testing::Test {
  protected:
   void SetUp() override { shm_before_ = list_dev_shm(); }
