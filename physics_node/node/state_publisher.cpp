@@ -1,5 +1,6 @@
 #include "physics_node/node/state_publisher.hpp"
 
+#include "common/clock.hpp"
 #include "common/idl_convert.hpp"
 
 namespace vcockpit::physics_node {
@@ -100,10 +101,15 @@ void StatePublisher::publish_events(const physics::World& world) {
 }
 
 void StatePublisher::flush(int64_t timeout_ns) {
-  object_writer_.wait_for_acknowledgments(timeout_ns);
-  event_writer_.wait_for_acknowledgments(timeout_ns);
-  info_writer_.wait_for_acknowledgments(timeout_ns);
-  status_writer_.wait_for_acknowledgments(timeout_ns);
+  // one budget for all writers: a stop must stay quick however many readers lag
+  const int64_t deadline_ns = monotonic_now_ns() + timeout_ns;
+  for (const UntypedWriter* writer :
+       {static_cast<const UntypedWriter*>(&event_writer_), static_cast<const UntypedWriter*>(&object_writer_),
+        static_cast<const UntypedWriter*>(&status_writer_), static_cast<const UntypedWriter*>(&info_writer_)}) {
+    const int64_t left_ns = deadline_ns - monotonic_now_ns();
+    if (left_ns <= 0) break;
+    writer->wait_for_acknowledgments(left_ns);
+  }
 }
 
 }  // namespace vcockpit::physics_node
