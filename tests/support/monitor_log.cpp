@@ -143,11 +143,6 @@ std::map<std::string, Eigen::Vector3d> read_final_poses(const std::string& summa
   return out;
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 bool wait_for_line(const std::string& path, const std::string& needle, int64_t timeout_ns,
                    const std::string& after_line) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::nanoseconds(timeout_ns);

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/test_files.hpp"
+
 namespace vcockpit::test {
 
 struct SeenEvent {
@@ -62,8 +64,6 @@ struct MonitorLog {
 
 // "final" block of the offline runner's summary.json: object name -> position.
 std::map<std::string, Eigen::Vector3d> read_final_poses(const std::string& summary_path);
-
-std::string read_text(const std::string& path);
 
 // Polls a growing text file until a line containing `needle` appears (after the first line
 // containing `after_line`, if given). False on timeout.

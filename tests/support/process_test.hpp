@@ -20,7 +20,6 @@ namespace vcockpit::test {
 
 constexpr int64_t kSecond = 1'000'000'000;
 
-inline std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
 inline std::string config_path(const std::string& name) { return source_dir() + "/config/" + name; }
 
 // True in the sanitizer build, where wall-clock limits (rates, restart times) are not asserted.

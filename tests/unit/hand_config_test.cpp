@@ -14,42 +14,25 @@
 
 #include "common/pose.hpp"
 #include "tests/support/process.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace vcockpit {
 namespace {
+
+using test::read_text;
+using test::source_dir;
 
 using physics::Finger;
 using physics::HandModel;
 using physics::Joint;
 using physics::Link;
 
-std::string source_dir() {
-  if (const char* dir = std::getenv("VCOCKPIT_SOURCE_DIR")) return dir;
-  const std::string file = __FILE__;  // <repo>/tests/unit/hand_config_test.cpp
-  return file.substr(0, file.rfind("/tests/unit/"));
-}
-
 std::string shipped_path() {
   return source_dir() + "/config/hand.yaml";
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// One directory for the whole run: make_temp_dir empties it on every call.
-const std::string& temp_dir() {
-  static const std::string dir = test::make_temp_dir("hand_config_test");
-  return dir;
-}
-
 std::string write_file(const std::string& name, const std::string& text) {
-  const std::string path = temp_dir() + "/" + name;
-  std::ofstream(path) << text;
-  return path;
+  return test::write_test_file("hand_config_test", name, text);
 }
 
 std::size_t idx(Link link) {
@@ -326,7 +309,7 @@ TEST(HandConfig, LinkOnTheLastRowIsExplained) {
 }
 
 TEST(HandConfig, MissingFileIsAnError) {
-  EXPECT_THROW(load_hand_model(temp_dir() + "/none.yaml"), ConfigError);
+  EXPECT_THROW(load_hand_model("/nonexistent_vcockpit_dir/none.yaml"), ConfigError);
 }
 
 }  // namespace

@@ -18,38 +18,20 @@
 #include "common/pose.hpp"
 #include "physics_node/config/hand_config.hpp"
 #include "tests/support/process.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace vcockpit {
 namespace {
+
+using test::read_text;
+using test::source_dir;
 
 using physics::ObjectSpec;
 using physics::Scene;
 using physics::ShapeKind;
 
-std::string source_dir() {
-  if (const char* dir = std::getenv("VCOCKPIT_SOURCE_DIR")) return dir;
-  const std::string file = __FILE__;  // <repo>/tests/unit/scene_config_test.cpp
-  return file.substr(0, file.rfind("/tests/unit/"));
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// One directory for the whole run: make_temp_dir empties it on every call.
-const std::string& temp_dir() {
-  static const std::string dir = test::make_temp_dir("scene_config_test");
-  return dir;
-}
-
 std::string write_file(const std::string& name, const std::string& text) {
-  const std::string path = temp_dir() + "/" + name;
-  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-  std::ofstream(path) << text;
-  return path;
+  return test::write_test_file("scene_config_test", name, text);
 }
 
 std::size_t line_of(const std::string& text, std::size_t pos) {
@@ -575,7 +557,7 @@ TEST(SceneConfig, HandFileErrorsNameTheHandFile) {
 TEST(SceneConfig, SyntaxErrorsAndMissingFilesAreConfigErrors) {
   const std::string bad = write_file("syntax.yaml", "objects: [\n  - name: a\n");
   EXPECT_NE(load_error(bad).find(bad + ":"), std::string::npos) << load_error(bad);
-  EXPECT_THROW(load_scene(temp_dir() + "/none.yaml"), ConfigError);
+  EXPECT_THROW(load_scene("/nonexistent_vcockpit_dir/none.yaml"), ConfigError);
 }
 
 }  // namespace
