@@ -28,39 +28,15 @@
 #include "physics_node/config/hand_config.hpp"
 #include "physics_node/physics/collision.hpp"
 #include "physics_node/physics/hand_model.hpp"
+#include "tests/support/allocation_counter.hpp"
 #include "physics_node/physics/scene.hpp"
-
-// Counts heap allocations while armed, to prove the broadphase step allocates nothing.
-namespace {
-std::atomic<bool> g_count_allocations{false};
-std::atomic<int> g_allocations{0};
-}  // namespace
-
-// noinline: GCC otherwise inlines these into gtest's factories and flags malloc/free as a
-// mismatched new/delete pair.
-[[gnu::noinline]] void* operator new(std::size_t size) {
-  if (g_count_allocations.load()) g_allocations.fetch_add(1);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void* operator new[](std::size_t size) {
-  return ::operator new(size);
-}
-[[gnu::noinline]] void operator delete(void* p) noexcept {
-  std::free(p);
-}
-[[gnu::noinline]] void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-[[gnu::noinline]] void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
 
 namespace vcockpit::physics {
 namespace {
+
+// to prove the broadphase step allocates nothing
+using test::g_allocations;
+using test::g_count_allocations;
 
 // FCL's closed-form pairs (box-box, sphere-*) are exact to rounding; the MPR pairs (capsule or
 // cylinder against box, cylinder, capsule) converge to collision.cpp's 1e-9 m tolerance.

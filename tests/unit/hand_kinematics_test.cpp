@@ -13,38 +13,14 @@
 #include "common/pose.hpp"
 #include "physics_node/config/hand_config.hpp"
 #include "physics_node/physics/hand_model.hpp"
-
-// Counts heap allocations while armed, to prove forward_kinematics allocates nothing.
-namespace {
-std::atomic<bool> g_count_allocations{false};
-std::atomic<int> g_allocations{0};
-}  // namespace
-
-// noinline: GCC otherwise inlines these into gtest's factories and flags malloc/free as a
-// mismatched new/delete pair.
-[[gnu::noinline]] void* operator new(std::size_t size) {
-  if (g_count_allocations.load()) g_allocations.fetch_add(1);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-[[gnu::noinline]] void* operator new[](std::size_t size) {
-  return ::operator new(size);
-}
-[[gnu::noinline]] void operator delete(void* p) noexcept {
-  std::free(p);
-}
-[[gnu::noinline]] void operator delete[](void* p) noexcept {
-  std::free(p);
-}
-[[gnu::noinline]] void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
-[[gnu::noinline]] void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
-}
+#include "tests/support/allocation_counter.hpp"
 
 namespace vcockpit::physics {
 namespace {
+
+// to prove forward_kinematics allocates nothing
+using test::g_allocations;
+using test::g_count_allocations;
 
 constexpr double kTol = 1e-12;
 constexpr double kTolM = 1e-12;  // positions (m)
