@@ -1,6 +1,5 @@
 #include "physics_node/physics/collision.hpp"
 
-#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
@@ -13,6 +12,8 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "physics_node/physics/broadphase.hpp"
 
 // What FCL 0.7.0 (Debian, libccd solver) does, measured here (tests/unit/collision_test.cpp
 // keeps the measurements honest):
@@ -94,14 +95,6 @@ Body make_body(int index, BodyKind kind, const Shape& shape) {
   b.half_size_m = 0.5 * shape.box_size_m;
   return b;
 }
-
-struct BodyPair {
-  int lo = -1;
-  int hi = -1;
-  friend bool operator<(const BodyPair& x, const BodyPair& y) {
-    return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi;
-  }
-};
 
 void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument("CollisionWorld: " + message);
@@ -473,8 +466,10 @@ int reduce_manifold(const std::array<Candidate, kMaxCandidates>& cand, int n,
 struct CollisionWorld::Impl {
   std::vector<Body> bodies;  // never resized after construction: user data points into it
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // body order
+  std::vector<Shape> shapes;                                      // body order
+  std::vector<BroadphaseBody> kinds;                              // body order
   std::array<Eigen::Isometry3d, kLinkCount> X_LC{};  // link frame -> collision geometry frame
-  fcl::DynamicAABBTreeCollisionManagerd manager;
+  std::unique_ptr<SweepAndPrune> broadphase;
   bool hand_enabled = false;
 
   std::vector<BodyPair> pairs;
@@ -491,32 +486,20 @@ struct CollisionWorld::Impl {
   std::array<Candidate, kMaxCandidates> candidates;
   std::array<int, kMaxManifold> picked{};
 
-  // The pairs that can act: at least one dynamic object, and the hand only while enabled.
-  bool can_act(const Body& a, const Body& b) const {
-    if (a.kind != BodyKind::kDynamic && b.kind != BodyKind::kDynamic) return false;
-    const bool hand = a.kind == BodyKind::kHand || b.kind == BodyKind::kHand;
-    return !hand || hand_enabled;
-  }
-
-  static bool collect_pair(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
-    auto* self = static_cast<Impl*>(data);
-    const auto* a = static_cast<const Body*>(o1->getUserData());
-    const auto* b = static_cast<const Body*>(o2->getUserData());
-    if (self->can_act(*a, *b))
-      self->pairs.push_back({std::min(a->index, b->index), std::max(a->index, b->index)});
-    return false;  // never stop early
-  }
-
   void add_body(const Geometry& geometry, const Eigen::Isometry3d& X_GC, BodyKind kind,
                 const Shape& shape) {
     bodies.push_back(make_body(static_cast<int>(bodies.size()), kind, shape));
     objects.push_back(std::make_unique<fcl::CollisionObjectd>(geometry, X_GC));
+    shapes.push_back(shape);
+    kinds.push_back(kind == BodyKind::kStatic    ? BroadphaseBody::kStatic
+                    : kind == BodyKind::kDynamic ? BroadphaseBody::kDynamic
+                                                 : BroadphaseBody::kHand);
   }
 
   void place(int body, const Eigen::Isometry3d& X_GC) {
-    fcl::CollisionObjectd& object = *objects[static_cast<std::size_t>(body)];
-    object.setTransform(X_GC);
-    object.computeAABB();
+    const auto i = static_cast<std::size_t>(body);
+    objects[i]->setTransform(X_GC);
+    broadphase->set_box(body, shape_aabb(shapes[i], X_GC));
   }
 
   // Appends the pair's points with positive depth; bad ones are counted and dropped.
@@ -668,15 +651,11 @@ CollisionWorld::CollisionWorld(const Scene& scene) : impl_(std::make_unique<Impl
     }
   }
 
-  // user data only once the vector is final; one tree, registered in body order
-  std::vector<fcl::CollisionObjectd*> registered;
-  registered.reserve(body_count);
-  for (std::size_t i = 0; i < m.objects.size(); ++i) {
-    m.objects[i]->setUserData(&m.bodies[i]);
-    registered.push_back(m.objects[i].get());
-  }
-  m.manager.registerObjects(registered);
-  m.manager.setup();
+  // user data only once the vector is final
+  for (std::size_t i = 0; i < m.objects.size(); ++i) m.objects[i]->setUserData(&m.bodies[i]);
+  m.broadphase = std::make_unique<SweepAndPrune>(m.kinds);
+  for (std::size_t i = 0; i < m.objects.size(); ++i)
+    m.place(static_cast<int>(i), m.objects[i]->getTransform());
 
   m.pairs.reserve(8 * body_count);
   m.request = fcl::CollisionRequestd(static_cast<std::size_t>(scene.contact.max_points_per_pair),
@@ -698,20 +677,17 @@ void CollisionWorld::set_poses(const std::vector<Eigen::Isometry3d>& X_GO,
       m.place(i, X_GO[static_cast<std::size_t>(i)]);
 
   m.hand_enabled = has_hand_ && X_GL != nullptr;
+  m.broadphase->set_hand_enabled(m.hand_enabled);
   if (m.hand_enabled) {
     for (int l = 0; l < kLinkCount; ++l)
       m.place(hand_link_body(static_cast<Link>(l)),
               (*X_GL)[static_cast<std::size_t>(l)] * m.X_LC[static_cast<std::size_t>(l)]);
   }
-  m.manager.update();
 }
 
 void CollisionWorld::find_candidate_pairs() {
   Impl& m = *impl_;
-  m.pairs.clear();
-  m.manager.collide(&m, &Impl::collect_pair);
-  // the tree's traversal order depends on its shape; the output must not
-  std::sort(m.pairs.begin(), m.pairs.end());
+  m.broadphase->find_pairs(m.pairs);
 }
 
 void CollisionWorld::compute_contacts(std::vector<ContactPoint>& out) {

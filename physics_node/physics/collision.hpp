@@ -1,14 +1,13 @@
 #pragma once
-// Collision detection (paper §4.2): FCL's dynamic AABB tree as broadphase over the objects and
-// the hand's 16 links, then narrowphase contacts (point, normal, depth) from FCL (libccd MPR for
+// Collision detection (paper §4.2): sweep and prune (broadphase.hpp) over the objects and the
+// hand's 16 links, then narrowphase contacts (point, normal, depth) from FCL (libccd MPR for
 // general convex pairs, FCL's box-box manifold for boxes). Where FCL gives one point for a flat
 // contact (a cylinder's cap or side, or a capsule, lying on a face), a manifold of up to
 // max_points_per_pair points is built on the face, so such bodies rest without rocking.
 //
 // Pairs that cannot act are never reported: static-static, hand-static and link-link. The output
 // is ordered (by body_a, body_b, then the pair's own order: FCL's, or the manifold's deepest
-// first), and the broadphase tree is
-// built in scene order, so the same poses always give the same contacts in the same order.
+// first), so the same poses always give the same contacts in the same order.
 
 #include <Eigen/Geometry>
 

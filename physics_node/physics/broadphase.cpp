@@ -1,0 +1,90 @@
+#include "physics_node/physics/broadphase.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace vcockpit::physics {
+
+Aabb shape_aabb(const Shape& shape, const Eigen::Isometry3d& X_GS) {
+  const Eigen::Matrix3d& R = X_GS.linear();
+  const Eigen::Vector3d c = X_GS.translation();
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();
+  switch (shape.kind) {
+    case ShapeKind::kBox:
+      half = R.cwiseAbs() * (0.5 * shape.box_size_m);
+      break;
+    case ShapeKind::kSphere:
+      half.setConstant(shape.radius_m);
+      break;
+    case ShapeKind::kCapsule:  // the axis segment, swept by the radius
+      half = (0.5 * shape.length_m) * R.col(2).cwiseAbs() + Eigen::Vector3d::Constant(shape.radius_m);
+      break;
+    case ShapeKind::kCylinder: {  // the axis segment plus the caps' disks: r sqrt(1 - a_i^2)
+      const Eigen::Vector3d a = R.col(2);
+      for (int i = 0; i < 3; ++i)
+        half[i] = 0.5 * shape.length_m * std::abs(a[i]) +
+                  shape.radius_m * std::sqrt(std::max(0.0, 1.0 - a[i] * a[i]));
+      break;
+    }
+  }
+  return {c - half, c + half};
+}
+
+SweepAndPrune::SweepAndPrune(std::vector<BroadphaseBody> kinds)
+    : kinds_(std::move(kinds)), boxes_(kinds_.size()), order_(kinds_.size()) {
+  std::iota(order_.begin(), order_.end(), 0);
+}
+
+bool SweepAndPrune::can_act(int a, int b) const {
+  const BroadphaseBody ka = kinds_[static_cast<std::size_t>(a)];
+  const BroadphaseBody kb = kinds_[static_cast<std::size_t>(b)];
+  if (ka != BroadphaseBody::kDynamic && kb != BroadphaseBody::kDynamic) return false;
+  const bool hand = ka == BroadphaseBody::kHand || kb == BroadphaseBody::kHand;
+  return !hand || hand_enabled_;
+}
+
+void SweepAndPrune::find_pairs(std::vector<BodyPair>& out) {
+  out.clear();
+  if (axis_ < 0) {
+    // the axis along which the box centres spread the most separates the most pairs
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero(), sq = Eigen::Vector3d::Zero();
+    for (const Aabb& b : boxes_) {
+      const Eigen::Vector3d c = 0.5 * (b.lo + b.hi);
+      mean += c;
+      sq += c.cwiseProduct(c);
+    }
+    const double n = std::max<double>(1.0, static_cast<double>(boxes_.size()));
+    const Eigen::Vector3d variance = sq / n - (mean / n).cwiseProduct(mean / n);
+    variance.maxCoeff(&axis_);
+  }
+  const int axis = axis_;
+  // insertion sort by the lower end (stable: ties keep their order, so the sweep is a function
+  // of the poses' history only, and the output is sorted anyway)
+  for (std::size_t i = 1; i < order_.size(); ++i) {
+    const int body = order_[i];
+    const double key = boxes_[static_cast<std::size_t>(body)].lo[axis];
+    std::size_t j = i;
+    while (j > 0 && boxes_[static_cast<std::size_t>(order_[j - 1])].lo[axis] > key) {
+      order_[j] = order_[j - 1];
+      --j;
+    }
+    order_[j] = body;
+  }
+  for (std::size_t i = 0; i < order_.size(); ++i) {
+    const int a = order_[i];
+    const BroadphaseBody ka = kinds_[static_cast<std::size_t>(a)];
+    if (ka == BroadphaseBody::kHand && !hand_enabled_) continue;
+    const Aabb& box_a = boxes_[static_cast<std::size_t>(a)];
+    for (std::size_t j = i + 1; j < order_.size(); ++j) {
+      const int b = order_[j];
+      const Aabb& box_b = boxes_[static_cast<std::size_t>(b)];
+      if (box_b.lo[axis] > box_a.hi[axis]) break;  // no later box reaches back to a
+      if (!can_act(a, b) || !box_a.overlaps(box_b)) continue;
+      out.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::sort(out.begin(), out.end());
+}
+
+}  // namespace vcockpit::physics

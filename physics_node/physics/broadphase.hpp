@@ -1,0 +1,67 @@
+#pragma once
+// Broadphase: the body pairs whose axis-aligned boxes overlap and that can act on each other, by
+// sweep and prune along one axis (Baraff's, as in Bullet's and PhysX's SAP). The bodies keep
+// their sorted order from substep to substep, so re-sorting after a small motion is an insertion
+// sort of a nearly sorted list: O(n) plus the few swaps.
+//
+// Pairs that cannot act are never reported: static-static, hand-static, hand-hand, and the hand
+// while it is disabled. The output is sorted by (lo, hi), whatever the sweep order.
+
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <vector>
+
+#include "physics_node/physics/scene.hpp"
+
+namespace vcockpit::physics {
+
+struct Aabb {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero();
+  Eigen::Vector3d hi = Eigen::Vector3d::Zero();
+
+  bool overlaps(const Aabb& o) const {
+    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+  }
+};
+
+// The tight box of a shape (centred on its frame, axis along z) posed at X_GS.
+Aabb shape_aabb(const Shape& shape, const Eigen::Isometry3d& X_GS);
+
+enum class BroadphaseBody : uint8_t { kStatic, kDynamic, kHand };
+
+struct BodyPair {
+  int lo = -1;
+  int hi = -1;
+  friend bool operator<(const BodyPair& x, const BodyPair& y) {
+    return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi;
+  }
+  friend bool operator==(const BodyPair& x, const BodyPair& y) {
+    return x.lo == y.lo && x.hi == y.hi;
+  }
+};
+
+class SweepAndPrune {
+ public:
+  // One entry per body, in body order. Every box starts empty at the origin.
+  explicit SweepAndPrune(std::vector<BroadphaseBody> kinds);
+
+  void set_box(int body, const Aabb& box) { boxes_[static_cast<std::size_t>(body)] = box; }
+  const Aabb& box(int body) const { return boxes_[static_cast<std::size_t>(body)]; }
+  void set_hand_enabled(bool enabled) { hand_enabled_ = enabled; }
+
+  // The overlapping pairs that can act, into `out` (cleared first). No allocation once `out`
+  // has grown to the largest pair count.
+  void find_pairs(std::vector<BodyPair>& out);
+
+ private:
+  bool can_act(int a, int b) const;
+
+  std::vector<BroadphaseBody> kinds_;
+  std::vector<Aabb> boxes_;
+  std::vector<int> order_;  // bodies by the lower end of their box on the sweep axis
+  int axis_ = -1;           // chosen on the first sweep: where the boxes are spread the most
+  bool hand_enabled_ = false;
+};
+
+}  // namespace vcockpit::physics
