@@ -42,6 +42,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--node-name", options.node_name, "name on cockpit/node_status")
       ->capture_default_str();
+  app.add_option("--stats-out", options.stats_out,
+                 "write the run's frames per second and render times (JSON) here at exit");
   add_dds_flags(app, dds_flags);
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")->capture_default_str();
   CLI11_PARSE(app, argc, argv);

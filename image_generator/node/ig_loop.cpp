@@ -2,10 +2,12 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
 
+#include "common/atomic_file.hpp"
 #include "common/clock.hpp"
 #include "common/idl_convert.hpp"
 #include "common/signals.hpp"
@@ -66,7 +68,35 @@ class ImageGenerator {
   int64_t last_status_ns_ = 0;
   std::unique_ptr<SnapshotWriter> snapshots_;
   std::FILE* snapshot_index_ = nullptr;
+  // for --stats-out: every frame's render time (reserved up front: no allocation per frame)
+  std::vector<int64_t> render_ns_;
+  int64_t first_frame_start_ns_ = 0;
+  int64_t last_frame_end_ns_ = 0;
+
+  void write_stats() const;
 };
+
+// Frames per second over the run (first render start to last render end) and render-time
+// percentiles: what the benchmark reads.
+void ImageGenerator::write_stats() const {
+  if (options_.stats_out.empty()) return;
+  std::vector<int64_t> sorted = render_ns_;
+  std::sort(sorted.begin(), sorted.end());
+  const auto ms_at = [&](double q) {
+    if (sorted.empty()) return 0.0;
+    return static_cast<double>(sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1) + 0.5)]) * 1e-6;
+  };
+  const double wall_s = static_cast<double>(last_frame_end_ns_ - first_frame_start_ns_) * 1e-9;
+  AtomicFile file(options_.stats_out);
+  std::fprintf(file.get(),
+               "{\n  \"frames\": %llu,\n  \"width_px\": %d,\n  \"height_px\": %d,\n"
+               "  \"paced_fps\": %.3f,\n  \"wall_s\": %.6f,\n  \"fps\": %.3f,\n"
+               "  \"render_ms\": {\"p50\": %.3f, \"p99\": %.3f, \"max\": %.3f}\n}\n",
+               static_cast<unsigned long long>(frames_), hmd_.width_px, hmd_.height_px, options_.fps,
+               wall_s, wall_s > 0 ? static_cast<double>(frames_) / wall_s : 0.0, ms_at(0.5),
+               ms_at(0.99), sorted.empty() ? 0.0 : static_cast<double>(sorted.back()) * 1e-6);
+  file.commit();
+}
 
 // snapshots.csv: which world state each snapshot shows (the held object and where it was).
 void ImageGenerator::note_snapshot() {
@@ -156,6 +186,8 @@ int ImageGenerator::run() {
     }
   }
   const int64_t period_ns = options_.fps > 0 ? std::llround(1e9 / options_.fps) : 0;
+  if (!options_.stats_out.empty())
+    render_ns_.reserve(options_.frames > 0 ? options_.frames : 1u << 20);
   int64_t next_ns = monotonic_now_ns();
   last_status_ns_ = next_ns;
   while (!shutdown_requested() && (options_.frames == 0 || frames_ < options_.frames)) {
@@ -170,6 +202,9 @@ int ImageGenerator::run() {
     renderer->render(instances_, X_GHead_);
     const int64_t end_ns = monotonic_now_ns();
     render_ns_in_period_ += end_ns - start_ns;
+    if (frames_ == 0) first_frame_start_ns_ = start_ns;
+    last_frame_end_ns_ = end_ns;
+    if (render_ns_.size() < render_ns_.capacity()) render_ns_.push_back(end_ns - start_ns);
     frame_.frame_seq(frames_);
     frame_.width_px(static_cast<uint32_t>(hmd_.width_px));
     frame_.height_px(static_cast<uint32_t>(hmd_.height_px));
@@ -190,6 +225,7 @@ int ImageGenerator::run() {
   snapshots_.reset();  // finishes the queued PNGs
   if (snapshot_index_) std::fclose(snapshot_index_);
   spdlog::info("rendered {} frames; snapshots written {}", frames_, written);
+  write_stats();
   return 0;
 }
 

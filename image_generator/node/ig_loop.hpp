@@ -22,6 +22,7 @@ struct IgOptions {
   double fps = 60.0;             // frame pacing; 0: as fast as possible
   double wait_timeout_s = 10.0;  // for the first object_info
   std::string node_name = "image_generator";
+  std::string stats_out;         // JSON file of the run's frame rate and render times; empty: none
 };
 
 // Exit codes: 0 done, 3 no scene arrived in time, 4 rendering failed.

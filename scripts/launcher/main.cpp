@@ -227,6 +227,13 @@ void Launcher::write_summary(double elapsed_s) {
                "\"samples\": %zu},\n",
                percentile(lat, 0.5), percentile(lat, 0.99), lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end()),
                lat.size());
+  const auto& age = monitor_->age_at_render_ms();
+  const auto& render = monitor_->render_ms();
+  std::fprintf(f,
+               "  \"latency_parts_ms\": {\"age_at_render_start_p50\": %.3f, "
+               "\"age_at_render_start_p99\": %.3f, \"render_p50\": %.3f, \"render_p99\": %.3f},\n",
+               percentile(age, 0.5), percentile(age, 0.99), percentile(render, 0.5),
+               percentile(render, 0.99));
   std::fprintf(f, "  \"final\": {");
   bool first = true;
   for (const auto& [name, st] : monitor_->final_states()) {
@@ -263,6 +270,8 @@ void Launcher::write_summary(double elapsed_s) {
   std::printf("  glove->frame latency p50 %.1f ms, p99 %.1f ms, max %.1f ms (%zu samples)\n",
               percentile(lat, 0.5), percentile(lat, 0.99),
               lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end()), lat.size());
+  std::printf("    of which: sample age at render start p50 %.1f ms, render p50 %.1f ms\n",
+              percentile(monitor_->age_at_render_ms(), 0.5), percentile(monitor_->render_ms(), 0.5));
   std::printf("  summary              %s/summary.json, logs %s/logs/\n", options_.out_dir.c_str(),
               options_.out_dir.c_str());
 }

@@ -62,6 +62,9 @@ void RigMonitor::poll() {
     if (frame.source_stamp_ns() <= 0 || frame.source_stamp_ns() == last_source_stamp_ns_) continue;
     last_source_stamp_ns_ = frame.source_stamp_ns();
     latencies_ms_.push_back(static_cast<double>(frame.render_end_ns() - frame.source_stamp_ns()) * 1e-6);
+    // where the latency goes: the sample's age when the frame began, and the render itself
+    age_at_render_ms_.push_back(static_cast<double>(frame.render_start_ns() - frame.source_stamp_ns()) * 1e-6);
+    render_ms_.push_back(static_cast<double>(frame.render_end_ns() - frame.render_start_ns()) * 1e-6);
   }
 }
 

@@ -29,6 +29,9 @@ class RigMonitor {
   const std::map<std::string, cockpit::NodeStatus>& statuses() const { return statuses_; }
   const std::vector<SeenEvent>& events() const { return events_; }
   const std::vector<double>& latencies_ms() const { return latencies_ms_; }
+  // for the same frames: the sample's age at render start, and the render time
+  const std::vector<double>& age_at_render_ms() const { return age_at_render_ms_; }
+  const std::vector<double>& render_ms() const { return render_ms_; }
   uint64_t frames_seen() const { return frames_seen_; }
   // mean physics step rate over the statuses while the glove was alive, and the last late count
   double mean_step_rate_hz() const;
@@ -50,6 +53,8 @@ class RigMonitor {
   std::map<uint32_t, std::string> names_;
   std::vector<SeenEvent> events_;
   std::vector<double> latencies_ms_;
+  std::vector<double> age_at_render_ms_;
+  std::vector<double> render_ms_;
   int64_t last_source_stamp_ns_ = 0;
   uint64_t frames_seen_ = 0;
   std::string held_;
