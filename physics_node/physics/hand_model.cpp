@@ -11,14 +11,6 @@ double row_theta(const DhRow& row, const JointAngles& q) {
   return row.theta_offset_rad + row.scale * q[static_cast<std::size_t>(row.joint)];
 }
 
-// The first half of a row, Rz(theta) Tz(d): the frame on joint i's axis, turned by it.
-Eigen::Isometry3d joint_frame(const DhRow& row, double theta_rad) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = Eigen::AngleAxisd(theta_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  X.translation() = Eigen::Vector3d(0.0, 0.0, row.d_m);
-  return X;
-}
-
 // Reflection in the xz plane applied on both sides (M X M, M = diag(1,-1,1)): the rotation stays
 // proper because the two sign flips cancel in its determinant. Exact (sign flips only).
 Eigen::Isometry3d mirror_pose(const Eigen::Isometry3d& X) {
@@ -50,15 +42,43 @@ void chain_kinematics(const HandModel& model, Finger finger, const JointAngles& 
 
   // eqs. 8-10: X_HB T(0,1) T(1,2) ... ; a row tagged with a link outputs that link's proximal
   // joint frame (DH frame i lies on joint i+1's axis), turned by the next row's theta.
-  Eigen::Isometry3d X_HF = chain.X_HB;
+  // Composed column by column (what dh_transform and the next row's Rz(theta) Tz(d) multiply out
+  // to), one sine and cosine per row: this runs on every substep.
+  Eigen::Matrix3d R = chain.X_HB.linear();
+  Eigen::Vector3d p = chain.X_HB.translation();
   const std::size_t n = chain.rows.size();
+  double ct_next = 1.0, st_next = 0.0;
+  if (n > 0) {
+    const double theta = row_theta(chain.rows[0], q);
+    ct_next = std::cos(theta);
+    st_next = std::sin(theta);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     const DhRow& row = chain.rows[i];
-    X_HF = X_HF * dh_transform(row, row_theta(row, q));
+    const double ct = ct_next, st = st_next;
+    if (i + 1 < n) {
+      const double theta = row_theta(chain.rows[i + 1], q);
+      ct_next = std::cos(theta);
+      st_next = std::sin(theta);
+    }
+    // R Rz(theta), then Tz(d) Tx(a), then Rx(alpha)
+    const Eigen::Vector3d x = ct * R.col(0) + st * R.col(1);
+    const Eigen::Vector3d y = ct * R.col(1) - st * R.col(0);
+    const Eigen::Vector3d z = R.col(2);
+    p += row.a_m * x + row.d_m * z;
+    const double ca = std::cos(row.alpha_rad), sa = std::sin(row.alpha_rad);
+    R.col(0) = x;
+    R.col(1) = ca * y + sa * z;
+    R.col(2) = ca * z - sa * y;
     if (row.link < 0 || row.link >= kLinkCount) continue;
-    Eigen::Isometry3d X_HL = X_HF;
-    if (i + 1 < n) X_HL = X_HF * joint_frame(chain.rows[i + 1], row_theta(chain.rows[i + 1], q));
-    out.X_HL[static_cast<std::size_t>(row.link)] = X_HL;
+    Eigen::Isometry3d& X_HL = out.X_HL[static_cast<std::size_t>(row.link)];
+    X_HL.linear() = R;
+    X_HL.translation() = p;
+    if (i + 1 < n) {  // joint_frame of the next row: Rz(theta_next) Tz(d_next)
+      X_HL.linear().col(0) = ct_next * R.col(0) + st_next * R.col(1);
+      X_HL.linear().col(1) = ct_next * R.col(1) - st_next * R.col(0);
+      X_HL.translation() = p + chain.rows[i + 1].d_m * R.col(2);
+    }
   }
 
   const auto distal = static_cast<std::size_t>(links[2]);
