@@ -5,6 +5,12 @@
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <string>
 
 #include "common/logging.hpp"
 #include "common/signals.hpp"
@@ -27,6 +33,33 @@ int run_offline_mode(const physics_io::OfflineOptions& options) {
   return 0;
 }
 
+// CLI11's Range and PositiveNumber let "nan" and "inf" through (every comparison with NaN is
+// false): each number option checks this too.
+const CLI::Validator kFinite(
+    [](std::string& text) -> std::string {
+      try {
+        if (std::isfinite(std::stod(text))) return {};
+      } catch (const std::exception&) {
+      }
+      return "'" + text + "' is not a finite number";
+    },
+    "FINITE");
+
+// --stats-out is written when the node stops: a path that cannot be written must fail at start,
+// not after a long run.
+void check_stats_out(const std::string& path) {
+  if (path.empty()) throw CLI::ValidationError("--stats-out: empty file name");
+  const std::filesystem::path file(path);
+  if (std::filesystem::is_directory(file)) {
+    throw CLI::ValidationError("--stats-out: '" + path + "' is a directory, not a file");
+  }
+  const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
+  if (!std::filesystem::is_directory(dir) || access(dir.c_str(), W_OK) != 0) {
+    throw CLI::ValidationError("--stats-out: directory '" + dir.string() +
+                               "' does not exist or is not writable");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -47,28 +80,33 @@ int main(int argc, char** argv) {
   app.add_option("--log", offline_options.log_path, "offline: glove log CSV driving the hand")
       ->check(CLI::ExistingFile);
   app.add_option("--duration", offline_options.duration_s,
-                 "offline: simulated seconds (default: the log's span)")
-      ->check(CLI::PositiveNumber);
+                 "offline: simulated seconds (default: the log's span); DDS: stop by itself after "
+                 "this many seconds of real time, as on SIGINT (default: run until a signal)")
+      ->check(CLI::Range(0.001, 1e7) & kFinite);
   app.add_option("--out", offline_options.out_dir,
                  "offline: output directory for trajectories.csv, events.jsonl, summary.json");
   app.add_option("--output-hz", offline_options.output_hz, "offline: trajectory rows per second")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::PositiveNumber & kFinite)
       ->capture_default_str();
   app.add_flag("--lockstep", node_options.lockstep,
                "DDS: step to each hand sample's stamp (pairs with glove_driver --lockstep)");
   app.add_option("--rate-hz", node_options.rate_hz, "DDS real time: physics steps per second")
-      ->check(CLI::Range(1.0, 10000.0))
+      ->check(CLI::Range(1.0, 10000.0) & kFinite)
       ->capture_default_str();
   app.add_option("--publish-hz", node_options.publish_hz,
                  "DDS: hand_state/object_state publications per second")
-      ->check(CLI::Range(1.0, 10000.0))
+      ->check(CLI::Range(1.0, 10000.0) & kFinite)
       ->capture_default_str();
   app.add_option("--glove-timeout", node_options.glove_timeout_s,
                  "DDS: seconds without a hand sample before the glove counts as lost")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::PositiveNumber & kFinite)
       ->capture_default_str();
   app.add_option("--node-name", node_options.node_name, "name on cockpit/node_status")
       ->capture_default_str();
+  std::optional<std::string> stats_out;
+  app.add_option("--stats-out", stats_out,
+                 "DDS: at stop, write loop statistics to this JSON file (mode, duration, steps, "
+                 "rate, late steps, samples, DDS transit, sample age at step, step compute time)");
   add_dds_flags(app, dds_flags);
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
@@ -77,11 +115,20 @@ int main(int argc, char** argv) {
     setup_logging("physics_node", log_level);
     install_shutdown_handlers();
     if (offline) {
+      if (stats_out) {
+        throw CLI::ValidationError("--stats-out belongs to the DDS modes (--offline writes "
+                                   "DIR/summary.json)");
+      }
       offline_options.scene_path = scene_path;
       return run_offline_mode(offline_options);
     }
     if (!offline_options.log_path.empty() || !offline_options.out_dir.empty()) {
       throw CLI::ValidationError("--log and --out belong to --offline");
+    }
+    node_options.duration_s = offline_options.duration_s.value_or(0.0);
+    if (stats_out) {
+      check_stats_out(*stats_out);
+      node_options.stats_out = *stats_out;
     }
     physics::Scene scene = load_scene(scene_path);
     DdsParticipant participant(resolve_dds_options(dds_flags), node_options.node_name);

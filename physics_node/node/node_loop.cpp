@@ -8,6 +8,7 @@
 #include "common/clock.hpp"
 #include "common/signals.hpp"
 #include "physics_node/io/hand_input.hpp"
+#include "physics_node/node/loop_stats.hpp"
 #include "physics_node/node/sample_gate.hpp"
 #include "physics_node/node/state_publisher.hpp"
 
@@ -34,13 +35,14 @@ class Node {
   int run_lockstep();
 
  private:
-  // Takes every pending sample; the accepted ones go to `on_sample(sample, new_source)`.
-  // A different writer (a restarted glove driver) starts its own timeline: time order is checked
-  // per source. No allocation.
+  // Takes every pending sample; the accepted ones go to `on_sample(sample, new_source)`, their
+  // latencies to stats_. A different writer (a restarted glove driver) starts its own timeline:
+  // time order is checked per source. No allocation.
   template <class OnSample>
   void drain(OnSample on_sample) {
     dds::SampleInfo info;
     while (reader_.take(message_, &info)) {
+      const int64_t take_ns = monotonic_now_ns();
       const bool new_source = !have_source_ || info.publication_handle != source_;
       if (new_source) gate_.reset_time();
       glove::GloveSample sample;
@@ -51,7 +53,8 @@ class Node {
         have_source_ = true;
       }
       ++received_;
-      last_sample_wall_ns_ = monotonic_now_ns();
+      stats_.record_sample(info, message_.source_stamp_ns(), take_ns);
+      last_sample_wall_ns_ = take_ns;
       stamps_.sample_time_ns = message_.sample_time_ns();
       stamps_.source_stamp_ns = message_.source_stamp_ns();
       on_sample(sample, new_source);
@@ -65,7 +68,9 @@ class Node {
   }
 
   void step_world() {
+    const int64_t start_ns = monotonic_now_ns();
     world_.step();
+    stats_.step_compute.record_ns(monotonic_now_ns() - start_ns);
     publisher_.publish_events(world_);
     for (const auto& e : world_.step_events()) {
       spdlog::info("{} {} at {:.3f} s: {}", e.grasp ? "GRASP" : "RELEASE",
@@ -82,6 +87,18 @@ class Node {
   }
 
   void maybe_publish_status(int64_t now_ns, bool alive, const char* detail);
+
+  // --duration: the loops stop by themselves at this monotonic time (0: never).
+  void start_clock() {
+    run_start_ns_ = monotonic_now_ns();
+    stop_at_ns_ = options_.duration_s > 0 ? run_start_ns_ + seconds_to_ns(options_.duration_s) : 0;
+  }
+  bool should_stop(int64_t now_ns) const {
+    return shutdown_requested() || (stop_at_ns_ > 0 && now_ns >= stop_at_ns_);
+  }
+  // The latency log line and the --stats-out file (the caller fills mode, duration and what is
+  // particular to its mode).
+  void report_stop(StatsReport report);
 
   NodeOptions options_;
   physics::World world_;
@@ -102,7 +119,22 @@ class Node {
   int64_t publish_ns_ = 0;
   int64_t last_status_ns_ = 0;
   int64_t last_sample_wall_ns_ = 0;
+  int64_t run_start_ns_ = 0;
+  int64_t stop_at_ns_ = 0;
+  LoopStats stats_;
 };
+
+void Node::report_stop(StatsReport report) {
+  report.steps = world_.step_count();
+  report.samples = received_;
+  report.rejected = gate_.rejected();
+  spdlog::info("DDS transit {}; sample age at step {}; step compute {}",
+               latency_text_us(stats_.dds_transit), latency_text_us(stats_.age_at_step),
+               latency_text_us(stats_.step_compute));
+  if (options_.stats_out.empty()) return;
+  write_stats_json(options_.stats_out, report, stats_);
+  spdlog::info("statistics written to {}", options_.stats_out);
+}
 
 void Node::maybe_publish_status(int64_t now_ns, bool alive, const char* detail) {
   if (now_ns - last_status_ns_ < 1'000'000'000) return;
@@ -143,13 +175,14 @@ void Node::maybe_publish_status(int64_t now_ns, bool alive, const char* detail) 
 int Node::run_realtime() {
   const int64_t period_ns = std::llround(1e9 / options_.rate_hz);
   const int64_t publish_period_ns = std::llround(1e9 / options_.publish_hz);
-  int64_t next_ns = monotonic_now_ns();
+  start_clock();
+  int64_t next_ns = run_start_ns_;
   int64_t next_publish_ns = next_ns;
   bool tracking = false;
   bool have_input = false;
   spdlog::info("real time: {} Hz steps ({} substeps), world published at {} Hz", options_.rate_hz,
                world_.substeps(), options_.publish_hz);
-  while (!shutdown_requested()) {
+  while (!should_stop(monotonic_now_ns())) {
     sleep_until_ns(next_ns);
     drain([&](const glove::GloveSample& s, bool) {
       input_ = physics_io::hand_input_from_glove(hand_, s);
@@ -184,9 +217,20 @@ int Node::run_realtime() {
       next_ns += behind * period_ns;
     }
   }
+  // the loop's own figures end here: the flush below is shutdown, not stepping
+  const int64_t loop_end_ns = monotonic_now_ns();
   publisher_.flush(500'000'000);
-  spdlog::info("stopped after {} steps; {} samples accepted, {} rejected, {} late steps",
-               world_.step_count(), received_, gate_.rejected(), late_steps_);
+  const double loop_s = ns_to_seconds(loop_end_ns - run_start_ns_);
+  const double rate_hz = loop_s > 0 ? static_cast<double>(world_.step_count()) / loop_s : 0.0;
+  spdlog::info("stopped after {} steps in {:.3f} s ({:.1f} Hz); {} samples accepted, {} rejected, "
+               "{} late steps",
+               world_.step_count(), loop_s, rate_hz, received_, gate_.rejected(), late_steps_);
+  StatsReport report;
+  report.mode = "realtime";
+  report.rate_hz = rate_hz;
+  report.late_steps = late_steps_;
+  report.duration_s = loop_s;
+  report_stop(report);
   return 0;
 }
 
@@ -198,7 +242,8 @@ int Node::run_lockstep() {
   bool dirty = false;
   spdlog::info("lockstep: stepping to each sample's stamp ({} substeps per step)",
                world_.substeps());
-  while (!shutdown_requested()) {
+  start_clock();
+  while (!should_stop(monotonic_now_ns())) {
     reader_.wait_for_data(20'000'000);
     drain([&](const glove::GloveSample& s, bool new_source) {
       // world time 0 is the first sample; a later source continues from where the world is
@@ -227,9 +272,15 @@ int Node::run_lockstep() {
     maybe_publish_status(now_ns, alive, alive ? "lockstep" : started ? "lockstep, input ended"
                                                                      : "lockstep, waiting");
   }
+  const int64_t loop_end_ns = monotonic_now_ns();
   publisher_.flush(500'000'000);
   spdlog::info("stopped at {:.3f} s simulated after {} steps; {} samples accepted, {} rejected",
                ns_to_seconds(world_.time_ns()), world_.step_count(), received_, gate_.rejected());
+  StatsReport report;
+  report.mode = "lockstep";
+  report.duration_s = ns_to_seconds(loop_end_ns - run_start_ns_);
+  report.simulated_s = ns_to_seconds(world_.time_ns());
+  report_stop(report);
   return 0;
 }
 

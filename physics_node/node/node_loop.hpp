@@ -14,6 +14,9 @@
 // Glove lost (no sample for --glove-timeout, or the writer's liveliness lost): the hand stays
 // where it was, held objects are released ("glove lost"), the status says so; samples resume ->
 // tracking resumes.
+//
+// Both modes measure their input latency and step cost (loop_stats.hpp), print them when they
+// stop and, with `stats_out`, write them to a JSON file.
 
 #include <string>
 
@@ -28,11 +31,13 @@ struct NodeOptions {
   double publish_hz = 90.0;
   double glove_timeout_s = 0.5;
   std::string node_name = "physics_node";
+  double duration_s = 0.0;  // stop by itself after this much real time (0: only on a signal)
+  std::string stats_out;    // JSON file of loop statistics written at stop (empty: none)
 };
 
 constexpr int kMaxCatchUpSteps = 100;
 
-// Runs until SIGINT/SIGTERM. Returns the process exit code.
+// Runs until SIGINT/SIGTERM or for `duration_s`. Returns the process exit code.
 int run_node(DdsParticipant& participant, physics::Scene scene, const NodeOptions& options);
 
 }  // namespace vcockpit::physics_node

@@ -1,0 +1,149 @@
+// Physics micro-benchmarks: hand forward kinematics, collision detection (broadphase +
+// narrowphase) and one full world step, on the default cockpit with the hand holding the cup and
+// on the same cockpit with 10, 100 and 500 loose objects. With MuJoCo 2.2 stepping the same
+// scenes in the same run (BM_MujocoStep), so the two can be compared as a ratio.
+//
+// Every world is brought to its holding state once (bench_scenes.hpp) and kept, so a benchmark's
+// fixed iteration count is one run of consecutive steps, each timed on its own (p50/p99/max).
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+
+#include "bench/bench_scenes.hpp"
+#include "bench/mujoco_scene.hpp"
+#include "bench/step_timing.hpp"
+#include "physics_node/physics/collision.hpp"
+#include "physics_node/physics/hand_model.hpp"
+#include "physics_node/physics/world.hpp"
+
+namespace vcockpit::bench {
+namespace {
+
+// A world at its holding state and the hand input that keeps it there.
+struct HeldWorld {
+  std::unique_ptr<physics::World> world;
+  physics::HandInput hand;
+};
+
+physics::Scene scene_with(int loose_objects) {
+  return loose_objects == 0 ? cockpit_scene() : crowded_cockpit_scene(loose_objects);
+}
+
+// One per scene for the whole run: the lead-in (4 s of the glove log) is paid once.
+HeldWorld& held_world(int loose_objects) {
+  static std::map<int, HeldWorld> worlds;
+  auto it = worlds.find(loose_objects);
+  if (it == worlds.end()) {
+    HeldWorld held;
+    held.world = std::make_unique<physics::World>(scene_with(loose_objects));
+    held.hand = step_to_hold(*held.world);
+    it = worlds.emplace(loose_objects, std::move(held)).first;
+  }
+  return it->second;
+}
+
+void scene_counters(benchmark::State& state, const physics::World& world) {
+  int dynamic = 0;
+  for (const auto& o : world.scene().objects) dynamic += o.dynamic ? 1 : 0;
+  state.counters["dynamic_objects"] = dynamic;
+  state.counters["substeps"] = world.substeps();
+}
+
+void BM_HandForwardKinematics(benchmark::State& state) {
+  HeldWorld& held = held_world(0);
+  const physics::HandModel& hand = *held.world->scene().hand;
+  physics::JointAngles q = held.hand.q_rad;
+  physics::HandLinkPoses poses;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(q);
+    physics::forward_kinematics(hand, q, poses);
+    benchmark::DoNotOptimize(poses);
+  }
+}
+BENCHMARK(BM_HandForwardKinematics);
+
+// Broadphase and narrowphase of one substep, on the poses of a world at its holding state.
+void BM_Collision(benchmark::State& state) {
+  const int loose = static_cast<int>(state.range(0));
+  HeldWorld& held = held_world(loose);
+  const physics::World& world = *held.world;
+  physics::CollisionWorld collision(world.scene());
+  std::vector<Eigen::Isometry3d> X_GO;
+  for (const auto& b : world.bodies()) X_GO.push_back(b.X_GO);
+  std::vector<physics::ContactPoint> contacts;
+  StepTiming timing(static_cast<std::size_t>(state.max_iterations));
+  for (auto _ : state) {
+    timing.time([&] {
+      collision.set_poses(X_GO, &world.X_GL());
+      collision.find_candidate_pairs();
+      collision.compute_contacts(contacts);
+    });
+  }
+  timing.report(state);
+  scene_counters(state, world);
+  state.counters["pairs"] = static_cast<double>(collision.candidate_pair_count());
+  state.counters["contacts"] = static_cast<double>(contacts.size());
+}
+BENCHMARK(BM_Collision)->Arg(0)->Arg(10)->Arg(100)->Arg(500)->Iterations(2000)
+    ->Unit(benchmark::kMicrosecond);
+
+// One full world step (all substeps and the grasp test) with the hand holding the cup.
+void BM_WorldStep(benchmark::State& state) {
+  const int loose = static_cast<int>(state.range(0));
+  HeldWorld& held = held_world(loose);
+  physics::World& world = *held.world;
+  StepTiming timing(static_cast<std::size_t>(state.max_iterations));
+  for (auto _ : state) {
+    timing.time([&] {
+      world.set_hand_input(held.hand);
+      world.step();
+    });
+  }
+  timing.report(state);
+  scene_counters(state, world);
+  state.counters["contacts"] = static_cast<double>(world.contacts().size());
+  const int cup = world.scene().find_object("cup");
+  state.counters["cup_held"] = world.bodies()[static_cast<std::size_t>(cup)].held_by ==
+                                       physics::kNotHeld ? 0 : 1;
+}
+
+// MuJoCo stepping the same scene from the same state: the objects where ours are at the holding
+// state, the hand's links as mocap bodies where ours are.
+void BM_MujocoStep(benchmark::State& state) {
+  const int loose = static_cast<int>(state.range(0));
+  HeldWorld& held = held_world(loose);
+  MujocoWorld mujoco(held.world->scene());
+  mujoco.set_hand(held.world->X_GL());
+  mujoco.set_object_states(held.world->bodies());  // the held cup welded to the palm
+  for (int i = 0; i < 100; ++i) mujoco.step();  // let its soft contacts find their rest
+  StepTiming timing(static_cast<std::size_t>(state.max_iterations));
+  for (auto _ : state) timing.time([&] { mujoco.step(); });
+  timing.report(state);
+  scene_counters(state, *held.world);
+  state.counters["contacts"] = mujoco.contact_count();
+}
+
+// Ours and MuJoCo's, scene by scene, so the JSON has them side by side.
+void register_steps() {
+  for (const int loose : {0, 10, 100, 500}) {
+    const int64_t iterations = loose >= 500 ? 500 : loose >= 100 ? 1000 : 3000;
+    benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
+        ->Arg(loose)->Iterations(iterations)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark("BM_MujocoStep", BM_MujocoStep)
+        ->Arg(loose)->Iterations(iterations)->Unit(benchmark::kMicrosecond);
+  }
+}
+
+}  // namespace
+}  // namespace vcockpit::bench
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  vcockpit::bench::register_steps();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

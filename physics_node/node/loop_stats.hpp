@@ -1,0 +1,66 @@
+#pragma once
+// What the physics node measures about its own loop, for the glove -> physics latency benchmark
+// (bench/dds_latency_floor measures the same two figures with nothing but Fast DDS around them):
+//   dds_transit    SampleInfo reception - source timestamp: Fast DDS's own wall-clock stamps,
+//                  written by the glove driver's writer and set when the reader's history got it.
+//   age_at_step    monotonic now when the loop takes the sample - HandSample.source_stamp_ns:
+//                  the transit plus the wait for the next step slot (up to one period).
+//   step_compute   World::step, end - start.
+// Histograms are allocated once here; recording in the loop never allocates.
+// Header-only: the node's sources are listed in physics_node/CMakeLists.txt.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "common/atomic_file.hpp"
+#include "common/dds_participant.hpp"
+#include "common/latency_histogram.hpp"
+
+namespace vcockpit::physics_node {
+
+struct LoopStats {
+  LatencyHistogram dds_transit;
+  LatencyHistogram age_at_step;
+  LatencyHistogram step_compute;
+
+  void record_sample(const dds::SampleInfo& info, int64_t source_stamp_ns, int64_t take_ns) {
+    dds_transit.record_ns(info.reception_timestamp.to_ns() - info.source_timestamp.to_ns());
+    age_at_step.record_ns(take_ns - source_stamp_ns);
+  }
+};
+
+// The --stats-out file: what applies to the mode (lockstep has no rate or late steps: it steps
+// as fast as its input comes, and reports the simulated time instead).
+struct StatsReport {
+  std::string mode;  // "realtime" or "lockstep"
+  double duration_s = 0.0;
+  uint64_t steps = 0;
+  std::optional<double> rate_hz;
+  std::optional<uint64_t> late_steps;
+  std::optional<double> simulated_s;
+  uint64_t samples = 0;
+  uint64_t rejected = 0;
+};
+
+// Written under a temporary name and renamed into place; throws FileError naming the path.
+inline void write_stats_json(const std::string& path, const StatsReport& r, const LoopStats& s) {
+  AtomicFile file(path);
+  std::FILE* f = file.get();
+  std::fprintf(f, "{\n  \"mode\": \"%s\",\n  \"duration_s\": %.6f,\n  \"steps\": %llu,\n",
+               r.mode.c_str(), r.duration_s, static_cast<unsigned long long>(r.steps));
+  if (r.rate_hz) std::fprintf(f, "  \"rate_hz\": %.3f,\n", *r.rate_hz);
+  if (r.late_steps) {
+    std::fprintf(f, "  \"late_steps\": %llu,\n", static_cast<unsigned long long>(*r.late_steps));
+  }
+  if (r.simulated_s) std::fprintf(f, "  \"simulated_s\": %.6f,\n", *r.simulated_s);
+  std::fprintf(f, "  \"samples\": %llu,\n  \"rejected\": %llu,\n",
+               static_cast<unsigned long long>(r.samples),
+               static_cast<unsigned long long>(r.rejected));
+  std::fprintf(f, "  \"dds_transit_us\": %s,\n", latency_json_us(s.dds_transit).c_str());
+  std::fprintf(f, "  \"age_at_step_us\": %s,\n", latency_json_us(s.age_at_step).c_str());
+  std::fprintf(f, "  \"step_compute_us\": %s\n}\n", latency_json_us(s.step_compute).c_str());
+  file.commit();
+}
+
+}  // namespace vcockpit::physics_node

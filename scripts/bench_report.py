@@ -1,0 +1,259 @@
+#!/usr/bin/env python3
+"""Turns the raw outputs of scripts/bench into bench/results.md and bench/results.json.
+
+usage: bench_report.py OUT_DIR RESULTS.md RESULTS.json
+
+Every figure is read from a file a benchmark wrote in OUT_DIR; each target says where it stands.
+A missing or unreadable input is an error naming the file.
+"""
+import datetime
+import json
+import os
+import platform
+import subprocess
+import sys
+
+
+def load(out_dir, name):
+    path = os.path.join(out_dir, name)
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, json.JSONDecodeError) as e:
+        sys.exit(f"bench_report: {path}: {e}")
+
+
+def machine():
+    cpu = "unknown"
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    mem_gib = 0.0
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemTotal:"):
+                    mem_gib = int(line.split()[1]) / 1024 / 1024
+    except OSError:
+        pass
+    os_name = platform.system()
+    try:
+        with open("/etc/os-release") as f:
+            for line in f:
+                if line.startswith("PRETTY_NAME="):
+                    os_name = line.split("=", 1)[1].strip().strip('"')
+    except OSError:
+        pass
+    return {"cpu": cpu, "cores": os.cpu_count(), "memory_gib": round(mem_gib, 1),
+            "os": os_name, "kernel": platform.release()}
+
+
+def commit():
+    def git(*args):
+        return subprocess.run(["git", *args], capture_output=True, text=True).stdout.strip()
+    sha = git("rev-parse", "--short=12", "HEAD") or "unknown"
+    dirty = git("status", "--porcelain", "--untracked-files=no")
+    return sha + ("+uncommitted changes" if dirty else "")
+
+
+SCENES = {0: "cockpit, hand holding the cup (4 dynamic)",
+          10: "cockpit + 10 loose objects (14 dynamic)",
+          100: "cockpit + 100 loose objects (104 dynamic)",
+          500: "cockpit + 500 loose objects (504 dynamic)"}
+
+
+def physics_rows(gbench):
+    """BM_WorldStep/N and BM_MujocoStep/N side by side, plus the micro-benchmarks."""
+    ours, mujoco, collision, fk = {}, {}, {}, None
+    for b in gbench["benchmarks"]:
+        if b.get("run_type", "iteration") != "iteration":
+            continue
+        parts = b["name"].split("/")
+        kind = parts[0]
+        arg = int(parts[1]) if len(parts) > 1 and parts[1].isdigit() else None
+        figures = {k: b[k] for k in ("p50_us", "p99_us", "max_us", "substeps", "contacts",
+                                     "dynamic_objects", "pairs", "cup_held") if k in b}
+        mean_us = b["real_time"] * {"ns": 1e-3, "us": 1.0, "ms": 1e3, "s": 1e6}[b["time_unit"]]
+        figures["mean_us"] = mean_us
+        if kind == "BM_WorldStep":
+            ours[arg] = figures
+        elif kind == "BM_MujocoStep":
+            mujoco[arg] = figures
+        elif kind == "BM_Collision":
+            collision[arg] = figures
+        elif kind == "BM_HandForwardKinematics":
+            fk = {"mean_ns": mean_us * 1e3}
+    rows = []
+    for n in sorted(ours):
+        o, m = ours[n], mujoco.get(n)
+        rows.append({"loose_objects": n, "scene": SCENES.get(n, f"{n} loose objects"),
+                     "dynamic_objects": int(o.get("dynamic_objects", 0)),
+                     "ours": o, "mujoco": m,
+                     "ratio_p50": o["p50_us"] / m["p50_us"] if m else None,
+                     "collision": collision.get(n)})
+    return rows, fk
+
+
+def status(met):
+    return "met" if met else "not met"
+
+
+def main():
+    if len(sys.argv) != 4:
+        sys.exit(__doc__)
+    out_dir, md_path, json_path = sys.argv[1:]
+    gbench = load(out_dir, "physics.json")
+    floor = load(out_dir, "dds_floor.json")
+    rt = load(out_dir, "physics_rt.json")
+    ig = load(out_dir, "ig.json")
+    rig = load(out_dir, "rig/summary.json")
+    offline = load(out_dir, "offline/summary.json")
+    rows, fk = physics_rows(gbench)
+
+    transit = rt["dds_transit_us"]
+    floor_transit = floor["dds_transit_us"]
+    e2e = rig["glove_to_frame_latency_ms"]
+    row500 = next((r for r in rows if r["loose_objects"] == 500), None)
+    slower = [r for r in rows if r["ratio_p50"] is not None and r["ratio_p50"] > 1.0]
+    targets = [
+        {"target": "physics step no slower than MuJoCo on the same scene",
+         "measured": ", ".join(f"{r['dynamic_objects']} dynamic: {r['ratio_p50']:.2f}x"
+                               for r in rows if r["ratio_p50"] is not None),
+         "met": not slower and bool(rows)},
+        {"target": "500 dynamic objects inside a 1 ms step (p99)",
+         "measured": f"p50 {row500['ours']['p50_us']:.0f} us, p99 {row500['ours']['p99_us']:.0f} us"
+         if row500 else "not run",
+         "met": bool(row500) and row500["ours"]["p99_us"] <= 1000.0},
+        {"target": "glove -> physics DDS latency p99 under 0.5 ms",
+         "measured": f"p99 {transit['p99']:.0f} us", "met": transit["p99"] < 500.0},
+        {"target": "... and within 2x of the bare Fast DDS floor (p99)",
+         "measured": f"{transit['p99']:.0f} us vs floor {floor_transit['p99']:.0f} us "
+                     f"({transit['p99'] / max(floor_transit['p99'], 1e-9):.2f}x)",
+         "met": transit["p99"] <= 2.0 * floor_transit["p99"]},
+        {"target": "stereo 1280x720 per eye at 60 fps or better",
+         "measured": f"{ig['fps']:.1f} fps", "met": ig["fps"] >= 60.0},
+        {"target": "glove-to-frame latency p99 under 20 ms",
+         "measured": f"p99 {e2e['p99']:.1f} ms", "met": e2e["p99"] < 20.0},
+        {"target": "offline runner at 50x real time or better",
+         "measured": f"{offline['realtime_factor']:.1f}x", "met": offline["realtime_factor"] >= 50.0},
+    ]
+
+    results = {
+        "machine": machine(),
+        "date_utc": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M"),
+        "commit": commit(),
+        "physics_step": rows,
+        "hand_forward_kinematics": fk,
+        "dds_latency_at_1khz": {"glove_to_physics": rt, "bare_fast_dds_floor": floor},
+        "realtime_loop": {k: rt.get(k) for k in ("duration_s", "steps", "rate_hz", "late_steps",
+                                                  "step_compute_us")},
+        "image_generator": ig,
+        "end_to_end": {"glove_to_frame_latency_ms": e2e,
+                       "parts_ms": rig.get("latency_parts_ms"),
+                       "frames_rendered": rig.get("frames_rendered")},
+        "offline": {k: offline[k] for k in ("simulated_s", "wall_s", "realtime_factor",
+                                             "substeps_per_step", "stage_wall_s")},
+        "targets": targets,
+    }
+    tmp = json_path + ".partial"
+    with open(tmp, "w") as f:
+        json.dump(results, f, indent=2)
+        f.write("\n")
+    os.replace(tmp, json_path)
+
+    m = results["machine"]
+    md = []
+    md.append("# vcockpit benchmark results\n")
+    md.append(f"Written by `scripts/bench` on {results['date_utc']} UTC, commit `{results['commit']}`.  ")
+    md.append(f"Machine: {m['cpu']}, {m['cores']} cores, {m['memory_gib']} GiB, {m['os']} "
+              f"(kernel {m['kernel']}). All DDS traffic on loopback (UDP, `loopback` profile).\n")
+    md.append("## Targets\n")
+    md.append("| target | measured | |")
+    md.append("|---|---|---|")
+    for t in targets:
+        md.append(f"| {t['target']} | {t['measured']} | {status(t['met'])} |")
+    md.append("")
+    md.append("## Physics step: ours and MuJoCo 2.2.2, same scenes, same run\n")
+    md.append("One 1 ms step with the hand holding the cup (ours: every substep, contacts, grasp "
+              "test; MuJoCo: `mj_step`, Newton solver, the hand's links as mocap bodies). "
+              "Wall time per step, single thread.\n")
+    md.append("| scene | substeps | ours p50 / p99 (us) | contacts | MuJoCo p50 / p99 (us) | "
+              "contacts | ours / MuJoCo (p50) |")
+    md.append("|---|---|---|---|---|---|---|")
+    for r in rows:
+        o, mj = r["ours"], r["mujoco"] or {}
+        md.append(f"| {r['scene']} | {o.get('substeps', 0):.0f} | {o['p50_us']:.1f} / "
+                  f"{o['p99_us']:.1f} | {o.get('contacts', 0):.0f} | "
+                  f"{mj.get('p50_us', float('nan')):.1f} / {mj.get('p99_us', float('nan')):.1f} | "
+                  f"{mj.get('contacts', 0):.0f} | "
+                  f"{r['ratio_p50']:.2f}x |" if r["ratio_p50"] is not None else
+                  f"| {r['scene']} | ... | {o['p50_us']:.1f} / {o['p99_us']:.1f} | | | | |")
+    md.append("")
+    md.append("Collision detection alone (broadphase + narrowphase, one substep's poses):\n")
+    md.append("| scene | pairs | contacts | p50 (us) | p99 (us) |")
+    md.append("|---|---|---|---|---|")
+    for r in rows:
+        c = r["collision"]
+        if c:
+            md.append(f"| {r['scene']} | {c.get('pairs', 0):.0f} | {c.get('contacts', 0):.0f} | "
+                      f"{c['p50_us']:.1f} | {c['p99_us']:.1f} |")
+    if fk:
+        md.append(f"\nHand forward kinematics (22 joints, 16 links): {fk['mean_ns']:.0f} ns.\n")
+    md.append("## DDS latency, glove -> physics at 1 kHz\n")
+    md.append("Transit = Fast DDS reception stamp minus source stamp (same clock, same machine). "
+              "The floor is a bare Fast DDS writer -> reader of the same type with the same QoS "
+              "profile, measured in the same run.\n")
+    md.append("| | samples | p50 (us) | p99 (us) | max (us) |")
+    md.append("|---|---|---|---|---|")
+    md.append(f"| bare Fast DDS floor: transit | {floor_transit['count']} | {floor_transit['p50']:.0f} "
+              f"| {floor_transit['p99']:.0f} | {floor_transit['max']:.0f} |")
+    if "take_latency_us" in floor:
+        t = floor["take_latency_us"]
+        md.append(f"| bare Fast DDS floor: write -> take (waitset) | {t['count']} | {t['p50']:.0f} | "
+                  f"{t['p99']:.0f} | {t['max']:.0f} |")
+    md.append(f"| glove_driver -> physics_node: transit | {transit['count']} | {transit['p50']:.0f} | "
+              f"{transit['p99']:.0f} | {transit['max']:.0f} |")
+    a = rt["age_at_step_us"]
+    md.append(f"| glove_driver -> physics_node: write -> used by a step | {a['count']} | "
+              f"{a['p50']:.0f} | {a['p99']:.0f} | {a['max']:.0f} |")
+    md.append("\n(The 1 kHz loop takes samples at the start of each step, so a sample waits up to "
+              "one period after it arrives.)\n")
+    md.append("## Physics real-time loop\n")
+    sc = rt.get("step_compute_us", {})
+    md.append(f"{rt['duration_s']:.1f} s at a 1 kHz target with the glove replay: "
+              f"{rt['steps']} steps, {rt['rate_hz']:.2f} Hz achieved, {rt['late_steps']} late "
+              f"steps; step compute p50 {sc.get('p50', 0):.0f} us, p99 {sc.get('p99', 0):.0f} us, "
+              f"max {sc.get('max', 0):.0f} us.\n")
+    md.append("## Image generator\n")
+    md.append(f"Stereo {ig['width_px']}x{ig['height_px']} per eye, default cockpit, OSMesa "
+              f"(llvmpipe), unpaced, physics and glove running at 1 kHz on the same cores: "
+              f"{ig['frames']} frames in {ig['wall_s']:.2f} s = **{ig['fps']:.1f} fps**; render "
+              f"p50 {ig['render_ms']['p50']:.1f} ms, p99 {ig['render_ms']['p99']:.1f} ms.\n")
+    md.append("## End to end: glove sample -> rendered frame\n")
+    parts = rig.get("latency_parts_ms") or {}
+    md.append(f"The default rig (`config/rig.yaml`: lockstep replay, frames paced at 60 fps), "
+              f"{e2e['samples']} hand samples drawn: p50 {e2e['p50']:.1f} ms, p99 {e2e['p99']:.1f} "
+              f"ms, max {e2e['max']:.1f} ms. Of which: the sample's age when the frame began "
+              f"p50 {parts.get('age_at_render_start_p50', 0):.1f} ms (p99 "
+              f"{parts.get('age_at_render_start_p99', 0):.1f}), the render p50 "
+              f"{parts.get('render_p50', 0):.1f} ms (p99 {parts.get('render_p99', 0):.1f}).\n")
+    md.append("## Offline runner\n")
+    st = offline["stage_wall_s"]
+    md.append(f"`physics_node --offline` on the bundled log: {offline['simulated_s']:.1f} s "
+              f"simulated in {offline['wall_s']:.2f} s = **{offline['realtime_factor']:.1f}x real "
+              f"time** ({offline['substeps_per_step']} substeps per step). Wall time by stage (s): "
+              + ", ".join(f"{k} {v:.3f}" for k, v in st.items()) + ".\n")
+    tmp = md_path + ".partial"
+    with open(tmp, "w") as f:
+        f.write("\n".join(md))
+    os.replace(tmp, md_path)
+    print("\n".join(md[:len(targets) + 8]))
+
+
+if __name__ == "__main__":
+    main()
