@@ -520,12 +520,97 @@ struct CollisionWorld::Impl {
       const Eigen::Vector3d n = c.normal / norm;
       out.push_back({pair.lo, pair.hi, contact_point(pair, c.pos, n, depth_m), n, depth_m});
     }
+    // MPR's answer for a box and a round body, checked against the box's face normals
+    if (out.size() == first + 1 && box_and_round(pair)) {
+      ContactPoint& c = out.back();
+      if (!least_overlap_with_box_faces(pair, c)) {
+        out.pop_back();  // only touching along a face normal: no force
+        return;
+      }
+    }
     // MPR's single point of a flat contact becomes a manifold (see the header comment)
     if (out.size() == first + 1 && wants_manifold(pair)) {
       const ContactPoint single = out.back();
       out.pop_back();
       if (!manifold(pair, single.n_G, out)) out.push_back(single);
     }
+  }
+
+  bool box_and_round(const BodyPair& pair) const {
+    const ShapeKind a = bodies[static_cast<std::size_t>(pair.lo)].shape;
+    const ShapeKind b = bodies[static_cast<std::size_t>(pair.hi)].shape;
+    const auto round = [](ShapeKind k) {
+      return k == ShapeKind::kCylinder || k == ShapeKind::kCapsule;
+    };
+    return (a == ShapeKind::kBox && round(b)) || (b == ShapeKind::kBox && round(a));
+  }
+
+  // The farthest point of a body along d (world), for the shapes the collision world holds.
+  Eigen::Vector3d support(int body, const Eigen::Vector3d& d) const {
+    const Body& b = bodies[static_cast<std::size_t>(body)];
+    const Eigen::Isometry3d& X = objects[static_cast<std::size_t>(body)]->getTransform();
+    const Eigen::Vector3d c = X.translation();
+    const Eigen::Vector3d a = X.linear().col(2);
+    const double along = d.dot(a);
+    switch (b.shape) {
+      case ShapeKind::kBox: {
+        const Eigen::Vector3d local = X.linear().transpose() * d;
+        Eigen::Vector3d v;
+        for (int i = 0; i < 3; ++i) v[i] = local[i] >= 0.0 ? b.half_size_m[i] : -b.half_size_m[i];
+        return X * v;
+      }
+      case ShapeKind::kSphere:
+        return c + b.radius_m * d.normalized();
+      case ShapeKind::kCapsule:
+        return c + (along >= 0.0 ? b.half_length_m : -b.half_length_m) * a + b.radius_m * d.normalized();
+      case ShapeKind::kCylinder: {
+        const Eigen::Vector3d across = d - along * a;
+        const double norm = across.norm();
+        Eigen::Vector3d p = c + (along >= 0.0 ? b.half_length_m : -b.half_length_m) * a;
+        if (norm > 1e-12) p += (b.radius_m / norm) * across;
+        return p;
+      }
+    }
+    return c;
+  }
+
+  // Overlap of the pair along unit u (from lo toward hi): how far hi would move along u to part.
+  double overlap_along(const BodyPair& pair, const Eigen::Vector3d& u) const {
+    return support(pair.lo, u).dot(u) - support(pair.hi, -u).dot(u);
+  }
+
+  // MPR's normal is not always the direction of least overlap: with a body exactly touching a
+  // box face (a short cylinder standing on a floor) libccd can return a direction along the face
+  // with the overlap across the whole box (1.7 m), which would throw the body away. For a box
+  // and a round body the box's face normals are the other candidates: the least overlap wins.
+  // False when the least is not positive (touching only).
+  bool least_overlap_with_box_faces(const BodyPair& pair, ContactPoint& c) const {
+    const int box = bodies[static_cast<std::size_t>(pair.lo)].shape == ShapeKind::kBox ? pair.lo
+                                                                                      : pair.hi;
+    const Eigen::Matrix3d& R = objects[static_cast<std::size_t>(box)]->getTransform().linear();
+    const Eigen::Vector3d lo_to_hi = objects[static_cast<std::size_t>(pair.hi)]->getTranslation() -
+                                     objects[static_cast<std::size_t>(pair.lo)]->getTranslation();
+    Eigen::Vector3d best_n = c.n_G;
+    double best_depth = c.depth_m;
+    for (int i = 0; i < 3; ++i) {
+      // the face normal pointing from lo toward hi
+      const Eigen::Vector3d u = R.col(i).dot(lo_to_hi) >= 0.0 ? Eigen::Vector3d(R.col(i))
+                                                               : Eigen::Vector3d(-R.col(i));
+      // better by more than MPR's own tolerance: MPR's exact face normals are kept as they are
+      const double depth = overlap_along(pair, u);
+      if (depth < best_depth - kMprTolerance_m) {
+        best_depth = depth;
+        best_n = u;
+      }
+    }
+    if (best_depth <= kMprTolerance_m) return false;
+    if (best_n != c.n_G) {
+      // midway between the surfaces, under hi's deepest point into lo
+      c.n_G = best_n;
+      c.depth_m = best_depth;
+      c.p_G = support(pair.hi, -best_n) + (0.5 * best_depth) * best_n;
+    }
+    return true;
   }
 
   bool wants_manifold(const BodyPair& pair) const {

@@ -254,6 +254,53 @@ void expect_spread(const std::vector<ContactPoint>& contacts, double min_distanc
           << "points " << i << " and " << j;
 }
 
+// libccd's MPR, for a short cylinder exactly touching a large floor far from its centre, returns
+// a direction along the floor with the overlap across the whole floor (1.7 m here): the box's
+// face normals are checked too, so touching gives no contact and a slight overlap the top face.
+Eigen::Matrix3d rotation_rpy_deg(const Eigen::Vector3d& rpy_deg) {
+  const Eigen::Vector3d r = rpy_deg * M_PI / 180.0;
+  return (Eigen::AngleAxisd(r.z(), Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(r.y(), Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(r.x(), Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+TEST(Collision, RoundBodiesTouchingALargeFloorGetItsTopFaceNeverASideFace) {
+  const Shape floor = Shape::box({4.1, 2.0, 0.1});
+  struct Case {
+    Shape shape;
+    double rest_z_m;
+    Eigen::Vector3d rpy_deg;
+  };
+  const Case cases[] = {{Shape::cylinder(0.0221, 0.0353), 0.5 * 0.0353, {0, 0, 0}},
+                        {Shape::cylinder(0.03, 0.08), 0.04, {0, 0, 25}},
+                        {Shape::capsule(0.015, 0.03), 0.015, {0, 90, -20}}};
+  for (const Case& c : cases) {
+    for (const auto& xy : {Eigen::Vector2d(-0.33, 0.72), Eigen::Vector2d(1.8, -0.9),
+                           Eigen::Vector2d(-1.9, 0.1)}) {
+      for (const double overlap_m : {0.0, 0.0005}) {
+        Scene scene;
+        scene.objects = {object("floor", false, floor, pose(-0.05, 0, -0.05)),
+                         object("round", true, c.shape,
+                                pose(xy.x(), xy.y(), c.rest_z_m - overlap_m,
+                                     rotation_rpy_deg(c.rpy_deg)))};
+        CollisionWorld world(scene);
+        const auto contacts = step(world, initial_poses(scene));
+        if (overlap_m == 0.0) {
+          EXPECT_TRUE(contacts.empty()) << "touching gave " << contacts.size() << " contacts, depth "
+                                        << (contacts.empty() ? 0.0 : contacts[0].depth_m);
+          continue;
+        }
+        ASSERT_FALSE(contacts.empty());
+        for (const ContactPoint& p : contacts) {
+          expect_vec_near(p.n_G, Eigen::Vector3d::UnitZ(), 1e-9, "normal");
+          EXPECT_NEAR(p.depth_m, overlap_m, 1e-7);
+        }
+      }
+    }
+  }
+}
+
 TEST(CollisionManifold, UprightCylinderOnBoxGivesFourPointsOnTheRim) {
   constexpr double r_m = 0.035, length_m = 0.1;
   for (double yaw_deg : {0.0, 30.0, 67.0}) {
