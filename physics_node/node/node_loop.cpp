@@ -243,8 +243,9 @@ int Node::run_lockstep() {
   spdlog::info("lockstep: stepping to each sample's stamp ({} substeps per step)",
                world_.substeps());
   start_clock();
+  int64_t last_publish_ns = 0;
   while (!should_stop(monotonic_now_ns())) {
-    reader_.wait_for_data(20'000'000);
+    const bool idle = !reader_.wait_for_data(20'000'000);
     drain([&](const glove::GloveSample& s, bool new_source) {
       // world time 0 is the first sample; a later source continues from where the world is
       if (!started || new_source) {
@@ -256,18 +257,22 @@ int Node::run_lockstep() {
         dirty = true;
         if (world_.time_ns() >= next_publish_sim_ns) {
           publish_state(true);
+          last_publish_ns = monotonic_now_ns();
           next_publish_sim_ns += publish_every_ns;
         }
       }
       input_ = physics_io::hand_input_from_glove(hand_, s);
       world_.set_hand_input(input_);
     });
-    // caught up with the input: show where the world is
-    if (dirty) {
+    // caught up with the input: show where the world is, at most at --publish-hz of wall time
+    // (a replay at its own pace would otherwise publish every sample), and at once when the
+    // input pauses or ends
+    const int64_t now_ns = monotonic_now_ns();
+    if (dirty && (idle || now_ns - last_publish_ns >= publish_every_ns)) {
       publish_state(true);
+      last_publish_ns = now_ns;
       dirty = false;
     }
-    const int64_t now_ns = monotonic_now_ns();
     const bool alive = glove_alive(now_ns);
     maybe_publish_status(now_ns, alive, alive ? "lockstep" : started ? "lockstep, input ended"
                                                                      : "lockstep, waiting");

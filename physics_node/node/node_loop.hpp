@@ -9,7 +9,9 @@
 //
 // Lockstep: the world advances to each sample's stamp (world time 0 = the first sample), exactly
 // as the offline runner does with the same log, so a lockstep replay gives the same result. It
-// publishes at --publish-hz of simulated time and whenever it has caught up with its input.
+// publishes at --publish-hz of simulated time, and when it has caught up with its input at most
+// at --publish-hz of wall time (a replay at its own pace would otherwise publish every sample)
+// and at once when the input pauses or ends.
 //
 // Glove lost (no sample for --glove-timeout, or the writer's liveliness lost): the hand stays
 // where it was, held objects are released ("glove lost"), the status says so; samples resume ->
