@@ -8,7 +8,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <map>
+#include <string>
 #include <memory>
 
 #include "bench/bench_scenes.hpp"
@@ -95,13 +97,20 @@ void BM_WorldStep(benchmark::State& state) {
   HeldWorld& held = held_world(loose);
   physics::World& world = *held.world;
   StepTiming timing(static_cast<std::size_t>(state.max_iterations));
+  std::array<int64_t, physics::kStageCount> stage_ns{};
   for (auto _ : state) {
     timing.time([&] {
       world.set_hand_input(held.hand);
       world.step();
     });
+    for (int s = 0; s < physics::kStageCount; ++s) stage_ns[s] += world.stage_times().ns[s];
   }
   timing.report(state);
+  // where a step's time goes: the world's own stage timers, mean per step
+  for (int s = 0; s < physics::kStageCount; ++s) {
+    state.counters[std::string(physics::stage_name(static_cast<physics::Stage>(s))) + "_us"] =
+        static_cast<double>(stage_ns[s]) * 1e-3 / static_cast<double>(state.iterations());
+  }
   scene_counters(state, world);
   state.counters["contacts"] = static_cast<double>(world.contacts().size());
   const int cup = world.scene().find_object("cup");

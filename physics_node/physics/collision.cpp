@@ -505,6 +505,19 @@ struct CollisionWorld::Impl {
   // Appends the pair's points with positive depth; bad ones are counted and dropped.
   void narrowphase(const BodyPair& pair, std::vector<ContactPoint>& out) {
     const std::size_t first = out.size();
+    if (box_and_round(pair)) {
+      ContactPoint face;
+      switch (box_face_contact(pair, face)) {
+        case FaceTest::kApart:
+          return;
+        case FaceTest::kFace:
+          out.push_back(face);
+          finish_manifold(pair, first, out);
+          return;
+        case FaceTest::kUnknown:
+          break;  // an edge or a deep overlap: MPR
+      }
+    }
     result.clear();
     fcl::collide(objects[static_cast<std::size_t>(pair.lo)].get(),
                  objects[static_cast<std::size_t>(pair.hi)].get(), request, result);
@@ -528,12 +541,65 @@ struct CollisionWorld::Impl {
         return;
       }
     }
-    // MPR's single point of a flat contact becomes a manifold (see the header comment)
+    finish_manifold(pair, first, out);
+  }
+
+  // MPR's (or the face test's) single point of a flat contact becomes a manifold (see the header
+  // comment).
+  void finish_manifold(const BodyPair& pair, std::size_t first, std::vector<ContactPoint>& out) {
     if (out.size() == first + 1 && wants_manifold(pair)) {
       const ContactPoint single = out.back();
       out.pop_back();
       if (!manifold(pair, single.n_G, out)) out.push_back(single);
     }
+  }
+
+  enum class FaceTest : uint8_t { kApart, kFace, kUnknown };
+
+  // A box and a round body, without MPR where the answer is certain (most resting contacts):
+  // - apart: some face normal of the box has no overlap (a separating axis);
+  // - a face contact: along the face normal u of least overlap d, the round body's deepest point
+  //   q lies in the box no nearer any other face than d. Every direction's overlap is then at
+  //   least q's distance from the box's boundary, d, so (u, d) is the penetration itself, what
+  //   MPR converges to. Otherwise (an edge, a corner, a deep overlap) MPR decides.
+  FaceTest box_face_contact(const BodyPair& pair, ContactPoint& c) const {
+    const bool box_is_lo = bodies[static_cast<std::size_t>(pair.lo)].shape == ShapeKind::kBox;
+    const int box = box_is_lo ? pair.lo : pair.hi;
+    const int round = box_is_lo ? pair.hi : pair.lo;
+    const Body& b = bodies[static_cast<std::size_t>(box)];
+    const Eigen::Isometry3d& X_GB = objects[static_cast<std::size_t>(box)]->getTransform();
+    const Eigen::Matrix3d& R = X_GB.linear();
+    const Eigen::Vector3d to_round = objects[static_cast<std::size_t>(round)]->getTranslation() -
+                                     X_GB.translation();
+    int axis = -1;
+    double least = 0.0, sign = 1.0;
+    Eigen::Vector3d u_least = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 3; ++i) {
+      const double s = R.col(i).dot(to_round) >= 0.0 ? 1.0 : -1.0;
+      const Eigen::Vector3d u = s * R.col(i);
+      const double d = support(box, u).dot(u) - support(round, -u).dot(u);
+      if (d <= kMprTolerance_m) return FaceTest::kApart;
+      if (axis < 0 || d < least) {
+        axis = i;
+        least = d;
+        sign = s;
+        u_least = u;
+      }
+    }
+    const Eigen::Vector3d q = support(round, -u_least);
+    const Eigen::Vector3d q_B = R.transpose() * (q - X_GB.translation());
+    for (int j = 0; j < 3; ++j) {
+      // q's distance from the other faces: the far face of the axis, both faces of the others
+      const double to_faces = j == axis ? b.half_size_m[j] + sign * q_B[j]
+                                        : b.half_size_m[j] - std::abs(q_B[j]);
+      if (to_faces < least) return FaceTest::kUnknown;
+    }
+    c.body_a = pair.lo;
+    c.body_b = pair.hi;
+    c.n_G = box_is_lo ? u_least : Eigen::Vector3d(-u_least);
+    c.depth_m = least;
+    c.p_G = q + (0.5 * least) * u_least;  // midway between the surfaces
+    return FaceTest::kFace;
   }
 
   bool box_and_round(const BodyPair& pair) const {

@@ -12,12 +12,13 @@ Eigen::Quaterniond rotation_increment(const Eigen::Vector3d& w_G, double dt_s) {
 }
 
 void integrate_body(BodyState& body, const Eigen::Vector3d& F_G, const Eigen::Vector3d& M_G,
-                    double mass_kg, const Eigen::Matrix3d& I_O, double dt_s) {
+                    double mass_kg, const Eigen::Matrix3d& I_O, const Eigen::Matrix3d& I_O_inv,
+                    double dt_s) {
   const Eigen::Matrix3d R = body.X_GO.linear();
-  const Eigen::Matrix3d I_G = R * I_O * R.transpose();
   body.v_G += F_G * (dt_s / mass_kg);
-  const Eigen::Vector3d gyroscopic = body.w_G.cross(I_G * body.w_G);
-  body.w_G += I_G.ldlt().solve(M_G - gyroscopic) * dt_s;
+  // in the body frame: I_G w = R I_O R^T w, and I_G^-1 x = R I_O^-1 R^T x
+  const Eigen::Vector3d gyroscopic = body.w_G.cross(R * (I_O * (R.transpose() * body.w_G)));
+  body.w_G += R * (I_O_inv * (R.transpose() * (M_G - gyroscopic))) * dt_s;
   body.X_GO.translation() += body.v_G * dt_s;
   const Eigen::Quaterniond q =
       (rotation_increment(body.w_G, dt_s) * Eigen::Quaterniond(R)).normalized();

@@ -12,8 +12,11 @@
 
 namespace vcockpit::physics {
 
+// I_O_inv: the inverse of I_O, computed once per body (the world inertia's inverse is then
+// R I_O^-1 R^T: products, no factorisation per substep).
 void integrate_body(BodyState& body, const Eigen::Vector3d& F_G, const Eigen::Vector3d& M_G,
-                    double mass_kg, const Eigen::Matrix3d& I_O, double dt_s);
+                    double mass_kg, const Eigen::Matrix3d& I_O, const Eigen::Matrix3d& I_O_inv,
+                    double dt_s);
 
 // Rotation by the rotation vector w dt (exponential map), exact for any angle.
 Eigen::Quaterniond rotation_increment(const Eigen::Vector3d& w_G, double dt_s);

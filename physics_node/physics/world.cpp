@@ -45,7 +45,16 @@ void finite_difference(const Eigen::Isometry3d& before, const Eigen::Isometry3d&
 // 1 / (1/m + (r x n)^T I^-1 (r x n)): the lever about each principal axis is at most the shape's
 // reach from that axis, and |r x n| is at most the bounding radius. (Inertia from the shape is
 // diagonal in the shape's frame.)
+// Smooth shapes are exact: a contact's normal is the surface normal at the contact, so its line
+// passes through a sphere's centre (no lever: m) or through a capsule's axis segment, r x n =
+// t (a x n) with |t| <= half length, a turn about an axis across the capsule.
 double worst_contact_mass(const ObjectSpec& o) {
+  if (o.shape.kind == ShapeKind::kSphere) return o.mass_kg;
+  if (o.shape.kind == ShapeKind::kCapsule) {
+    const double half_m = 0.5 * o.shape.length_m;
+    const double I_across = std::min(o.I_O(0, 0), o.I_O(1, 1));
+    return 1.0 / (1.0 / o.mass_kg + half_m * half_m / I_across);
+  }
   const Eigen::Vector3d reach = o.shape.axis_reach_m();
   double per_axis = 0.0;
   for (int i = 0; i < 3; ++i) per_axis += reach[i] * reach[i] / o.I_O(i, i);
@@ -78,6 +87,7 @@ World::World(Scene scene)
   X_GO_.resize(object_count_);
   X_GO_before_.resize(object_count_);
   grasp_.resize(object_count_);
+  I_O_inv_.resize(object_count_);
   const std::size_t window = std::max<std::size_t>(
       2, static_cast<std::size_t>(std::llround(scene_.grasp.velocity_window_s / scene_.step_s)) + 1);
   for (int i = 0; i < object_count_; ++i) {
@@ -88,6 +98,7 @@ World::World(Scene scene)
     X_GO_[i] = o.X_GO;
     X_GO_before_[i] = o.X_GO;
     if (o.dynamic) grasp_[i].history.resize(window);
+    I_O_inv_[i] = o.dynamic ? Eigen::Matrix3d(o.I_O.inverse()) : Eigen::Matrix3d::Zero();
   }
   X_GL_.fill(Eigen::Isometry3d::Identity());
   X_GL_before_ = X_GL_;
@@ -232,7 +243,7 @@ void World::integrate(double dt_s) {
     BodyState& body = bodies_[i];
     if (!o.dynamic || body.held_by != kNotHeld) continue;
     const Eigen::Vector3d F = F_G_[i] + o.mass_kg * scene_.gravity_mps2;  // eq. 18
-    integrate_body(body, F, M_G_[i], o.mass_kg, o.I_O, dt_s);
+    integrate_body(body, F, M_G_[i], o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
   }
 }
 

@@ -122,6 +122,7 @@ class World {
   std::vector<Eigen::Isometry3d> X_GO_;  // collision input, all objects
   std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
   std::vector<GraspState> grasp_;
+  std::vector<Eigen::Matrix3d> I_O_inv_;  // inverse body-frame inertia, dynamic objects
 
   bool hand_active_ = false;
   HandInput hand_from_;  // at the start of the step
