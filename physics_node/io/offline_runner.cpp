@@ -83,6 +83,8 @@ RunSummary run_offline(const OfflineOptions& options) {
     for (int s = 0; s < physics::kStageCount; ++s) {
       summary.stage_total_s[s] += static_cast<double>(world.stage_times().ns[s]) * 1e-9;
     }
+    summary.substeps = std::max(summary.substeps, world.substeps());
+    summary.substeps_total += static_cast<uint64_t>(world.substeps());
     if (world.time_ns() % interval_ns == 0) trajectories.write(world);
     feed_samples();
     if (world.step_count() % 100 == 0) {
@@ -96,7 +98,6 @@ RunSummary run_offline(const OfflineOptions& options) {
   progress.finish();
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   summary.steps = world.step_count();
-  summary.substeps = world.substeps();
   summary.simulated_s = ns_to_seconds(world.time_ns());
   summary.grasps = events.grasps();
   summary.releases = events.releases();

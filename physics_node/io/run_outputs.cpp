@@ -53,8 +53,9 @@ void write_summary(const std::string& path, const RunSummary& s, const physics::
       s.penetration_points > 0 ? s.penetration_sum_m / static_cast<double>(s.penetration_points) : 0.0;
   std::fprintf(f, "{\n  \"scene\": %s,\n  \"log\": %s,\n", json_string(s.scene_path).c_str(),
                s.log_path.empty() ? "null" : json_string(s.log_path).c_str());
-  std::fprintf(f, "  \"steps\": %llu,\n  \"substeps_per_step\": %d,\n",
-               static_cast<unsigned long long>(s.steps), s.substeps);
+  std::fprintf(f, "  \"steps\": %llu,\n  \"substeps_per_step\": %d,\n  \"substeps_mean\": %.3f,\n",
+               static_cast<unsigned long long>(s.steps), s.substeps,
+               s.steps > 0 ? static_cast<double>(s.substeps_total) / static_cast<double>(s.steps) : 0.0);
   std::fprintf(f, "  \"simulated_s\": %.6f,\n  \"wall_s\": %.6f,\n  \"realtime_factor\": %.3f,\n",
                s.simulated_s, s.wall_s, s.wall_s > 0 ? s.simulated_s / s.wall_s : 0.0);
   std::fprintf(f, "  \"grasps\": %d,\n  \"releases\": %d,\n", s.grasps, s.releases);

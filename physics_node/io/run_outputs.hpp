@@ -47,7 +47,8 @@ struct RunSummary {
   std::string scene_path;
   std::string log_path;
   uint64_t steps = 0;
-  int substeps = 0;
+  int substeps = 0;            // the most any step used (the count is chosen every step)
+  uint64_t substeps_total = 0;  // over all steps: their mean is substeps_total / steps
   double simulated_s = 0.0;
   double wall_s = 0.0;
   int grasps = 0;

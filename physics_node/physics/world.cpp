@@ -81,7 +81,6 @@ World::World(Scene scene)
       forces_(scene_.contact.slip_speed_mps),
       object_count_(static_cast<int>(scene_.objects.size())),
       step_ns_(std::llround(scene_.step_s * 1e9)) {
-  substeps_ = choose_substeps();
   hand_id_ = scene_.hand && scene_.hand->left ? 1 : 0;
   bodies_.resize(object_count_);
   X_GO_.resize(object_count_);
@@ -102,6 +101,37 @@ World::World(Scene scene)
   }
   X_GL_.fill(Eigen::Isometry3d::Identity());
   X_GL_before_ = X_GL_;
+  // the reach broadphase: static boxes once, the rest every step
+  std::vector<BroadphaseBody> kinds;
+  contact_mass_.assign(object_count_, 0.0);
+  for (int i = 0; i < object_count_; ++i) {
+    const ObjectSpec& o = scene_.objects[i];
+    kinds.push_back(o.dynamic ? BroadphaseBody::kDynamic : BroadphaseBody::kStatic);
+    if (o.dynamic) contact_mass_[i] = worst_contact_mass(o);
+  }
+  if (scene_.hand) {
+    const HandModel& hand = *scene_.hand;
+    for (int l = 0; l < kLinkCount; ++l) {
+      kinds.push_back(BroadphaseBody::kHand);
+      // as the collision world places them: the palm box on its frame, a capsule on [0, L] x_L
+      if (l == static_cast<int>(Link::kPalm)) {
+        link_shapes_[l] = Shape::box(hand.palm_size_m);
+        X_LS_[l] = Eigen::Isometry3d::Identity();
+      } else {
+        const Capsule& c = hand.capsules[static_cast<std::size_t>(l)];
+        link_shapes_[l] = Shape::capsule(c.radius_m, c.length_m);
+        X_LS_[l] = Eigen::Isometry3d::Identity();
+        X_LS_[l].translation() = Eigen::Vector3d(0.5 * c.length_m, 0.0, 0.0);
+        X_LS_[l].linear() = Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitY()).toRotationMatrix();
+      }
+    }
+  }
+  reach_ = std::make_unique<SweepAndPrune>(std::move(kinds));
+  for (int i = 0; i < object_count_; ++i)
+    if (!scene_.objects[i].dynamic)
+      reach_->set_box(i, shape_aabb(scene_.objects[i].shape, scene_.objects[i].X_GO));
+  reach_pairs_.reserve(64);
+  substeps_ = choose_substeps();  // for the initial state: the count the first step will use
   const int body_count = object_count_ + (scene_.hand ? kLinkCount : 0);
   contact_bodies_.resize(body_count);
   F_G_.resize(body_count);
@@ -114,23 +144,61 @@ World::World(Scene scene)
 
 World::~World() = default;
 
-int World::choose_substeps() const {
+// The pairs that can touch within the coming step: boxes around each body's sweep over the step
+// (a dynamic body: where it is, grown by how far it can move; a hand link: its box at the start
+// and at the end of the step), plus a margin.
+void World::find_reachable_pairs() {
+  const double step_s = scene_.step_s;
+  for (int i = 0; i < object_count_; ++i) {
+    const ObjectSpec& o = scene_.objects[i];
+    if (!o.dynamic) continue;  // static boxes were set once
+    const BodyState& body = bodies_[i];
+    Aabb box = shape_aabb(o.shape, body.X_GO);
+    // the farthest a point of it can go in one step: centroid speed, spin times reach, gravity
+    const double reach_m = (body.v_G.norm() + body.w_G.norm() * o.shape.bounding_radius_m()) * step_s +
+                           0.5 * scene_.gravity_mps2.norm() * step_s * step_s + kReachMargin_m;
+    box.lo.array() -= reach_m;
+    box.hi.array() += reach_m;
+    reach_->set_box(i, box);
+  }
+  reach_->set_hand_enabled(hand_active_);
+  if (hand_active_) {
+    HandLinkPoses end;
+    forward_kinematics(*scene_.hand, hand_to_.q_rad, end);
+    for (int l = 0; l < kLinkCount; ++l) {
+      const Shape& shape = link_shapes_[l];
+      const Aabb now = shape_aabb(shape, X_GL_[l] * X_LS_[l]);
+      const Aabb then = shape_aabb(shape, hand_to_.X_GH * end.X_HL[l] * X_LS_[l]);
+      reach_->set_box(object_count_ + l,
+                     {now.lo.cwiseMin(then.lo).array() - kReachMargin_m,
+                      now.hi.cwiseMax(then.hi).array() + kReachMargin_m});
+    }
+  }
+  reach_->find_pairs(reach_pairs_);
+}
+
+// Substeps short enough for the stiffest contact that can happen this step, dt <= safety
+// sqrt(m_eff / k) (k the pair's series stiffness, m_eff the least effective mass it can show:
+// against a static, held or hand body the dynamic body's own, between two free bodies the two in
+// series). Only the pairs that can touch within the step count: a cup resting alone does not pay
+// for a pen lying across the cockpit.
+int World::choose_substeps() {
+  find_reachable_pairs();
   double dt_max = scene_.step_s;
-  int dynamic_count = 0;
-  for (const auto& o : scene_.objects) dynamic_count += o.dynamic ? 1 : 0;
-  for (const auto& o : scene_.objects) {
-    if (!o.dynamic) continue;
-    // the stiffest partner this object can meet, and the lightest effective mass it can show
-    double k_max = 0.0;
-    for (const auto& other : scene_.objects) {
-      if (&other != &o) k_max = std::max(k_max, series_stiffness(o.material, other.material));
-    }
-    if (scene_.hand) k_max = std::max(k_max, series_stiffness(o.material, scene_.hand_material));
-    double m_eff = worst_contact_mass(o);
-    if (dynamic_count > 1) m_eff *= 0.5;  // against an equal free body
-    if (k_max > 0) {
-      dt_max = std::min(dt_max, scene_.contact.substep_safety * std::sqrt(m_eff / k_max));
-    }
+  for (const BodyPair& pair : reach_pairs_) {
+    const bool a_free = pair.lo < object_count_ && scene_.objects[pair.lo].dynamic &&
+                        bodies_[pair.lo].held_by == kNotHeld;
+    const bool b_free = pair.hi < object_count_ && scene_.objects[pair.hi].dynamic &&
+                        bodies_[pair.hi].held_by == kNotHeld;
+    if (!a_free && !b_free) continue;  // held objects move with the hand: nothing to integrate
+    const Material& ma = pair.lo < object_count_ ? scene_.objects[pair.lo].material
+                                                 : scene_.hand_material;
+    const Material& mb = pair.hi < object_count_ ? scene_.objects[pair.hi].material
+                                                 : scene_.hand_material;
+    const double inv_m = (a_free ? 1.0 / contact_mass_[pair.lo] : 0.0) +
+                         (b_free ? 1.0 / contact_mass_[pair.hi] : 0.0);
+    const double k = series_stiffness(ma, mb);
+    if (k > 0) dt_max = std::min(dt_max, scene_.contact.substep_safety * std::sqrt(1.0 / (inv_m * k)));
   }
   const int n = static_cast<int>(std::ceil(scene_.step_s / dt_max - 1e-9));
   return std::clamp(n, 1, scene_.contact.max_substeps);
@@ -150,6 +218,10 @@ void World::set_hand_input(const HandInput& input) {
 void World::step() {
   stage_times_ = StageTimes{};
   events_.clear();
+  {
+    StageTimer timer(stage_times_, Stage::kBroadphase);
+    substeps_ = choose_substeps();
+  }
   const double dt_s = scene_.step_s / substeps_;
   for (int s = 1; s <= substeps_; ++s) substep(dt_s, static_cast<double>(s) / substeps_);
   time_ns_ += step_ns_;

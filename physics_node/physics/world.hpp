@@ -1,7 +1,8 @@
 #pragma once
 // One world step (paper §4, Box2D's b2World_Step in spirit), in named, timed stages:
 //   hand kinematics -> broadphase -> narrowphase -> virtual forces -> (grasp) -> motion
-// repeated over substeps short enough for the stiffest contact (dt_sub <= safety sqrt(m/k)),
+// repeated over substeps short enough for the stiffest contact that can happen within the step
+// (dt_sub <= safety sqrt(m/k) over the pairs whose boxes, grown by how far they can move, meet),
 // then the grasp test on the last substep's contacts: attach (eqs. 28-29) or release.
 //
 // Deterministic: fixed steps, no clock in the results (stage timings are observations only),
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "physics_node/physics/body.hpp"
+#include "physics_node/physics/broadphase.hpp"
 #include "physics_node/physics/collision.hpp"
 #include "physics_node/physics/contact_forces.hpp"
 #include "physics_node/physics/grasp.hpp"
@@ -70,7 +72,7 @@ class World {
   const Scene& scene() const { return scene_; }
   int64_t time_ns() const { return time_ns_; }
   uint64_t step_count() const { return steps_; }
-  int substeps() const { return substeps_; }
+  int substeps() const { return substeps_; }  // of the last step (chosen every step)
   int hand_id() const { return hand_id_; }
   bool hand_active() const { return hand_active_; }
 
@@ -96,7 +98,8 @@ class World {
     std::size_t history_count = 0;
   };
 
-  int choose_substeps() const;
+  void find_reachable_pairs();
+  int choose_substeps();
   void substep(double dt_s, double alpha);
   void move_hand(double alpha);
   void move_held_objects(double dt_s);
@@ -123,6 +126,13 @@ class World {
   std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
   std::vector<GraspState> grasp_;
   std::vector<Eigen::Matrix3d> I_O_inv_;  // inverse body-frame inertia, dynamic objects
+  std::vector<double> contact_mass_;      // least effective mass a contact can see, dynamic ones
+  // the pairs that can touch within a step (substep choice): objects, then the hand's links
+  std::unique_ptr<SweepAndPrune> reach_;
+  std::vector<BodyPair> reach_pairs_;
+  std::array<Shape, kLinkCount> link_shapes_;
+  std::array<Eigen::Isometry3d, kLinkCount> X_LS_;  // link frame -> its collision shape's frame
+  static constexpr double kReachMargin_m = 0.002;
 
   bool hand_active_ = false;
   HandInput hand_from_;  // at the start of the step
