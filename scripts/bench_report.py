@@ -156,8 +156,9 @@ def main():
         "end_to_end": {"glove_to_frame_latency_ms": e2e,
                        "parts_ms": rig.get("latency_parts_ms"),
                        "frames_rendered": rig.get("frames_rendered")},
-        "offline": {k: offline[k] for k in ("simulated_s", "wall_s", "realtime_factor",
-                                             "substeps_per_step", "stage_wall_s")},
+        "offline": {k: offline.get(k) for k in ("simulated_s", "wall_s", "realtime_factor",
+                                                 "substeps_per_step", "substeps_mean",
+                                                 "stage_wall_s")},
         "targets": targets,
     }
     tmp = json_path + ".partial"
@@ -246,7 +247,8 @@ def main():
     st = offline["stage_wall_s"]
     md.append(f"`physics_node --offline` on the bundled log: {offline['simulated_s']:.1f} s "
               f"simulated in {offline['wall_s']:.2f} s = **{offline['realtime_factor']:.1f}x real "
-              f"time** ({offline['substeps_per_step']} substeps per step). Wall time by stage (s): "
+              f"time** ({offline.get('substeps_mean', offline['substeps_per_step']):.1f} substeps "
+              f"per step on average, at most {offline['substeps_per_step']}). Wall time by stage (s): "
               + ", ".join(f"{k} {v:.3f}" for k, v in st.items()) + ".\n")
     tmp = md_path + ".partial"
     with open(tmp, "w") as f:
