@@ -471,6 +471,7 @@ struct CollisionWorld::Impl {
   std::array<Eigen::Isometry3d, kLinkCount> X_LC{};  // link frame -> collision geometry frame
   std::unique_ptr<SweepAndPrune> broadphase;
   bool hand_enabled = false;
+  const std::vector<uint8_t>* skip_hand = nullptr;  // objects whose hand pairs are left out
 
   std::vector<BodyPair> pairs;
   fcl::CollisionRequestd request;
@@ -845,8 +846,16 @@ void CollisionWorld::compute_contacts(std::vector<ContactPoint>& out) {
   Impl& m = *impl_;
   out.clear();
   if (out.capacity() < m.contact_capacity) out.reserve(m.contact_capacity);
-  for (const BodyPair& pair : m.pairs)
+  for (const BodyPair& pair : m.pairs) {
+    if (m.skip_hand != nullptr && pair.lo < object_count_ && pair.hi >= object_count_ &&
+        (*m.skip_hand)[static_cast<std::size_t>(pair.lo)] != 0)
+      continue;
     m.narrowphase(pair, out);
+  }
+}
+
+void CollisionWorld::skip_hand_pairs_with(const std::vector<uint8_t>* objects) {
+  impl_->skip_hand = objects;
 }
 
 std::size_t CollisionWorld::candidate_pair_count() const { return impl_->pairs.size(); }

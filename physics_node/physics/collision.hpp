@@ -44,6 +44,12 @@ class CollisionWorld {
   // (stage "narrowphase"). Allocation-free once `out` and the internals have warmed up.
   void compute_contacts(std::vector<ContactPoint>& out);
 
+  // Pairs of a hand link and an object flagged in `objects` are left out of the narrowphase
+  // until called again (null: none). The world does this for held objects on all but the last
+  // substep of a step: both bodies move with the hand, so their contacts change nothing but the
+  // grasp test, which reads the last substep's.
+  void skip_hand_pairs_with(const std::vector<uint8_t>* objects);
+
   std::size_t candidate_pair_count() const;
   // Narrowphase points dropped since construction for a zero, NaN or non-unit normal (or a NaN
   // depth or point): a run-time counter, never an exception.

@@ -59,9 +59,24 @@ const ContactForceModel::Anchor* ContactForceModel::match_anchor(const ContactPo
 void ContactForceModel::apply(const std::vector<ContactPoint>& contacts,
                               const std::vector<ContactBody>& bodies,
                               std::vector<Eigen::Vector3d>& F_G, std::vector<Eigen::Vector3d>& M_G,
-                              std::vector<AppliedContact>& applied) {
+                              std::vector<AppliedContact>& applied, const KeptPairs& kept) {
   applied.clear();
   next_anchors_.clear();
+  // kept pairs' anchors go in among the new ones in pair order (both lists are sorted by pair)
+  // (a pair present in the contacts has new anchors: its old ones are never carried)
+  std::size_t kept_cursor = 0;
+  int present_a = -1, present_b = -1;
+  const auto carry_kept_before = [&](int a, int b) {
+    for (; kept_cursor < anchors_.size(); ++kept_cursor) {
+      const Anchor& old = anchors_[kept_cursor];
+      if (old.body_a > a || (old.body_a == a && old.body_b >= b)) break;
+      const bool present = old.body_a == present_a && old.body_b == present_b;
+      if (!present && kept.keeps(old.body_a, old.body_b)) {
+        next_anchors_.push_back(old);
+        next_anchors_.back().used = false;
+      }
+    }
+  };
   std::size_t i = 0;
   while (i < contacts.size()) {
     // one pair's points are consecutive
@@ -72,6 +87,9 @@ void ContactForceModel::apply(const std::vector<ContactPoint>& contacts,
     }
     const int a = contacts[i].body_a;
     const int b = contacts[i].body_b;
+    if (kept.objects != nullptr) carry_kept_before(a, b);
+    present_a = a;
+    present_b = b;
     const ContactBody& A = bodies[a];
     const ContactBody& B = bodies[b];
     const PairConstants k = pair_constants(A, B, static_cast<int>(end - i));
@@ -171,6 +189,7 @@ void ContactForceModel::apply(const std::vector<ContactPoint>& contacts,
       applied.push_back({c, F, w.N, !sticking});
     }
   }
+  if (kept.objects != nullptr) carry_kept_before(INT32_MAX, INT32_MAX);
   std::swap(anchors_, next_anchors_);
 }
 

@@ -24,6 +24,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <vector>
 
 #include "physics_node/physics/body.hpp"
@@ -38,6 +39,17 @@ struct AppliedContact {
   bool sliding = false;
 };
 
+// Pairs left out of a substep's contacts whose anchors are kept as they are: a hand link
+// (body >= first_hand_body) with an object flagged in `objects` (null: none).
+struct KeptPairs {
+  const std::vector<uint8_t>* objects = nullptr;
+  int first_hand_body = 0;
+  bool keeps(int body_a, int body_b) const {
+    return objects != nullptr && body_b >= first_hand_body && body_a < first_hand_body &&
+           (*objects)[static_cast<std::size_t>(body_a)] != 0;
+  }
+};
+
 class ContactForceModel {
  public:
   static constexpr double kAnchorMatch_m = 0.005;
@@ -46,10 +58,11 @@ class ContactForceModel {
 
   // Computes every contact's force for bodies `bodies` (indexed like the contacts) and adds them
   // to F_G / M_G (force and torque about each body's origin). `contacts` must be sorted by pair.
-  // Updates the stick anchors. No allocation once the vectors have grown to the scene's size.
+  // Updates the stick anchors (those of `kept` pairs absent from `contacts` carry over). No
+  // allocation once the vectors have grown to the scene's size.
   void apply(const std::vector<ContactPoint>& contacts, const std::vector<ContactBody>& bodies,
              std::vector<Eigen::Vector3d>& F_G, std::vector<Eigen::Vector3d>& M_G,
-             std::vector<AppliedContact>& applied);
+             std::vector<AppliedContact>& applied, const KeptPairs& kept = {});
 
   void reset() { anchors_.clear(); }
 

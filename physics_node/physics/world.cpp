@@ -87,6 +87,7 @@ World::World(Scene scene)
   X_GO_before_.resize(object_count_);
   grasp_.resize(object_count_);
   I_O_inv_.resize(object_count_);
+  held_mask_.assign(object_count_, 0);
   const std::size_t window = std::max<std::size_t>(
       2, static_cast<std::size_t>(std::llround(scene_.grasp.velocity_window_s / scene_.step_s)) + 1);
   for (int i = 0; i < object_count_; ++i) {
@@ -222,15 +223,24 @@ void World::step() {
     StageTimer timer(stage_times_, Stage::kBroadphase);
     substeps_ = choose_substeps();
   }
+  // a held object and the hand move together: their contacts matter to the grasp test only,
+  // which reads the last substep's, so the substeps before it leave them out (their friction
+  // anchors carry over)
+  bool any_held = false;
+  for (int i = 0; i < object_count_; ++i) {
+    held_mask_[i] = bodies_[i].held_by != kNotHeld ? 1 : 0;
+    any_held = any_held || held_mask_[i] != 0;
+  }
   const double dt_s = scene_.step_s / substeps_;
-  for (int s = 1; s <= substeps_; ++s) substep(dt_s, static_cast<double>(s) / substeps_);
+  for (int s = 1; s <= substeps_; ++s)
+    substep(dt_s, static_cast<double>(s) / substeps_, any_held && s < substeps_);
   time_ns_ += step_ns_;
   ++steps_;
   grasp_stage();
   hand_from_ = hand_to_;
 }
 
-void World::substep(double dt_s, double alpha) {
+void World::substep(double dt_s, double alpha, bool skip_held_hand_pairs) {
   {
     StageTimer timer(stage_times_, Stage::kHandKinematics);
     if (hand_active_) move_hand(alpha);
@@ -244,6 +254,7 @@ void World::substep(double dt_s, double alpha) {
   }
   {
     StageTimer timer(stage_times_, Stage::kNarrowphase);
+    collision_.skip_hand_pairs_with(skip_held_hand_pairs ? &held_mask_ : nullptr);
     collision_.compute_contacts(contacts_);
   }
   {
@@ -253,7 +264,9 @@ void World::substep(double dt_s, double alpha) {
       F_G_[b].setZero();
       M_G_[b].setZero();
     }
-    forces_.apply(contacts_, contact_bodies_, F_G_, M_G_, applied_);
+    KeptPairs kept;
+    if (skip_held_hand_pairs) kept = {&held_mask_, object_count_};
+    forces_.apply(contacts_, contact_bodies_, F_G_, M_G_, applied_, kept);
   }
   {
     StageTimer timer(stage_times_, Stage::kIntegrate);
@@ -297,11 +310,20 @@ void World::build_contact_bodies() {
     c.mass_for_damping = c.dynamic ? o.mass_kg : 0.0;
   }
   if (!scene_.hand) return;
+  // a link's velocity only where it touches something (the rotation's log is not free)
+  std::array<bool, kLinkCount> touching{};
+  for (const ContactPoint& c : contacts_)
+    if (c.body_b >= object_count_) touching[static_cast<std::size_t>(c.body_b - object_count_)] = true;
   const double dt_s = scene_.step_s / substeps_;
   for (int l = 0; l < kLinkCount; ++l) {
     ContactBody& c = contact_bodies_[object_count_ + l];
     c.X_GB = X_GL_[l];
-    finite_difference(X_GL_before_[l], X_GL_[l], dt_s, c.v_G, c.w_G);
+    if (touching[static_cast<std::size_t>(l)]) {
+      finite_difference(X_GL_before_[l], X_GL_[l], dt_s, c.v_G, c.w_G);
+    } else {
+      c.v_G.setZero();
+      c.w_G.setZero();
+    }
     c.material = &scene_.hand_material;
     c.dynamic = false;
     c.inv_mass = 0.0;

@@ -100,7 +100,7 @@ class World {
 
   void find_reachable_pairs();
   int choose_substeps();
-  void substep(double dt_s, double alpha);
+  void substep(double dt_s, double alpha, bool skip_held_hand_pairs);
   void move_hand(double alpha);
   void move_held_objects(double dt_s);
   void build_contact_bodies();
@@ -126,6 +126,7 @@ class World {
   std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
   std::vector<GraspState> grasp_;
   std::vector<Eigen::Matrix3d> I_O_inv_;  // inverse body-frame inertia, dynamic objects
+  std::vector<uint8_t> held_mask_;        // 1 for the objects held at the start of this step
   std::vector<double> contact_mass_;      // least effective mass a contact can see, dynamic ones
   // the pairs that can touch within a step (substep choice): objects, then the hand's links
   std::unique_ptr<SweepAndPrune> reach_;

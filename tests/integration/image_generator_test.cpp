@@ -129,8 +129,12 @@ TEST_F(ImageGeneratorTest, BoxesShowAtTheirProjectedPixelsWithStereoDisparity) {
   }
 }
 
+// frame_info is best effort (the stream profile): a reader sees every frame from the moment it
+// has matched the image generator's writer. Discovery usually takes 10-15 ms but now and then
+// over a second (a lost first exchange waits for a resend), so the run is long enough to leave
+// most frames after the match, and every frame from the first one seen must arrive, in order.
 TEST_F(ImageGeneratorTest, FrameInfoArrivesForEveryFrameWithConsistentStamps) {
-  constexpr int kFrames = 40;
+  constexpr int kFrames = 180;  // 3 s at 60 fps
   constexpr int64_t kHandStamp = 123456789;
   ChildProcess scene = start("test_scene_pub",
                              {"--box", "1,0,0,1,0,1,0.1", "--hand-stamp", std::to_string(kHandStamp)},
@@ -146,10 +150,14 @@ TEST_F(ImageGeneratorTest, FrameInfoArrivesForEveryFrameWithConsistentStamps) {
   EXPECT_EQ(scene.stop(), 0);
 
   const MonitorLog seen = MonitorLog::read(dir_ + "/monitor.txt");
-  ASSERT_EQ(seen.frames.size(), static_cast<std::size_t>(kFrames)) << "one frame_info per frame";
-  for (int i = 0; i < kFrames; ++i) {
+  ASSERT_GE(seen.frames.size(), static_cast<std::size_t>(kFrames / 2))
+      << "most frames are rendered after the monitor matched\n" << text("ig.log");
+  const uint64_t first = seen.frames.front().seq;
+  EXPECT_EQ(seen.frames.size(), static_cast<std::size_t>(kFrames) - first)
+      << "every frame from the first seen";
+  for (std::size_t i = 0; i < seen.frames.size(); ++i) {
     const SeenFrame& f = seen.frames[i];
-    EXPECT_EQ(f.seq, static_cast<uint64_t>(i));
+    EXPECT_EQ(f.seq, first + i);
     EXPECT_EQ(f.width, 640);
     EXPECT_EQ(f.height, 360);
     EXPECT_LE(f.start_ns, f.end_ns);
