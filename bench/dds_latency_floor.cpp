@@ -25,6 +25,7 @@
 #include <string>
 
 #include "common/atomic_file.hpp"
+#include "common/cli_finite.hpp"
 #include "common/clock.hpp"
 #include "common/dds_participant.hpp"
 #include "common/latency_histogram.hpp"
@@ -42,17 +43,6 @@ constexpr int64_t kSettleAfterMatch_ns = 200'000'000;
 constexpr int64_t kLingerAfterLast_ns = 200'000'000;
 // The reader's wait granularity, for its stop conditions (not a latency: data wakes it at once).
 constexpr int64_t kWaitSlice_ns = 50'000'000;
-
-// CLI11's Range lets "nan" and "inf" through (every comparison with NaN is false).
-const CLI::Validator kFinite(
-    [](std::string& text) -> std::string {
-      try {
-        if (std::isfinite(std::stod(text))) return {};
-      } catch (const std::exception&) {
-      }
-      return "'" + text + "' is not a finite number";
-    },
-    "FINITE");
 
 struct Flags {
   std::string role;

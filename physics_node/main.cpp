@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "common/cli_finite.hpp"
 #include "common/logging.hpp"
 #include "common/signals.hpp"
 #include "physics_node/config/scene_config.hpp"
@@ -37,18 +38,6 @@ int run_offline_mode(const physics_io::OfflineOptions& options) {
                summary.releases, summary.penetration_max_m * 1e3);
   return 0;
 }
-
-// CLI11's Range and PositiveNumber let "nan" and "inf" through (every comparison with NaN is
-// false): each number option checks this too.
-const CLI::Validator kFinite(
-    [](std::string& text) -> std::string {
-      try {
-        if (std::isfinite(std::stod(text))) return {};
-      } catch (const std::exception&) {
-      }
-      return "'" + text + "' is not a finite number";
-    },
-    "FINITE");
 
 // --stats-out is written when the node stops: a path that cannot be written must fail at start,
 // not after a long run.

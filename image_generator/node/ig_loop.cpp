@@ -2,7 +2,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -10,6 +9,7 @@
 #include "common/atomic_file.hpp"
 #include "common/clock.hpp"
 #include "common/idl_convert.hpp"
+#include "common/latency_histogram.hpp"
 #include "common/signals.hpp"
 #include "image_generator/node/scene_cache.hpp"
 
@@ -68,8 +68,8 @@ class ImageGenerator {
   int64_t last_status_ns_ = 0;
   std::unique_ptr<SnapshotWriter> snapshots_;
   std::FILE* snapshot_index_ = nullptr;
-  // for --stats-out: every frame's render time (reserved up front: no allocation per frame)
-  std::vector<int64_t> render_ns_;
+  // for --stats-out: every frame's render time
+  LatencyHistogram render_ns_;
   int64_t first_frame_start_ns_ = 0;
   int64_t last_frame_end_ns_ = 0;
 
@@ -80,12 +80,7 @@ class ImageGenerator {
 // percentiles: what the benchmark reads.
 void ImageGenerator::write_stats() const {
   if (options_.stats_out.empty()) return;
-  std::vector<int64_t> sorted = render_ns_;
-  std::sort(sorted.begin(), sorted.end());
-  const auto ms_at = [&](double q) {
-    if (sorted.empty()) return 0.0;
-    return static_cast<double>(sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1) + 0.5)]) * 1e-6;
-  };
+  const auto ms = [](int64_t ns) { return static_cast<double>(ns) * 1e-6; };
   const double wall_s = static_cast<double>(last_frame_end_ns_ - first_frame_start_ns_) * 1e-9;
   AtomicFile file(options_.stats_out);
   std::fprintf(file.get(),
@@ -93,8 +88,9 @@ void ImageGenerator::write_stats() const {
                "  \"paced_fps\": %.3f,\n  \"wall_s\": %.6f,\n  \"fps\": %.3f,\n"
                "  \"render_ms\": {\"p50\": %.3f, \"p99\": %.3f, \"max\": %.3f}\n}\n",
                static_cast<unsigned long long>(frames_), hmd_.width_px, hmd_.height_px, options_.fps,
-               wall_s, wall_s > 0 ? static_cast<double>(frames_) / wall_s : 0.0, ms_at(0.5),
-               ms_at(0.99), sorted.empty() ? 0.0 : static_cast<double>(sorted.back()) * 1e-6);
+               wall_s, wall_s > 0 ? static_cast<double>(frames_) / wall_s : 0.0,
+               ms(render_ns_.percentile_ns(0.5)), ms(render_ns_.percentile_ns(0.99)),
+               ms(render_ns_.max_ns()));
   file.commit();
 }
 
@@ -186,8 +182,6 @@ int ImageGenerator::run() {
     }
   }
   const int64_t period_ns = options_.fps > 0 ? std::llround(1e9 / options_.fps) : 0;
-  if (!options_.stats_out.empty())
-    render_ns_.reserve(options_.frames > 0 ? options_.frames : 1u << 20);
   int64_t next_ns = monotonic_now_ns();
   last_status_ns_ = next_ns;
   while (!shutdown_requested() && (options_.frames == 0 || frames_ < options_.frames)) {
@@ -204,7 +198,7 @@ int ImageGenerator::run() {
     render_ns_in_period_ += end_ns - start_ns;
     if (frames_ == 0) first_frame_start_ns_ = start_ns;
     last_frame_end_ns_ = end_ns;
-    if (render_ns_.size() < render_ns_.capacity()) render_ns_.push_back(end_ns - start_ns);
+    render_ns_.record_ns(end_ns - start_ns);
     frame_.frame_seq(frames_);
     frame_.width_px(static_cast<uint32_t>(hmd_.width_px));
     frame_.height_px(static_cast<uint32_t>(hmd_.height_px));

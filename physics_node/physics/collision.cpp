@@ -73,7 +73,7 @@ using Geometry = std::shared_ptr<fcl::CollisionGeometryd>;
 
 constexpr double kMprTolerance_m = 1e-9;  // see above
 
-enum class BodyKind : uint8_t { kStatic, kDynamic, kHand };
+using BodyKind = BroadphaseBody;  // static, dynamic or a hand link
 
 // What an FCL object's user data points at. Shapes are centred on their frame, axis along z.
 struct Body {
@@ -467,10 +467,8 @@ struct CollisionWorld::Impl {
   std::vector<Body> bodies;  // never resized after construction: user data points into it
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // body order
   std::vector<Shape> shapes;                                      // body order
-  std::vector<BroadphaseBody> kinds;                              // body order
   std::array<Eigen::Isometry3d, kLinkCount> X_LC{};  // link frame -> collision geometry frame
   std::unique_ptr<SweepAndPrune> broadphase;
-  bool hand_enabled = false;
   const std::vector<uint8_t>* skip_hand = nullptr;  // objects whose hand pairs are left out
 
   std::vector<BodyPair> pairs;
@@ -492,9 +490,6 @@ struct CollisionWorld::Impl {
     bodies.push_back(make_body(static_cast<int>(bodies.size()), kind, shape));
     objects.push_back(std::make_unique<fcl::CollisionObjectd>(geometry, X_GC));
     shapes.push_back(shape);
-    kinds.push_back(kind == BodyKind::kStatic    ? BroadphaseBody::kStatic
-                    : kind == BodyKind::kDynamic ? BroadphaseBody::kDynamic
-                                                 : BroadphaseBody::kHand);
   }
 
   void place(int body, const Eigen::Isometry3d& X_GC) {
@@ -506,17 +501,16 @@ struct CollisionWorld::Impl {
   // Appends the pair's points with positive depth; bad ones are counted and dropped.
   void narrowphase(const BodyPair& pair, std::vector<ContactPoint>& out) {
     const std::size_t first = out.size();
-    if (box_and_round(pair)) {
-      ContactPoint face;
-      switch (box_face_contact(pair, face)) {
-        case FaceTest::kApart:
-          return;
-        case FaceTest::kFace:
-          out.push_back(face);
-          finish_manifold(pair, first, out);
-          return;
-        case FaceTest::kUnknown:
-          break;  // an edge or a deep overlap: MPR
+    // a box and a round body: the least overlap over the box's face normals first
+    const bool box_round = box_and_round(pair);
+    FaceOverlap face;
+    if (box_round) {
+      face = least_face_overlap(pair);
+      if (face.depth_m <= kMprTolerance_m) return;  // a separating axis: apart or only touching
+      if (face_contact_is_certain(face)) {
+        out.push_back(face_contact(pair, face));
+        finish_manifold(pair, first, out);
+        return;
       }
     }
     result.clear();
@@ -534,11 +528,16 @@ struct CollisionWorld::Impl {
       const Eigen::Vector3d n = c.normal / norm;
       out.push_back({pair.lo, pair.hi, contact_point(pair, c.pos, n, depth_m), n, depth_m});
     }
-    // MPR's answer for a box and a round body, checked against the box's face normals
-    if (out.size() == first + 1 && box_and_round(pair)) {
+    // MPR's normal is not always the direction of least overlap: with a body exactly touching a
+    // box face (a short cylinder standing on a floor) libccd can return a direction along the
+    // face with the overlap across the whole box (1.7 m), which would throw the body away. The
+    // box's face normal of least overlap wins when it is less by more than MPR's own tolerance
+    // (MPR's exact face normals are kept as they are).
+    if (box_round && out.size() == first + 1) {
       ContactPoint& c = out.back();
-      if (!least_overlap_with_box_faces(pair, c)) {
-        out.pop_back();  // only touching along a face normal: no force
+      if (face.depth_m < c.depth_m - kMprTolerance_m) c = face_contact(pair, face);
+      if (c.depth_m <= kMprTolerance_m) {
+        out.pop_back();  // only touching: no force
         return;
       }
     }
@@ -555,52 +554,70 @@ struct CollisionWorld::Impl {
     }
   }
 
-  enum class FaceTest : uint8_t { kApart, kFace, kUnknown };
+  // The least overlap of a box and a round body over the box's three face normals, each taken
+  // toward the round body's centre: a separating axis when not positive.
+  struct FaceOverlap {
+    int box = -1;
+    int round = -1;
+    int axis = -1;                                  // of the box
+    double sign = 1.0;                              // the face on that axis facing the round body
+    Eigen::Vector3d u_G = Eigen::Vector3d::Zero();  // its normal, from the box toward the round body
+    double depth_m = 0.0;
+    Eigen::Vector3d q_G = Eigen::Vector3d::Zero();  // the round body's deepest point along -u
+  };
 
-  // A box and a round body, without MPR where the answer is certain (most resting contacts):
-  // - apart: some face normal of the box has no overlap (a separating axis);
-  // - a face contact: along the face normal u of least overlap d, the round body's deepest point
-  //   q lies in the box no nearer any other face than d. Every direction's overlap is then at
-  //   least q's distance from the box's boundary, d, so (u, d) is the penetration itself, what
-  //   MPR converges to. Otherwise (an edge, a corner, a deep overlap) MPR decides.
-  FaceTest box_face_contact(const BodyPair& pair, ContactPoint& c) const {
+  FaceOverlap least_face_overlap(const BodyPair& pair) const {
+    FaceOverlap f;
     const bool box_is_lo = bodies[static_cast<std::size_t>(pair.lo)].shape == ShapeKind::kBox;
-    const int box = box_is_lo ? pair.lo : pair.hi;
-    const int round = box_is_lo ? pair.hi : pair.lo;
-    const Body& b = bodies[static_cast<std::size_t>(box)];
-    const Eigen::Isometry3d& X_GB = objects[static_cast<std::size_t>(box)]->getTransform();
+    f.box = box_is_lo ? pair.lo : pair.hi;
+    f.round = box_is_lo ? pair.hi : pair.lo;
+    const Eigen::Isometry3d& X_GB = objects[static_cast<std::size_t>(f.box)]->getTransform();
     const Eigen::Matrix3d& R = X_GB.linear();
-    const Eigen::Vector3d to_round = objects[static_cast<std::size_t>(round)]->getTranslation() -
+    const Eigen::Vector3d to_round = objects[static_cast<std::size_t>(f.round)]->getTranslation() -
                                      X_GB.translation();
-    int axis = -1;
-    double least = 0.0, sign = 1.0;
-    Eigen::Vector3d u_least = Eigen::Vector3d::Zero();
     for (int i = 0; i < 3; ++i) {
       const double s = R.col(i).dot(to_round) >= 0.0 ? 1.0 : -1.0;
       const Eigen::Vector3d u = s * R.col(i);
-      const double d = support(box, u).dot(u) - support(round, -u).dot(u);
-      if (d <= kMprTolerance_m) return FaceTest::kApart;
-      if (axis < 0 || d < least) {
-        axis = i;
-        least = d;
-        sign = s;
-        u_least = u;
+      const double d = support(f.box, u).dot(u) - support(f.round, -u).dot(u);
+      if (f.axis < 0 || d < f.depth_m) {
+        f.axis = i;
+        f.sign = s;
+        f.u_G = u;
+        f.depth_m = d;
       }
     }
-    const Eigen::Vector3d q = support(round, -u_least);
-    const Eigen::Vector3d q_B = R.transpose() * (q - X_GB.translation());
+    f.q_G = support(f.round, -f.u_G);
+    return f;
+  }
+
+  // A face contact, without MPR, where the answer is certain (most resting contacts): the round
+  // body's deepest point q lies in the box no nearer any other face than the least overlap d.
+  // Every direction's overlap is then at least q's distance from the box's boundary, d, so (u, d)
+  // is the penetration itself, what MPR converges to. Otherwise (an edge, a corner, a deep
+  // overlap) MPR decides.
+  bool face_contact_is_certain(const FaceOverlap& f) const {
+    const Body& b = bodies[static_cast<std::size_t>(f.box)];
+    const Eigen::Isometry3d& X_GB = objects[static_cast<std::size_t>(f.box)]->getTransform();
+    const Eigen::Vector3d q_B = X_GB.linear().transpose() * (f.q_G - X_GB.translation());
     for (int j = 0; j < 3; ++j) {
       // q's distance from the other faces: the far face of the axis, both faces of the others
-      const double to_faces = j == axis ? b.half_size_m[j] + sign * q_B[j]
-                                        : b.half_size_m[j] - std::abs(q_B[j]);
-      if (to_faces < least) return FaceTest::kUnknown;
+      const double to_faces = j == f.axis ? b.half_size_m[j] + f.sign * q_B[j]
+                                          : b.half_size_m[j] - std::abs(q_B[j]);
+      if (to_faces < f.depth_m) return false;
     }
+    return true;
+  }
+
+  // The contact along the face normal: midway between the surfaces, under the round body's
+  // deepest point; the normal from body lo to body hi.
+  ContactPoint face_contact(const BodyPair& pair, const FaceOverlap& f) const {
+    ContactPoint c;
     c.body_a = pair.lo;
     c.body_b = pair.hi;
-    c.n_G = box_is_lo ? u_least : Eigen::Vector3d(-u_least);
-    c.depth_m = least;
-    c.p_G = q + (0.5 * least) * u_least;  // midway between the surfaces
-    return FaceTest::kFace;
+    c.n_G = f.box == pair.lo ? f.u_G : Eigen::Vector3d(-f.u_G);
+    c.depth_m = f.depth_m;
+    c.p_G = f.q_G + (0.5 * f.depth_m) * f.u_G;
+    return c;
   }
 
   bool box_and_round(const BodyPair& pair) const {
@@ -639,45 +656,6 @@ struct CollisionWorld::Impl {
       }
     }
     return c;
-  }
-
-  // Overlap of the pair along unit u (from lo toward hi): how far hi would move along u to part.
-  double overlap_along(const BodyPair& pair, const Eigen::Vector3d& u) const {
-    return support(pair.lo, u).dot(u) - support(pair.hi, -u).dot(u);
-  }
-
-  // MPR's normal is not always the direction of least overlap: with a body exactly touching a
-  // box face (a short cylinder standing on a floor) libccd can return a direction along the face
-  // with the overlap across the whole box (1.7 m), which would throw the body away. For a box
-  // and a round body the box's face normals are the other candidates: the least overlap wins.
-  // False when the least is not positive (touching only).
-  bool least_overlap_with_box_faces(const BodyPair& pair, ContactPoint& c) const {
-    const int box = bodies[static_cast<std::size_t>(pair.lo)].shape == ShapeKind::kBox ? pair.lo
-                                                                                      : pair.hi;
-    const Eigen::Matrix3d& R = objects[static_cast<std::size_t>(box)]->getTransform().linear();
-    const Eigen::Vector3d lo_to_hi = objects[static_cast<std::size_t>(pair.hi)]->getTranslation() -
-                                     objects[static_cast<std::size_t>(pair.lo)]->getTranslation();
-    Eigen::Vector3d best_n = c.n_G;
-    double best_depth = c.depth_m;
-    for (int i = 0; i < 3; ++i) {
-      // the face normal pointing from lo toward hi
-      const Eigen::Vector3d u = R.col(i).dot(lo_to_hi) >= 0.0 ? Eigen::Vector3d(R.col(i))
-                                                               : Eigen::Vector3d(-R.col(i));
-      // better by more than MPR's own tolerance: MPR's exact face normals are kept as they are
-      const double depth = overlap_along(pair, u);
-      if (depth < best_depth - kMprTolerance_m) {
-        best_depth = depth;
-        best_n = u;
-      }
-    }
-    if (best_depth <= kMprTolerance_m) return false;
-    if (best_n != c.n_G) {
-      // midway between the surfaces, under hi's deepest point into lo
-      c.n_G = best_n;
-      c.depth_m = best_depth;
-      c.p_G = support(pair.hi, -best_n) + (0.5 * best_depth) * best_n;
-    }
-    return true;
   }
 
   bool wants_manifold(const BodyPair& pair) const {
@@ -805,7 +783,9 @@ CollisionWorld::CollisionWorld(const Scene& scene) : impl_(std::make_unique<Impl
 
   // user data only once the vector is final
   for (std::size_t i = 0; i < m.objects.size(); ++i) m.objects[i]->setUserData(&m.bodies[i]);
-  m.broadphase = std::make_unique<SweepAndPrune>(m.kinds);
+  std::vector<BodyKind> kinds;
+  for (const Body& b : m.bodies) kinds.push_back(b.kind);
+  m.broadphase = std::make_unique<SweepAndPrune>(std::move(kinds));
   for (std::size_t i = 0; i < m.objects.size(); ++i)
     m.place(static_cast<int>(i), m.objects[i]->getTransform());
 
@@ -828,9 +808,9 @@ void CollisionWorld::set_poses(const std::vector<Eigen::Isometry3d>& X_GO,
     if (m.bodies[static_cast<std::size_t>(i)].kind == BodyKind::kDynamic)
       m.place(i, X_GO[static_cast<std::size_t>(i)]);
 
-  m.hand_enabled = has_hand_ && X_GL != nullptr;
-  m.broadphase->set_hand_enabled(m.hand_enabled);
-  if (m.hand_enabled) {
+  const bool hand_enabled = has_hand_ && X_GL != nullptr;
+  m.broadphase->set_hand_enabled(hand_enabled);
+  if (hand_enabled) {
     for (int l = 0; l < kLinkCount; ++l)
       m.place(hand_link_body(static_cast<Link>(l)),
               (*X_GL)[static_cast<std::size_t>(l)] * m.X_LC[static_cast<std::size_t>(l)]);
@@ -856,6 +836,12 @@ void CollisionWorld::compute_contacts(std::vector<ContactPoint>& out) {
 
 void CollisionWorld::skip_hand_pairs_with(const std::vector<uint8_t>* objects) {
   impl_->skip_hand = objects;
+}
+
+Aabb CollisionWorld::hand_link_box(Link link, const Eigen::Isometry3d& X_GL) const {
+  const Impl& m = *impl_;
+  const auto l = static_cast<std::size_t>(link);
+  return shape_aabb(m.shapes[static_cast<std::size_t>(hand_link_body(link))], X_GL * m.X_LC[l]);
 }
 
 std::size_t CollisionWorld::candidate_pair_count() const { return impl_->pairs.size(); }

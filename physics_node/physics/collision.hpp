@@ -16,6 +16,7 @@
 #include <memory>
 #include <vector>
 
+#include "physics_node/physics/broadphase.hpp"
 #include "physics_node/physics/contact.hpp"
 #include "physics_node/physics/scene.hpp"
 
@@ -49,6 +50,10 @@ class CollisionWorld {
   // substep of a step: both bodies move with the hand, so their contacts change nothing but the
   // grasp test, which reads the last substep's.
   void skip_hand_pairs_with(const std::vector<uint8_t>* objects);
+
+  // The box around a hand link's collision shape with the link frame at X_GL (a capsule on
+  // [0, length] along x_L, the palm box on its frame).
+  Aabb hand_link_box(Link link, const Eigen::Isometry3d& X_GL) const;
 
   std::size_t candidate_pair_count() const;
   // Narrowphase points dropped since construction for a zero, NaN or non-unit normal (or a NaN

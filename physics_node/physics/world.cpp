@@ -110,23 +110,7 @@ World::World(Scene scene)
     kinds.push_back(o.dynamic ? BroadphaseBody::kDynamic : BroadphaseBody::kStatic);
     if (o.dynamic) contact_mass_[i] = worst_contact_mass(o);
   }
-  if (scene_.hand) {
-    const HandModel& hand = *scene_.hand;
-    for (int l = 0; l < kLinkCount; ++l) {
-      kinds.push_back(BroadphaseBody::kHand);
-      // as the collision world places them: the palm box on its frame, a capsule on [0, L] x_L
-      if (l == static_cast<int>(Link::kPalm)) {
-        link_shapes_[l] = Shape::box(hand.palm_size_m);
-        X_LS_[l] = Eigen::Isometry3d::Identity();
-      } else {
-        const Capsule& c = hand.capsules[static_cast<std::size_t>(l)];
-        link_shapes_[l] = Shape::capsule(c.radius_m, c.length_m);
-        X_LS_[l] = Eigen::Isometry3d::Identity();
-        X_LS_[l].translation() = Eigen::Vector3d(0.5 * c.length_m, 0.0, 0.0);
-        X_LS_[l].linear() = Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitY()).toRotationMatrix();
-      }
-    }
-  }
+  if (scene_.hand) kinds.insert(kinds.end(), kLinkCount, BroadphaseBody::kHand);
   reach_ = std::make_unique<SweepAndPrune>(std::move(kinds));
   for (int i = 0; i < object_count_; ++i)
     if (!scene_.objects[i].dynamic)
@@ -167,9 +151,9 @@ void World::find_reachable_pairs() {
     HandLinkPoses end;
     forward_kinematics(*scene_.hand, hand_to_.q_rad, end);
     for (int l = 0; l < kLinkCount; ++l) {
-      const Shape& shape = link_shapes_[l];
-      const Aabb now = shape_aabb(shape, X_GL_[l] * X_LS_[l]);
-      const Aabb then = shape_aabb(shape, hand_to_.X_GH * end.X_HL[l] * X_LS_[l]);
+      const Link link = static_cast<Link>(l);
+      const Aabb now = collision_.hand_link_box(link, X_GL_[l]);
+      const Aabb then = collision_.hand_link_box(link, hand_to_.X_GH * end.X_HL[l]);
       reach_->set_box(object_count_ + l,
                      {now.lo.cwiseMin(then.lo).array() - kReachMargin_m,
                       now.hi.cwiseMax(then.hi).array() + kReachMargin_m});

@@ -131,8 +131,6 @@ class World {
   // the pairs that can touch within a step (substep choice): objects, then the hand's links
   std::unique_ptr<SweepAndPrune> reach_;
   std::vector<BodyPair> reach_pairs_;
-  std::array<Shape, kLinkCount> link_shapes_;
-  std::array<Eigen::Isometry3d, kLinkCount> X_LS_;  // link frame -> its collision shape's frame
   static constexpr double kReachMargin_m = 0.002;
 
   bool hand_active_ = false;

@@ -55,11 +55,7 @@ TEST_F(DdsLatencyFloorTest, TwoSecondsAtOneKilohertzNoneLostWithMeasuredPercenti
 }
 
 TEST_F(DdsLatencyFloorTest, BadFlagsAreClearErrors) {
-  struct Case {
-    std::vector<std::string> args;
-    std::string message;
-  };
-  const std::vector<Case> cases = {
+  expect_each_refused("dds_latency_floor", {
       {{}, "--role is required"},
       {{"--role", "both"}, "--role"},
       {{"--role", "writer", "--out", dir_ + "/x.json"}, "--out belongs to --role reader"},
@@ -70,16 +66,7 @@ TEST_F(DdsLatencyFloorTest, BadFlagsAreClearErrors) {
       {{"--role", "writer", "--count", "-3"}, "--count"},
       {{"--role", "reader", "--out", dir_ + "/no/such/dir/x.json"}, "no/such/dir/x.json"},
       {{"--role", "reader", "--domain", "300"}, "--domain"},
-  };
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const std::string log = "bad" + std::to_string(i) + ".log";
-    ChildProcess tool = start("dds_latency_floor", cases[i].args, log);
-    const int code = tool.wait(20 * kSecond);
-    EXPECT_NE(code, 0) << "case " << i;
-    EXPECT_NE(code, -1) << "case " << i << " still running";
-    EXPECT_NE(text(log).find(cases[i].message), std::string::npos)
-        << "case " << i << ": " << text(log);
-  }
+  });
 }
 
 }  // namespace

@@ -47,6 +47,23 @@ class ProcessTest : public ::testing::Test {
   }
   std::string text(const std::string& name) const { return read_text(dir_ + "/" + name); }
 
+  // A command line that must be refused: a non-zero exit (not a hang) whose output says `message`.
+  struct BadRun {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  void expect_each_refused(const std::string& exe, const std::vector<BadRun>& runs) {
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const std::string log = "bad" + std::to_string(i) + ".log";
+      ChildProcess child = start(exe, runs[i].args, log);
+      const int code = child.wait(20 * kSecond);
+      EXPECT_NE(code, 0) << "case " << i;
+      EXPECT_NE(code, -1) << "case " << i << " still running";
+      EXPECT_NE(text(log).find(runs[i].message), std::string::npos)
+          << "case " << i << ": " << text(log);
+    }
+  }
+
   std::string dir_ = make_temp_dir("it");
   std::map<std::string, std::string> env_ = dds_test_env();
   std::vector<std::string> shm_before_;
