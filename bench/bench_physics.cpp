@@ -17,7 +17,7 @@
 #include "bench/mujoco_scene.hpp"
 #include "bench/step_timing.hpp"
 #include "physics_node/physics/collision.hpp"
-#include "physics_node/physics/hand_model.hpp"
+#include "hand/hand_model.hpp"
 #include "physics_node/physics/world.hpp"
 
 namespace vcockpit::bench {
@@ -55,12 +55,12 @@ void scene_counters(benchmark::State& state, const physics::World& world) {
 
 void BM_HandForwardKinematics(benchmark::State& state) {
   HeldWorld& held = held_world(0);
-  const physics::HandModel& hand = *held.world->scene().hand;
-  physics::JointAngles q = held.hand.q_rad;
-  physics::HandLinkPoses poses;
+  const hand::HandModel& hand = *held.world->scene().hand;
+  hand::JointAngles q = held.hand.q_rad;
+  hand::HandLinkPoses poses;
   for (auto _ : state) {
     benchmark::DoNotOptimize(q);
-    physics::forward_kinematics(hand, q, poses);
+    hand::forward_kinematics(hand, q, poses);
     benchmark::DoNotOptimize(poses);
   }
 }

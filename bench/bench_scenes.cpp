@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "common/pose.hpp"
-#include "glove_driver/glove/glove_log.hpp"
+#include "hand/glove_log.hpp"
 #include "physics_node/config/scene_config.hpp"
-#include "physics_node/io/hand_input.hpp"
+#include "physics_node/io/replay_driver.hpp"
 
 namespace vcockpit::bench {
 namespace {
@@ -87,20 +87,17 @@ physics::Scene crowded_cockpit_scene(int loose_objects, uint32_t seed) {
 }
 
 physics::HandInput step_to_hold(physics::World& world) {
-  const physics::HandModel& hand = *world.scene().hand;
-  const auto samples = glove::read_glove_log(source_path(kGraspLog), hand).samples;
-  const int64_t t0_ns = samples.front().t_ns;
+  const hand::HandModel& hand = *world.scene().hand;
+  const auto samples = hand::read_glove_log(source_path(kGraspLog), hand).samples;
   const int64_t hold_ns = std::llround(kHoldTime_s * 1e9);
   physics::HandInput input;
-  std::size_t next = 0;
-  while (world.time_ns() < hold_ns) {
-    // the offline runner's rule: the newest sample not later than the step's start
-    while (next < samples.size() && samples[next].t_ns - t0_ns <= world.time_ns()) {
-      input = physics_io::hand_input_from_glove(hand, samples[next++]);
-      world.set_hand_input(input);
-    }
-    world.step();
+  physics_io::ReplayDriver driver(world, hand);
+  for (const auto& sample : samples) {
+    if (driver.world_time_of(sample) >= hold_ns) break;
+    driver.feed(sample, [&] { world.step(); });
+    input = physics_io::hand_input_from_glove(hand, sample);
   }
+  driver.step_until(hold_ns, [&] { world.step(); });
   const int cup = world.scene().find_object("cup");
   if (cup < 0 || world.bodies()[static_cast<std::size_t>(cup)].held_by == physics::kNotHeld)
     throw std::runtime_error("step_to_hold: the cup is not held at the hold time");

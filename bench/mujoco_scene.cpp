@@ -16,7 +16,7 @@
 namespace vcockpit::bench {
 namespace {
 
-using physics::kLinkCount;
+using hand::kLinkCount;
 
 // Collision filter: (contype1 & conaffinity2) || (contype2 & conaffinity1) lets a pair collide.
 // Static and hand geoms accept nothing, so they meet only dynamic geoms, which accept everyone.
@@ -73,7 +73,7 @@ Names scene_names(const physics::Scene& scene) {
   std::set<std::string> used;
   for (int l = 0; l < kLinkCount; ++l)
     names.links[static_cast<std::size_t>(l)] =
-        unique_name("hand_" + std::string(physics::link_name(static_cast<physics::Link>(l))), used);
+        unique_name("hand_" + std::string(hand::link_name(static_cast<hand::Link>(l))), used);
   for (const physics::ObjectSpec& o : scene.objects) names.objects.push_back(unique_name(o.name, used));
   return names;
 }
@@ -150,7 +150,7 @@ void write_inertial(Xml& xml, const physics::ObjectSpec& o) {
 }
 
 void write_hand(Xml& xml, const physics::Scene& scene, const Names& names) {
-  const physics::HandModel& hand = *scene.hand;
+  const hand::HandModel& hand = *scene.hand;
   const double mu_s = scene.hand_material.mu_s;
   const std::array<float, 4> skin{0.85f, 0.7f, 0.6f, 1.0f};
   auto& out = xml.out();
@@ -158,12 +158,12 @@ void write_hand(Xml& xml, const physics::Scene& scene, const Names& names) {
     const std::string& name = names.links[static_cast<std::size_t>(l)];
     out << "    <body name=\"" << name << "\" mocap=\"true\" pos=\"0 0 " << kParkedHeight_m
         << "\">\n      <geom name=\"" << name << '"';
-    if (l == static_cast<int>(physics::Link::kPalm)) {
+    if (l == static_cast<int>(hand::Link::kPalm)) {
       write_shape(xml, physics::Shape::box(hand.palm_size_m));  // centred on the palm frame
     } else {
       // the capsule spans [0, length] on x_L: centred at length / 2, its z axis turned onto x_L
       // by Ry(+90 deg)
-      const physics::Capsule& c = hand.capsules[static_cast<std::size_t>(l)];
+      const hand::Capsule& c = hand.capsules[static_cast<std::size_t>(l)];
       const double s = std::sqrt(0.5);
       write_shape(xml, physics::Shape::capsule(c.radius_m, c.length_m));
       out << " pos=\"" << 0.5 * c.length_m << " 0 0\" quat=\"" << s << " 0 " << s << " 0\"";
@@ -221,7 +221,7 @@ std::string mjcf_from_scene(const physics::Scene& scene) {
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
       if (!scene.objects[i].dynamic) continue;
       out << "    <weld name=\"hold_" << names.objects[i] << "\" body1=\""
-          << names.links[static_cast<std::size_t>(physics::Link::kPalm)] << "\" body2=\""
+          << names.links[static_cast<std::size_t>(hand::Link::kPalm)] << "\" body2=\""
           << names.objects[i] << "\" active=\"false\"/>\n";
     }
     out << "  </equality>\n";
@@ -335,7 +335,7 @@ void MujocoWorld::weld_to_palm(int object, const physics::BodyState& body) {
   const bool held = body.held_by != physics::kNotHeld;
   m_->eq_active[weld] = held ? 1 : 0;
   if (!held) return;
-  const int palm = hand_mocap_[static_cast<std::size_t>(physics::Link::kPalm)];
+  const int palm = hand_mocap_[static_cast<std::size_t>(hand::Link::kPalm)];
   const mjtNum* p = d_->mocap_pos + 3 * palm;
   const mjtNum* q = d_->mocap_quat + 4 * palm;
   Eigen::Isometry3d X_GP = Eigen::Isometry3d::Identity();

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "physics_node/physics/body.hpp"
-#include "physics_node/physics/hand_joints.hpp"
+#include "hand/hand_joints.hpp"
 #include "physics_node/physics/scene.hpp"
 
 // MuJoCo's own types (mujoco.h typedefs them as mjModel and mjData).
@@ -44,7 +44,7 @@ class MujocoWorld {
 
   // Hand link frames in world (World::X_GL()): the mocap bodies are put there. Throws
   // std::logic_error for a scene without a hand.
-  void set_hand(const std::array<Eigen::Isometry3d, physics::kLinkCount>& X_GL);
+  void set_hand(const std::array<Eigen::Isometry3d, hand::kLinkCount>& X_GL);
   // Our objects' state (one BodyState per scene object; static entries are ignored) into the
   // free joints' qpos and qvel. An object our hand holds (held_by) is welded to the palm where
   // it is now, as ours is attached (eqs. 28-29): MuJoCo's own way to hold a body. Call after
@@ -79,8 +79,8 @@ class MujocoWorld {
   std::vector<int> object_geom_;
   std::vector<int> object_qpos_;  // qpos address of the free joint; -1 static
   std::vector<int> object_qvel_;  // qvel address of the free joint; -1 static
-  std::array<int, physics::kLinkCount> hand_mocap_{};
-  std::array<int, physics::kLinkCount> hand_geom_{};
+  std::array<int, hand::kLinkCount> hand_mocap_{};
+  std::array<int, hand::kLinkCount> hand_geom_{};
   std::vector<int> object_weld_;  // equality id of the object's weld to the palm; -1 none
   bool has_hand_ = false;
 };

@@ -17,7 +17,7 @@
 #include <string>
 
 #include "common/dds_options.hpp"
-#include "common/topics.hpp"
+#include "idl/topics/topic_traits.hpp"
 
 namespace vcockpit {
 

@@ -10,13 +10,12 @@
 #include "common/logging.hpp"
 #include "common/signals.hpp"
 #include "common/yaml_config.hpp"
-#include "glove_driver/glove/gesture_script.hpp"
-#include "glove_driver/glove/glove_log.hpp"
-#include "glove_driver/glove/replay_cursor.hpp"
+#include "hand/glove_log.hpp"
+#include "glove_driver/glove/sample_source.hpp"
 #include "glove_driver/node/recorder.hpp"
 #include "glove_driver/node/sample_publisher.hpp"
 #include "common/terminal_progress.hpp"
-#include "physics_node/config/hand_config.hpp"
+#include "hand/hand_yaml.hpp"
 
 namespace vcockpit::glove {
 namespace {
@@ -83,63 +82,14 @@ void add_flags(CLI::App& app, Flags& f) {
       ->capture_default_str();
 }
 
-// A source of samples with their due times: a replay cursor or a synthetic script.
-class Source {
- public:
-  virtual ~Source() = default;
-  virtual bool next(GloveSample& out, int64_t& due_ns) = 0;
-  virtual double position_s() const = 0;
-  virtual double total_s() const = 0;
-  // joint values the reader clamped into their limits while loading (a log), for node_status
-  virtual uint64_t clamped_on_load() const { return 0; }
-};
-
-class ReplaySource : public Source {
- public:
-  ReplaySource(GloveLog log, const ReplayOptions& options)
-      : log_(std::move(log)), cursor_(log_.samples, options) {}
-  bool next(GloveSample& out, int64_t& due_ns) override { return cursor_.next(out, due_ns); }
-  double position_s() const override { return ns_to_seconds(cursor_.position_ns()); }
-  double total_s() const override { return ns_to_seconds(cursor_.pass_duration_ns()); }
-  uint64_t clamped_on_load() const override { return static_cast<uint64_t>(log_.clamped_values); }
-
- private:
-  GloveLog log_;
-  ReplayCursor cursor_;
-};
-
-class SyntheticSource : public Source {
- public:
-  SyntheticSource(GestureScript script, double rate_hz, double time_scale)
-      : script_(std::move(script)), rate_hz_(rate_hz), time_scale_(time_scale) {}
-  bool next(GloveSample& out, int64_t& due_ns) override {
-    const int64_t t_ns = static_cast<int64_t>(std::llround(static_cast<double>(k_) * 1e9 / rate_hz_));
-    if (t_ns > script_.duration_ns()) return false;
-    ++k_;
-    out = script_.sample_at(t_ns);
-    position_ns_ = t_ns;
-    due_ns = time_scale_ > 0 ? static_cast<int64_t>(static_cast<double>(t_ns) / time_scale_) : 0;
-    return true;
-  }
-  double position_s() const override { return ns_to_seconds(position_ns_); }
-  double total_s() const override { return ns_to_seconds(script_.duration_ns()); }
-
- private:
-  GestureScript script_;
-  double rate_hz_;
-  double time_scale_;
-  uint64_t k_ = 0;
-  int64_t position_ns_ = 0;
-};
-
-int run_publisher(DdsParticipant& participant, const physics::HandModel& hand, Source& source,
+int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Source& source,
                   const PublisherOptions& options) {
   SamplePublisher publisher(participant, hand, options);
   publisher.add_clamped(source.clamped_on_load());
   if (!publisher.wait_for_subscribers()) return shutdown_requested() ? 0 : 1;
   TerminalProgress progress;
   const int64_t start_ns = monotonic_now_ns();
-  GloveSample sample;
+  hand::GloveSample sample;
   int64_t due_ns = 0;
   while (!shutdown_requested() && source.next(sample, due_ns)) {
     if (due_ns > 0) sleep_until_ns(start_ns + due_ns);
@@ -170,7 +120,7 @@ int run(const Flags& f) {
   if (f.source == "replay" && f.log_path.empty()) {
     throw CLI::ValidationError("--source replay needs --log FILE");
   }
-  physics::HandModel hand = load_hand_model(f.hand_config);
+  hand::HandModel hand = load_hand_model(f.hand_config);
   DdsParticipant participant(resolve_dds_options(f.dds), "glove_driver");
 
   if (recording) {
@@ -187,7 +137,7 @@ int run(const Flags& f) {
   std::unique_ptr<Source> source;
   bool left = hand.left;
   if (f.source == "replay") {
-    GloveLog log = read_glove_log(f.log_path, hand);
+    hand::GloveLog log = hand::read_glove_log(f.log_path, hand);
     left = log.left_hand;
     if (!log.missing_joints.empty()) {
       std::string names;

@@ -8,7 +8,7 @@
 #include "common/logging.hpp"
 #include "common/signals.hpp"
 #include "image_generator/node/ig_loop.hpp"
-#include "physics_node/config/hand_config.hpp"
+#include "hand/hand_yaml.hpp"
 
 int main(int argc, char** argv) {
   using namespace vcockpit;
@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
     setup_logging("image_generator", log_level);
     install_shutdown_handlers();
     const HmdSetup hmd = load_hmd_config(hmd_path);
-    const physics::HandModel hand = load_hand_model(hand_path);
+    const hand::HandModel hand = load_hand_model(hand_path);
     DdsParticipant participant(resolve_dds_options(dds_flags), options.node_name);
     return image_generator::run_image_generator(participant, hmd, hand, options);
   } catch (const std::exception& e) {

@@ -25,7 +25,7 @@ using namespace vcockpit;
 
 int run_offline_mode(const physics_io::OfflineOptions& options) {
   if (options.out_dir.empty()) throw CLI::ValidationError("--offline needs --out DIR");
-  const auto summary = physics_io::run_offline(options);
+  const auto summary = physics_io::run_offline(load_scene(options.scene_path), options);
   spdlog::info("{} steps ({:.1f} substeps each on average, at most {}), {:.3f} s simulated in "
                "{:.3f} s wall ({:.1f}x real time); {} grasp(s), {} release(s); hand penetration "
                "max {:.2f} mm",

@@ -3,19 +3,20 @@
 #include <algorithm>
 
 #include "common/pose.hpp"
+#include "hand/tracker.hpp"
 #include "common/yaml_config.hpp"
 
 namespace vcockpit::glove {
 namespace {
 
-using physics::Joint;
-using physics::JointAngles;
+using hand::Joint;
+using hand::JointAngles;
 
-JointAngles shape_from_degrees(const physics::HandModel& hand,
+JointAngles shape_from_degrees(const hand::HandModel& hand,
                                std::initializer_list<std::pair<Joint, double>> degrees) {
   JointAngles q = hand.rest_pose();
   for (auto [joint, deg] : degrees) q[static_cast<int>(joint)] = deg_to_rad(deg);
-  physics::clamp_to_limits(hand, q);
+  hand::clamp_to_limits(hand, q);
   return q;
 }
 
@@ -24,7 +25,7 @@ double min_jerk(double u) { return u * u * u * (10.0 + u * (-15.0 + 6.0 * u)); }
 
 }  // namespace
 
-std::map<std::string, JointAngles> builtin_shapes(const physics::HandModel& hand) {
+std::map<std::string, JointAngles> builtin_shapes(const hand::HandModel& hand) {
   std::map<std::string, JointAngles> shapes;
   shapes["rest"] = hand.rest_pose();
   // open: fingers straight and slightly spread, thumb out to the side
@@ -55,11 +56,11 @@ std::map<std::string, JointAngles> builtin_shapes(const physics::HandModel& hand
   return shapes;
 }
 
-GestureScript GestureScript::load(const std::string& path, const physics::HandModel& hand) {
+GestureScript GestureScript::load(const std::string& path, const hand::HandModel& hand) {
   return parse(ConfigNode::load_file(path), hand);
 }
 
-GestureScript GestureScript::parse(const ConfigNode& root, const physics::HandModel& hand) {
+GestureScript GestureScript::parse(const ConfigNode& root, const hand::HandModel& hand) {
   root.expect_keys({"rate_hz", "shapes", "keyframes"});
   GestureScript script(hand);
   if (auto rate = root.find("rate_hz")) {
@@ -72,11 +73,11 @@ GestureScript GestureScript::parse(const ConfigNode& root, const physics::HandMo
       const ConfigNode node = (*extra)[name];
       JointAngles q = hand.rest_pose();
       for (const auto& joint_name : node.keys()) {
-        const int j = physics::joint_index(joint_name);
+        const int j = hand::joint_index(joint_name);
         if (j < 0) node[joint_name].fail("unknown joint '" + joint_name + "'");
         q[j] = deg_to_rad(node[joint_name].as_double());
       }
-      if (physics::clamp_to_limits(hand, q) > 0) node.fail("joint angles beyond the hand's limits");
+      if (hand::clamp_to_limits(hand, q) > 0) node.fail("joint angles beyond the hand's limits");
       shapes[name] = q;
     }
   }
@@ -86,7 +87,7 @@ GestureScript GestureScript::parse(const ConfigNode& root, const physics::HandMo
     frame.expect_keys({"t_s", "position", "rpy_deg", "shape"});
     Keyframe k;
     const double t_s = frame.get_double("t_s");
-    k.t_ns = log_seconds_to_ns(t_s);
+    k.t_ns = hand::log_seconds_to_ns(t_s);
     if (script.keyframes_.empty() ? t_s < 0 : k.t_ns <= script.keyframes_.back().t_ns) {
       frame["t_s"].fail("keyframe times must start at 0 or later and increase");
     }
@@ -125,18 +126,18 @@ void GestureScript::evaluate(int64_t t_ns, Eigen::Isometry3d& X_GH,
   const Eigen::Quaterniond qb(b.X_GH.linear());
   X_GH = make_pose(a.X_GH.translation() + s * (b.X_GH.translation() - a.X_GH.translation()),
                    qa.slerp(s, qb).toRotationMatrix());
-  for (int j = 0; j < physics::kJointCount; ++j) {
+  for (int j = 0; j < hand::kJointCount; ++j) {
     joints_rad[j] = a.joints_rad[j] + s * (b.joints_rad[j] - a.joints_rad[j]);
   }
 }
 
-GloveSample GestureScript::sample_at(int64_t t_ns) const {
+hand::GloveSample GestureScript::sample_at(int64_t t_ns) const {
   Eigen::Isometry3d X_GH;
-  GloveSample out;
+  hand::GloveSample out;
   out.t_ns = t_ns;
   evaluate(t_ns, X_GH, out.joints_rad);
   const Eigen::Isometry3d X_TH =
-      physics::X_MH_from_tracker(*hand_, Eigen::Isometry3d::Identity(), out.joints_rad);
+      hand::X_MH_from_tracker(*hand_, Eigen::Isometry3d::Identity(), out.joints_rad);
   const Eigen::Isometry3d X_MT = hand_->tracker.X_GM.inverse() * X_GH * X_TH.inverse();
   out.p_MT_m = X_MT.translation();
   out.q_MT = Eigen::Quaterniond(X_MT.linear()).normalized();

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "glove_driver/glove/glove_sample.hpp"
-#include "physics_node/physics/hand_model.hpp"
+#include "hand/glove_sample.hpp"
+#include "hand/hand_model.hpp"
 
 namespace vcockpit {
 class ConfigNode;
@@ -29,35 +29,35 @@ namespace vcockpit::glove {
 struct Keyframe {
   int64_t t_ns = 0;
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
-  physics::JointAngles joints_rad{};
+  hand::JointAngles joints_rad{};
   std::string shape;
 };
 
 class GestureScript {
  public:
   // Throws ConfigError (file:line:col:key) on any bad value.
-  static GestureScript load(const std::string& path, const physics::HandModel& hand);
-  static GestureScript parse(const ConfigNode& root, const physics::HandModel& hand);
+  static GestureScript load(const std::string& path, const hand::HandModel& hand);
+  static GestureScript parse(const ConfigNode& root, const hand::HandModel& hand);
 
   double rate_hz() const { return rate_hz_; }
   int64_t duration_ns() const { return keyframes_.back().t_ns; }
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
 
   // The hand in the world and its joints at time t (clamped to the script's span).
-  void evaluate(int64_t t_ns, Eigen::Isometry3d& X_GH, physics::JointAngles& joints_rad) const;
+  void evaluate(int64_t t_ns, Eigen::Isometry3d& X_GH, hand::JointAngles& joints_rad) const;
   // The glove reading that produces that hand: tracker pose X_MT through the hand's tracker
   // mounting (X_MT = X_GM^-1 X_GH X_TH^-1).
-  GloveSample sample_at(int64_t t_ns) const;
+  hand::GloveSample sample_at(int64_t t_ns) const;
 
  private:
-  GestureScript(const physics::HandModel& hand) : hand_(&hand) {}
+  GestureScript(const hand::HandModel& hand) : hand_(&hand) {}
 
-  const physics::HandModel* hand_;
+  const hand::HandModel* hand_;
   double rate_hz_ = 1000.0;
   std::vector<Keyframe> keyframes_;
 };
 
 // The built-in hand shapes (degrees by joint name) for a hand model.
-std::map<std::string, physics::JointAngles> builtin_shapes(const physics::HandModel& hand);
+std::map<std::string, hand::JointAngles> builtin_shapes(const hand::HandModel& hand);
 
 }  // namespace vcockpit::glove

@@ -6,19 +6,19 @@
 
 namespace vcockpit::glove {
 
-ReplayCursor::ReplayCursor(const std::vector<GloveSample>& samples, const ReplayOptions& options)
+ReplayCursor::ReplayCursor(const std::vector<hand::GloveSample>& samples, const ReplayOptions& options)
     : samples_(samples), options_(options) {
   if (samples.empty()) throw std::invalid_argument("the log has no samples");
   if (!(options.rate >= 0) || !std::isfinite(options.rate)) {
     throw std::invalid_argument("--rate must be 0 (as fast as possible) or positive");
   }
   if (!(options.start_offset_s >= 0)) throw std::invalid_argument("--start-offset must be >= 0");
-  const int64_t start_ns = samples.front().t_ns + log_seconds_to_ns(options.start_offset_s);
+  const int64_t start_ns = samples.front().t_ns + hand::log_seconds_to_ns(options.start_offset_s);
   while (first_ < samples.size() && samples[first_].t_ns < start_ns) ++first_;
   if (first_ == samples.size()) {
     throw std::invalid_argument("--start-offset " + std::to_string(options.start_offset_s) +
                                 " s is beyond the log's end (" +
-                                std::to_string(ns_to_log_seconds(samples.back().t_ns -
+                                std::to_string(hand::ns_to_log_seconds(samples.back().t_ns -
                                                                  samples.front().t_ns)) +
                                 " s)");
   }
@@ -30,13 +30,13 @@ ReplayCursor::ReplayCursor(const std::vector<GloveSample>& samples, const Replay
   pass_ns_ = span + step;
 }
 
-bool ReplayCursor::next(GloveSample& out, int64_t& due_ns) {
+bool ReplayCursor::next(hand::GloveSample& out, int64_t& due_ns) {
   if (index_ == samples_.size()) {
     if (!options_.loop) return false;
     ++pass_;
     index_ = first_;
   }
-  const GloveSample& s = samples_[index_++];
+  const hand::GloveSample& s = samples_[index_++];
   position_ns_ = s.t_ns - samples_[first_].t_ns;
   const int64_t elapsed_ns = position_ns_ + static_cast<int64_t>(pass_) * pass_ns_;
   out = s;

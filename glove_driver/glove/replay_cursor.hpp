@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "glove_driver/glove/glove_sample.hpp"
+#include "hand/glove_sample.hpp"
 
 namespace vcockpit::glove {
 
@@ -22,11 +22,11 @@ struct ReplayOptions {
 class ReplayCursor {
  public:
   // Throws std::invalid_argument if the offset is negative or beyond the log's end, or rate < 0.
-  ReplayCursor(const std::vector<GloveSample>& samples, const ReplayOptions& options);
+  ReplayCursor(const std::vector<hand::GloveSample>& samples, const ReplayOptions& options);
 
   // The next sample (times shifted for loops) and when it is due after the start (ns of wall
   // time, 0 when rate is 0). False at the end of a non-looping replay.
-  bool next(GloveSample& out, int64_t& due_ns);
+  bool next(hand::GloveSample& out, int64_t& due_ns);
 
   std::size_t first_index() const { return first_; }
   int64_t pass_duration_ns() const { return pass_ns_; }  // log time of one pass
@@ -35,7 +35,7 @@ class ReplayCursor {
   int64_t position_ns() const { return position_ns_; }
 
  private:
-  const std::vector<GloveSample>& samples_;
+  const std::vector<hand::GloveSample>& samples_;
   ReplayOptions options_;
   std::size_t first_ = 0;
   std::size_t index_ = 0;

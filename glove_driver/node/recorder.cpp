@@ -4,9 +4,9 @@
 
 #include "common/clock.hpp"
 #include "common/signals.hpp"
-#include "glove_driver/glove/glove_log.hpp"
-#include "glove_driver/glove/hand_sample_convert.hpp"
-#include "glove_driver/glove/sample_validator.hpp"
+#include "hand/glove_log.hpp"
+#include "idl/topics/hand_sample_convert.hpp"
+#include "hand/sample_validator.hpp"
 
 namespace vcockpit::glove {
 namespace {
@@ -21,13 +21,13 @@ bool should_stop(const RecorderOptions& o, uint64_t written, int64_t start_ns, i
 
 }  // namespace
 
-int run_recorder(DdsParticipant& participant, const physics::HandModel& hand,
+int run_recorder(DdsParticipant& participant, const hand::HandModel& hand,
                  const RecorderOptions& options) {
   auto reader = participant.make_reader<cockpit::HandSample>(options.lockstep ? "reliable"
                                                                              : "stream");
-  GloveLogWriter log(options.path, hand.left,
+  hand::GloveLogWriter log(options.path, hand.left,
                      {"source: recorded from " + std::string(TopicTraits<cockpit::HandSample>::kName)});
-  SampleValidator validator(hand);
+  hand::SampleValidator validator(hand);
   spdlog::info("recording {} to {}", TopicTraits<cockpit::HandSample>::kName, options.path);
 
   const int64_t start_ns = monotonic_now_ns();
@@ -42,8 +42,8 @@ int run_recorder(DdsParticipant& participant, const physics::HandModel& hand,
         ++other_hands;
         continue;
       }
-      GloveSample sample = from_hand_sample(message);
-      const GloveSample as_received = sample;
+      hand::GloveSample sample = from_hand_sample(message);
+      const hand::GloveSample as_received = sample;
       if (!validator.accept(sample)) continue;
       log.append(as_received);  // the log keeps what was sent; limits apply on replay
       last_sample_ns = monotonic_now_ns();

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "common/dds_participant.hpp"
-#include "physics_node/physics/hand_model.hpp"
+#include "hand/hand_model.hpp"
 
 namespace vcockpit::glove {
 
@@ -22,7 +22,7 @@ struct RecorderOptions {
 };
 
 // Returns the process exit code: 0 when the log was written.
-int run_recorder(DdsParticipant& participant, const physics::HandModel& hand,
+int run_recorder(DdsParticipant& participant, const hand::HandModel& hand,
                  const RecorderOptions& options);
 
 }  // namespace vcockpit::glove

@@ -4,11 +4,11 @@
 
 #include "common/clock.hpp"
 #include "common/signals.hpp"
-#include "glove_driver/glove/hand_sample_convert.hpp"
+#include "idl/topics/hand_sample_convert.hpp"
 
 namespace vcockpit::glove {
 
-SamplePublisher::SamplePublisher(DdsParticipant& participant, const physics::HandModel& hand,
+SamplePublisher::SamplePublisher(DdsParticipant& participant, const hand::HandModel& hand,
                                  const PublisherOptions& options)
     : options_(options),
       validator_(hand),
@@ -33,7 +33,7 @@ bool SamplePublisher::wait_for_subscribers() {
   return false;
 }
 
-bool SamplePublisher::publish(GloveSample sample) {
+bool SamplePublisher::publish(hand::GloveSample sample) {
   if (!validator_.accept(sample)) return false;
   message_ = to_hand_sample(sample, options_.hand_id, published_, monotonic_now_ns());
   // a reliable history stays full while a reader lags; keep trying while it is still there

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "common/dds_participant.hpp"
-#include "glove_driver/glove/sample_validator.hpp"
+#include "hand/sample_validator.hpp"
 
 namespace vcockpit::glove {
 
@@ -24,13 +24,13 @@ struct PublisherOptions {
 
 class SamplePublisher {
  public:
-  SamplePublisher(DdsParticipant& participant, const physics::HandModel& hand,
+  SamplePublisher(DdsParticipant& participant, const hand::HandModel& hand,
                   const PublisherOptions& options);
 
   // Lockstep: blocks until the subscribers matched (false on timeout or shutdown). Stream: true.
   bool wait_for_subscribers();
   // Validates and writes; false if the sample was rejected or the middleware refused it.
-  bool publish(GloveSample sample);
+  bool publish(hand::GloveSample sample);
   // Publishes node_status when a second has passed since the last one.
   void tick(int64_t now_ns);
   // Lockstep: waits until every subscriber acknowledged everything. Publishes a final status.
@@ -39,7 +39,7 @@ class SamplePublisher {
   // Joint values clamped before the samples reached the validator (while reading a log).
   void add_clamped(uint64_t count) { clamped_before_ += count; }
 
-  const ValidationCounts& counts() const { return validator_.counts(); }
+  const hand::ValidationCounts& counts() const { return validator_.counts(); }
   uint64_t published() const { return published_; }
   uint64_t write_failures() const { return write_failures_; }
 
@@ -47,7 +47,7 @@ class SamplePublisher {
   void publish_status(cockpit::NodeState state, int64_t now_ns);
 
   PublisherOptions options_;
-  SampleValidator validator_;
+  hand::SampleValidator validator_;
   Writer<cockpit::HandSample> writer_;
   Writer<cockpit::NodeStatus> status_writer_;
   cockpit::HandSample message_;

@@ -8,7 +8,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/clock.hpp"
-#include "common/idl_convert.hpp"
+#include "idl/topics/pose_convert.hpp"
 #include "common/latency_histogram.hpp"
 #include "common/signals.hpp"
 #include "image_generator/node/scene_cache.hpp"
@@ -18,7 +18,7 @@ namespace {
 
 class ImageGenerator {
  public:
-  ImageGenerator(DdsParticipant& participant, const HmdSetup& hmd, const physics::HandModel& hand,
+  ImageGenerator(DdsParticipant& participant, const HmdSetup& hmd, const hand::HandModel& hand,
                  const IgOptions& options)
       : options_(options),
         X_GHead_(hmd.X_GHead),
@@ -226,7 +226,7 @@ int ImageGenerator::run() {
 }  // namespace
 
 int run_image_generator(DdsParticipant& participant, const HmdSetup& hmd,
-                        const physics::HandModel& hand, const IgOptions& options) {
+                        const hand::HandModel& hand, const IgOptions& options) {
   ImageGenerator ig(participant, hmd, hand, options);
   return ig.run();
 }

@@ -10,7 +10,7 @@
 #include "common/dds_participant.hpp"
 #include "image_generator/node/hmd_yaml.hpp"
 #include "image_generator/node/snapshot_writer.hpp"
-#include "physics_node/physics/hand_model.hpp"
+#include "hand/hand_model.hpp"
 
 namespace vcockpit::image_generator {
 
@@ -27,6 +27,6 @@ struct IgOptions {
 
 // Exit codes: 0 done, 3 no scene arrived in time, 4 rendering failed.
 int run_image_generator(DdsParticipant& participant, const HmdSetup& hmd,
-                        const physics::HandModel& hand, const IgOptions& options);
+                        const hand::HandModel& hand, const IgOptions& options);
 
 }  // namespace vcockpit::image_generator

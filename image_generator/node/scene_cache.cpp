@@ -1,6 +1,6 @@
 #include "image_generator/node/scene_cache.hpp"
 
-#include "common/idl_convert.hpp"
+#include "idl/topics/pose_convert.hpp"
 
 namespace vcockpit::image_generator {
 namespace {
@@ -66,8 +66,8 @@ void SceneCache::build(std::vector<render::Instance>& out) const {
   out.push_back(palm);
   // a phalanx frame has its capsule along +x from its origin; the primitive's axis is z
   const Eigen::Isometry3d z_to_x(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
-  for (int l = 1; l < physics::kLinkCount; ++l) {
-    const physics::Capsule& c = hand_.capsules[l];
+  for (int l = 1; l < hand::kLinkCount; ++l) {
+    const hand::Capsule& c = hand_.capsules[l];
     render::Instance phalanx;
     phalanx.primitive = render::Primitive::kCapsule;
     phalanx.X_GO = to_eigen(hand_state_.X_GL()[l]) *

@@ -10,13 +10,13 @@
 
 #include "cockpit.h"
 #include "image_generator/render/stereo_renderer.hpp"
-#include "physics_node/physics/hand_model.hpp"
+#include "hand/hand_model.hpp"
 
 namespace vcockpit::image_generator {
 
 class SceneCache {
  public:
-  explicit SceneCache(const physics::HandModel& hand) : hand_(hand) {}
+  explicit SceneCache(const hand::HandModel& hand) : hand_(hand) {}
 
   void on_info(const cockpit::ObjectInfo& info);
   void on_state(const cockpit::ObjectState& state);
@@ -39,7 +39,7 @@ class SceneCache {
     render::Instance instance;
   };
 
-  const physics::HandModel& hand_;
+  const hand::HandModel& hand_;
   std::map<uint32_t, Object> objects_;  // by object id: drawn in id order
   cockpit::HandState hand_state_;
   bool have_hand_ = false;

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "common/pose.hpp"
-#include "physics_node/config/hand_config.hpp"
+#include "hand/hand_yaml.hpp"
 
 namespace vcockpit {
 namespace {
@@ -264,7 +264,7 @@ GraspParams parse_grasp(const ConfigNode& node) {
   read_optional(node, "alpha0_deg", g.alpha0_deg,
                 [](const ConfigNode& n) { return in_open(n, 0.0, 180.0); });
   read_optional(node, "min_contacts", g.min_contacts,
-                [](const ConfigNode& n) { return int_in_range(n, 1, physics::kLinkCount); });
+                [](const ConfigNode& n) { return int_in_range(n, 1, hand::kLinkCount); });
   // below 1 the exit thresholds would be tighter than the entry ones: chatter, not hysteresis
   read_optional(node, "exit_scale", g.exit_scale,
                 [](const ConfigNode& n) { return at_least(n, 1.0); });

@@ -1,16 +1,14 @@
 #include "physics_node/io/hand_input.hpp"
 
+#include "hand/tracker.hpp"
+
 namespace vcockpit::physics_io {
 
-physics::HandInput hand_input_from_glove(const physics::HandModel& hand,
-                                         const glove::GloveSample& sample) {
+physics::HandInput hand_input_from_glove(const hand::HandModel& hand,
+                                         const hand::GloveSample& sample) {
   physics::HandInput input;
   input.q_rad = sample.joints_rad;
-  physics::clamp_to_limits(hand, input.q_rad);
-  Eigen::Isometry3d X_MT = Eigen::Isometry3d::Identity();
-  X_MT.linear() = sample.q_MT.normalized().toRotationMatrix();
-  X_MT.translation() = sample.p_MT_m;
-  input.X_GH = hand.tracker.X_GM * physics::X_MH_from_tracker(hand, X_MT, input.q_rad);
+  input.X_GH = hand::X_GH_from_sample(hand, sample);
   input.tracking = true;
   return input;
 }

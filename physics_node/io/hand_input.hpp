@@ -1,13 +1,13 @@
 #pragma once
-// A glove reading -> the hand the physics sees: X_GH = X_GM * X_MH (paper eq. 27), with X_MH from
-// the tracker reading through the hand's tracker mounting (eq. 26), joints clamped into limits.
+// A validated glove sample -> the hand the physics sees: X_GH from the tracker (eqs. 26-27,
+// hand/tracker.hpp) and the joint angles as the SampleValidator left them (clamped once there).
 
-#include "glove_driver/glove/glove_sample.hpp"
+#include "hand/glove_sample.hpp"
 #include "physics_node/physics/world.hpp"
 
 namespace vcockpit::physics_io {
 
-physics::HandInput hand_input_from_glove(const physics::HandModel& hand,
-                                         const glove::GloveSample& sample);
+physics::HandInput hand_input_from_glove(const hand::HandModel& hand,
+                                         const hand::GloveSample& sample);
 
 }  // namespace vcockpit::physics_io

@@ -7,9 +7,8 @@
 
 #include "common/clock.hpp"
 #include "common/terminal_progress.hpp"
-#include "glove_driver/glove/glove_log.hpp"
-#include "physics_node/config/scene_config.hpp"
-#include "physics_node/io/hand_input.hpp"
+#include "hand/glove_log.hpp"
+#include "physics_node/io/replay_driver.hpp"
 
 namespace vcockpit::physics_io {
 namespace {
@@ -30,15 +29,14 @@ int64_t output_interval_ns(double output_hz, const physics::Scene& scene) {
 
 }  // namespace
 
-RunSummary run_offline(const OfflineOptions& options) {
-  physics::Scene scene = load_scene(options.scene_path);
-  std::vector<glove::GloveSample> samples;
+RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
+  std::vector<hand::GloveSample> samples;
   if (!options.log_path.empty()) {
     if (!scene.hand) {
       throw std::invalid_argument(options.scene_path + ": the scene has no hand, so a glove log "
                                                        "cannot drive it");
     }
-    samples = glove::read_glove_log(options.log_path, *scene.hand).samples;
+    samples = hand::read_glove_log(options.log_path, *scene.hand).samples;
   }
   if (!options.duration_s && samples.empty()) {
     throw std::invalid_argument("give --log GLOVE.csv or --duration S");
@@ -46,9 +44,8 @@ RunSummary run_offline(const OfflineOptions& options) {
   if (options.duration_s && !(*options.duration_s > 0)) {
     throw std::invalid_argument("--duration must be positive");
   }
-  const int64_t t0_ns = samples.empty() ? 0 : samples.front().t_ns;
   const int64_t end_ns = options.duration_s ? std::llround(*options.duration_s * 1e9)
-                                            : samples.back().t_ns - t0_ns;
+                                            : samples.back().t_ns - samples.front().t_ns;
   const int64_t interval_ns = output_interval_ns(options.output_hz, scene);
 
   std::filesystem::create_directories(options.out_dir);
@@ -60,20 +57,9 @@ RunSummary run_offline(const OfflineOptions& options) {
   summary.log_path = options.log_path;
   summary.stage_total_s.assign(physics::kStageCount, 0.0);
   physics::World world(std::move(scene));
-  const physics::HandModel* hand = world.scene().hand ? &*world.scene().hand : nullptr;
-  std::size_t next_sample = 0;
-  auto feed_samples = [&] {
-    while (next_sample < samples.size() && samples[next_sample].t_ns - t0_ns <= world.time_ns()) {
-      world.set_hand_input(hand_input_from_glove(*hand, samples[next_sample]));
-      ++next_sample;
-    }
-  };
-
   TerminalProgress progress;
   const auto wall_start = std::chrono::steady_clock::now();
-  feed_samples();
-  trajectories.write(world);
-  while (world.time_ns() < end_ns) {
+  auto step = [&] {
     world.step();
     events.write(world);
     const auto& pen = world.hand_penetration();
@@ -86,7 +72,6 @@ RunSummary run_offline(const OfflineOptions& options) {
     summary.substeps = std::max(summary.substeps, world.substeps());
     summary.substeps_total += static_cast<uint64_t>(world.substeps());
     if (world.time_ns() % interval_ns == 0) trajectories.write(world);
-    feed_samples();
     if (world.step_count() % 100 == 0) {
       const double wall_s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -94,7 +79,20 @@ RunSummary run_offline(const OfflineOptions& options) {
       progress.update(monotonic_now_ns(), sim_s, ns_to_seconds(end_ns),
                       wall_s > 0 ? sim_s / wall_s : 0.0, world.step_count());
     }
+  };
+  if (samples.empty()) {
+    trajectories.write(world);
+  } else {
+    // the first sample sets the hand before the first row; the rest each at its own time
+    ReplayDriver driver(world, *world.scene().hand);
+    driver.feed(samples.front(), step);
+    trajectories.write(world);
+    for (std::size_t i = 1; i < samples.size(); ++i) {
+      if (driver.world_time_of(samples[i]) > end_ns) break;
+      driver.feed(samples[i], step);
+    }
   }
+  while (world.time_ns() < end_ns) step();
   progress.finish();
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   summary.steps = world.step_count();

@@ -8,6 +8,7 @@
 #include "common/clock.hpp"
 #include "common/signals.hpp"
 #include "physics_node/io/hand_input.hpp"
+#include "physics_node/io/replay_driver.hpp"
 #include "physics_node/node/loop_stats.hpp"
 #include "physics_node/node/sample_gate.hpp"
 #include "physics_node/node/state_publisher.hpp"
@@ -23,6 +24,7 @@ class Node {
         world_(std::move(scene)),
         hand_(*world_.scene().hand),
         gate_(hand_),
+        replay_(world_, hand_),
         reader_(participant.make_reader<cockpit::HandSample>(options.lockstep ? "reliable"
                                                                               : "stream")),
         publisher_(participant, world_) {
@@ -45,7 +47,7 @@ class Node {
       const int64_t take_ns = monotonic_now_ns();
       const bool new_source = !have_source_ || info.publication_handle != source_;
       if (new_source) gate_.reset_time();
-      glove::GloveSample sample;
+      hand::GloveSample sample;
       if (!gate_.accept(message_, sample)) continue;
       if (new_source) {
         if (have_source_) spdlog::info("hand samples from a new source: following its timeline");
@@ -102,8 +104,9 @@ class Node {
 
   NodeOptions options_;
   physics::World world_;
-  const physics::HandModel& hand_;
+  const hand::HandModel& hand_;
   SampleGate gate_;
+  physics_io::ReplayDriver replay_;  // lockstep: the world advanced to each sample's stamp
   Reader<cockpit::HandSample> reader_;
   StatePublisher publisher_;
   cockpit::HandSample message_;
@@ -184,7 +187,7 @@ int Node::run_realtime() {
                world_.substeps(), options_.publish_hz);
   while (!should_stop(monotonic_now_ns())) {
     sleep_until_ns(next_ns);
-    drain([&](const glove::GloveSample& s, bool) {
+    drain([&](const hand::GloveSample& s, bool) {
       input_ = physics_io::hand_input_from_glove(hand_, s);
       have_input = true;
     });
@@ -236,8 +239,6 @@ int Node::run_realtime() {
 
 int Node::run_lockstep() {
   const int64_t publish_every_ns = std::llround(1e9 / options_.publish_hz);
-  int64_t t0_ns = 0;
-  bool started = false;
   int64_t next_publish_sim_ns = 0;
   bool dirty = false;
   spdlog::info("lockstep: stepping to each sample's stamp ({} substeps per step)",
@@ -246,13 +247,10 @@ int Node::run_lockstep() {
   int64_t last_publish_ns = 0;
   while (!should_stop(monotonic_now_ns())) {
     const bool idle = !reader_.wait_for_data(20'000'000);
-    drain([&](const glove::GloveSample& s, bool new_source) {
+    drain([&](const hand::GloveSample& s, bool new_source) {
       // world time 0 is the first sample; a later source continues from where the world is
-      if (!started || new_source) {
-        t0_ns = s.t_ns - world_.time_ns();
-        started = true;
-      }
-      while (world_.time_ns() < s.t_ns - t0_ns) {
+      if (new_source) replay_.restart();
+      replay_.feed(s, [&] {
         step_world();
         dirty = true;
         if (world_.time_ns() >= next_publish_sim_ns) {
@@ -260,9 +258,7 @@ int Node::run_lockstep() {
           last_publish_ns = monotonic_now_ns();
           next_publish_sim_ns += publish_every_ns;
         }
-      }
-      input_ = physics_io::hand_input_from_glove(hand_, s);
-      world_.set_hand_input(input_);
+      });
     });
     // caught up with the input: show where the world is, at most at --publish-hz of wall time
     // (a replay at its own pace would otherwise publish every sample), and at once when the
@@ -274,7 +270,7 @@ int Node::run_lockstep() {
       dirty = false;
     }
     const bool alive = glove_alive(now_ns);
-    maybe_publish_status(now_ns, alive, alive ? "lockstep" : started ? "lockstep, input ended"
+    maybe_publish_status(now_ns, alive, alive ? "lockstep" : replay_.started() ? "lockstep, input ended"
                                                                      : "lockstep, waiting");
   }
   const int64_t loop_end_ns = monotonic_now_ns();

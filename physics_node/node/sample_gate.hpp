@@ -6,7 +6,7 @@
 // driver makes, so a replay reaches the physics exactly as it left the log.
 
 #include "cockpit.h"
-#include "glove_driver/glove/sample_validator.hpp"
+#include "hand/sample_validator.hpp"
 
 namespace vcockpit::physics_node {
 
@@ -14,18 +14,18 @@ class SampleGate {
  public:
   static constexpr double kTrackerRange_m = 10.0;
 
-  explicit SampleGate(const physics::HandModel& hand) : validator_(hand) {}
+  explicit SampleGate(const hand::HandModel& hand) : validator_(hand) {}
 
   // True and `out` filled when the sample is accepted.
-  bool accept(const cockpit::HandSample& sample, glove::GloveSample& out);
-  const glove::ValidationCounts& counts() const { return validator_.counts(); }
+  bool accept(const cockpit::HandSample& sample, hand::GloveSample& out);
+  const hand::ValidationCounts& counts() const { return validator_.counts(); }
   // A new source: its stamps are compared with its own from now on.
   void reset_time() { validator_.reset_time(); }
   uint64_t rejected_flagged_or_far() const { return rejected_flagged_or_far_; }
   uint64_t rejected() const { return validator_.counts().rejected() + rejected_flagged_or_far_; }
 
  private:
-  glove::SampleValidator validator_;
+  hand::SampleValidator validator_;
   uint64_t rejected_flagged_or_far_ = 0;
 };
 

@@ -1,7 +1,7 @@
 #include "physics_node/node/state_publisher.hpp"
 
 #include "common/clock.hpp"
-#include "common/idl_convert.hpp"
+#include "idl/topics/pose_convert.hpp"
 
 namespace vcockpit::physics_node {
 namespace {
@@ -79,7 +79,7 @@ void StatePublisher::publish_state(const physics::World& world, const InputStamp
   hand_msg_.source_stamp_ns(stamps.source_stamp_ns);
   hand_msg_.sim_time_ns(world.time_ns());
   hand_msg_.X_GH(to_idl(world.X_GH()));
-  for (int l = 0; l < physics::kLinkCount; ++l) hand_msg_.X_GL()[l] = to_idl(world.X_GL()[l]);
+  for (int l = 0; l < hand::kLinkCount; ++l) hand_msg_.X_GL()[l] = to_idl(world.X_GL()[l]);
   hand_msg_.grasped_object_id(held);
   hand_msg_.tracking(tracking);
   hand_writer_.write(hand_msg_);

@@ -15,7 +15,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "physics_node/physics/hand_joints.hpp"
+#include "physics_node/physics/hand_names.hpp"
 #include "physics_node/physics/scene.hpp"
 
 namespace vcockpit::physics {

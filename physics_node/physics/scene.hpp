@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "physics_node/physics/hand_model.hpp"
+#include "physics_node/physics/hand_names.hpp"
 
 namespace vcockpit::physics {
 

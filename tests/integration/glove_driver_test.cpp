@@ -9,10 +9,10 @@
 #include <fstream>
 #include <thread>
 
-#include "glove_driver/glove/glove_log.hpp"
-#include "glove_driver/glove/hand_sample_convert.hpp"
-#include "glove_driver/glove/sample_validator.hpp"
-#include "physics_node/config/hand_config.hpp"
+#include "hand/glove_log.hpp"
+#include "idl/topics/hand_sample_convert.hpp"
+#include "hand/sample_validator.hpp"
+#include "hand/hand_yaml.hpp"
 #include "tests/support/hand_sample_pattern.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/process_test.hpp"
@@ -24,28 +24,28 @@ namespace {
 class GloveDriverTest : public ProcessTest {
  protected:
   std::string glove_driver() const { return bin_dir() + "/glove_driver"; }
-  physics::HandModel hand_ = load_hand_model(source_dir() + "/config/hand.yaml");
+  hand::HandModel hand_ = load_hand_model(source_dir() + "/config/hand.yaml");
 };
 
 TEST_F(GloveDriverTest, LockstepReplayOfFiveThousandSamplesAtFullSpeedIsCompleteAndIdentical) {
   constexpr int kCount = 5000;
   const std::string dir = make_temp_dir("glove_driver_replay");
   // a log with every field varying; sample 10 has a joint beyond its limit (clamped, counted)
-  std::vector<glove::GloveSample> samples;
+  std::vector<hand::GloveSample> samples;
   for (int i = 0; i < kCount; ++i) {
     const auto pattern = hand_sample_pattern(static_cast<uint64_t>(i));
-    glove::GloveSample s = glove::from_hand_sample(pattern);
+    hand::GloveSample s = from_hand_sample(pattern);
     s.t_ns = 1'000'000LL * i + 17;
     s.joints_rad = hand_.rest_pose();
-    for (int j = 0; j < physics::kJointCount; ++j) {
+    for (int j = 0; j < hand::kJointCount; ++j) {
       const auto& r = hand_.joints[j];
       s.joints_rad[j] = r.min_rad + (r.max_rad - r.min_rad) * pattern.joint_angles_rad()[j];
     }
     samples.push_back(s);
   }
-  samples[10].joints_rad[static_cast<int>(physics::Joint::kIndexMcp)] = 3.0;
+  samples[10].joints_rad[static_cast<int>(hand::Joint::kIndexMcp)] = 3.0;
   const std::string log = dir + "/pattern.csv";
-  glove::write_glove_log(log, samples, false, {"source: glove_driver_test"});
+  hand::write_glove_log(log, samples, false, {"source: glove_driver_test"});
 
   ChildProcess sub({bin_dir() + "/test_hand_sample_sub", "--count", std::to_string(kCount),
                     "--out", dir + "/received.bin", "--timeout-s", "60", "--status-out",
@@ -65,11 +65,11 @@ TEST_F(GloveDriverTest, LockstepReplayOfFiveThousandSamplesAtFullSpeedIsComplete
   // what arrived is what the log holds (after the documented clamp), in order, none missing
   const auto records = read_records(dir + "/received.bin");
   ASSERT_EQ(records.size(), static_cast<std::size_t>(kCount));
-  glove::SampleValidator validator(hand_);
+  hand::SampleValidator validator(hand_);
   for (int i = 0; i < kCount; ++i) {
-    glove::GloveSample expected = samples[i];
+    hand::GloveSample expected = samples[i];
     ASSERT_TRUE(validator.accept(expected));
-    ASSERT_EQ(records[i], serialize(glove::to_hand_sample(expected, 0, i, 0))) << "sample " << i;
+    ASSERT_EQ(records[i], serialize(to_hand_sample(expected, 0, i, 0))) << "sample " << i;
   }
   const std::string status = read_text(dir + "/status.txt");
   EXPECT_NE(status.find("published=5000"), std::string::npos) << status;
@@ -91,7 +91,7 @@ TEST_F(GloveDriverTest, RecordReplayRecordRoundTripsToAnIdenticalLog) {
     ASSERT_EQ(synthetic.wait(60 * kSecond), 0) << read_text(dir + "/synthetic.log");
     ASSERT_EQ(recorder.wait(30 * kSecond), 0) << read_text(dir + "/record1.log");
   }
-  const auto first_log = glove::read_glove_log(first, hand_);
+  const auto first_log = hand::read_glove_log(first, hand_);
   EXPECT_GT(first_log.samples.size(), 1000u);
   {
     ChildProcess recorder(
@@ -127,7 +127,7 @@ TEST_F(GloveDriverTest, InterruptedRecordingLeavesAValidLogOrNone) {
   EXPECT_EQ(rec_killed.wait(5 * kSecond), 128 + SIGKILL);
   EXPECT_EQ(replay.stop(5 * kSecond), 0) << read_text(dir + "/replay.log");
 
-  const auto recorded = glove::read_glove_log(clean, hand_);  // throws if corrupt
+  const auto recorded = hand::read_glove_log(clean, hand_);  // throws if corrupt
   EXPECT_GT(recorded.samples.size(), 100u);
   EXPECT_FALSE(std::filesystem::exists(clean + ".partial"));
   EXPECT_FALSE(std::filesystem::exists(killed)) << "a killed recorder must not leave a log";

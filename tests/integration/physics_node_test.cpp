@@ -10,7 +10,7 @@
 #include <sstream>
 #include <thread>
 
-#include "glove_driver/glove/glove_log.hpp"
+#include "hand/glove_log.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/hand_input.hpp"
 #include "physics_node/io/offline_runner.hpp"
@@ -32,7 +32,7 @@ TEST_F(PhysicsNodeTest, LockstepReplayGivesTheOfflineRunnersResult) {
   offline.scene_path = source_dir() + "/config/cockpit.yaml";
   offline.log_path = grasp_log();
   offline.out_dir = dir_ + "/offline";
-  const auto summary = physics_io::run_offline(offline);
+  const auto summary = physics_io::run_offline(load_scene(offline.scene_path), offline);
   ASSERT_EQ(summary.grasps, 1);
 
   ChildProcess node = start("physics_node", {"--lockstep"}, "node.log");
@@ -105,7 +105,7 @@ TEST_F(PhysicsNodeTest, RealTimeHoldsOneKilohertzAndTheHandFollowsTheSamples) {
 
   // every hand_state shows the wrist of the sample it names
   physics::Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
-  const auto log = glove::read_glove_log(sweep_log(), *scene.hand);
+  const auto log = hand::read_glove_log(sweep_log(), *scene.hand);
   const int64_t t0 = log.samples.front().t_ns;
   const int64_t pass_ns = log.samples.back().t_ns - t0 + 1'000'000;
   int tracked = 0;

@@ -88,7 +88,7 @@ TEST_F(RigTest, FullRigReplaysTheGraspInLockstepLikeTheOfflineRunner) {
   offline.scene_path = config("cockpit.yaml");
   offline.log_path = config("glove_logs/reach_grasp_lift_release.csv");
   offline.out_dir = dir_ + "/offline";
-  physics_io::run_offline(offline);
+  physics_io::run_offline(load_scene(offline.scene_path), offline);
   const auto expected = read_final_poses(offline.out_dir + "/summary.json");
   const auto seen = read_final_poses(dir_ + "/out/summary.json");
   ASSERT_TRUE(expected.count("cup") && seen.count("cup")) << summary;

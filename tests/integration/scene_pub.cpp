@@ -13,7 +13,7 @@
 
 #include "common/clock.hpp"
 #include "common/dds_participant.hpp"
-#include "common/idl_convert.hpp"
+#include "idl/topics/pose_convert.hpp"
 #include "common/logging.hpp"
 #include "common/signals.hpp"
 

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "glove_driver/glove/glove_log.hpp"
+#include "hand/glove_log.hpp"
 #include "physics_node/config/scene_config.hpp"
-#include "physics_node/io/hand_input.hpp"
+#include "physics_node/io/replay_driver.hpp"
 #include "physics_node/io/offline_runner.hpp"
 #include "tests/support/process.hpp"
 
@@ -31,8 +31,8 @@ TEST(CockpitGrasp, CupIsGraspedLiftedReleasedAndComesToRest) {
   physics::Scene scene = load_scene(scene_path());
   const int cup = scene.find_object("cup");
   ASSERT_GE(cup, 0);
-  const auto log = glove::read_glove_log(grasp_log_path(), *scene.hand);
-  const physics::HandModel hand = *scene.hand;
+  const auto log = hand::read_glove_log(grasp_log_path(), *scene.hand);
+  const hand::HandModel hand = *scene.hand;
   physics::World world(scene);
   const double rest_z = world.bodies()[cup].X_GO.translation().z();
 
@@ -40,16 +40,9 @@ TEST(CockpitGrasp, CupIsGraspedLiftedReleasedAndComesToRest) {
   int64_t grasp_ns = -1, release_ns = -1;
   Eigen::Isometry3d X_HO = Eigen::Isometry3d::Identity();
   double max_follow_error_m = 0.0, max_lift_m = 0.0;
-  std::size_t next = 0;
-  const int64_t t0 = log.samples.front().t_ns;
-  const int64_t end_ns = log.samples.back().t_ns - t0 + 1'500'000'000;  // 1.5 s to settle
-  auto feed = [&] {
-    while (next < log.samples.size() && log.samples[next].t_ns - t0 <= world.time_ns()) {
-      world.set_hand_input(physics_io::hand_input_from_glove(hand, log.samples[next++]));
-    }
-  };
-  feed();
-  while (world.time_ns() < end_ns) {
+  const int64_t end_ns =
+      log.samples.back().t_ns - log.samples.front().t_ns + 1'500'000'000;  // 1.5 s to settle
+  auto step = [&] {
     world.step();
     for (const auto& e : world.step_events()) {
       EXPECT_EQ(e.object, cup) << "unexpected " << (e.grasp ? "grasp" : "release") << " of "
@@ -72,8 +65,10 @@ TEST(CockpitGrasp, CupIsGraspedLiftedReleasedAndComesToRest) {
           std::max(max_follow_error_m, (body.X_GO.translation() - expected.translation()).norm());
       max_lift_m = std::max(max_lift_m, body.X_GO.translation().z() - rest_z);
     }
-    feed();
-  }
+  };
+  physics_io::ReplayDriver driver(world, hand);
+  for (const auto& sample : log.samples) driver.feed(sample, step);
+  driver.step_until(end_ns, step);
   ASSERT_EQ(grasps, 1) << "exactly one grasp (no chatter)";
   ASSERT_EQ(releases, 1) << "exactly one release (no chatter)";
   EXPECT_LT(grasp_ns, release_ns);
@@ -93,7 +88,7 @@ TEST(CockpitGrasp, SameRunTwiceGivesByteIdenticalOutputs) {
     options.scene_path = scene_path();
     options.log_path = grasp_log_path();
     options.out_dir = make_temp_dir("cockpit_grasp_run" + std::to_string(run));
-    const auto summary = physics_io::run_offline(options);
+    const auto summary = physics_io::run_offline(load_scene(options.scene_path), options);
     EXPECT_EQ(summary.grasps, 1);
     EXPECT_EQ(summary.releases, 1);
     outputs[run] = read_text(options.out_dir + "/trajectories.csv") + "\n--\n" +
@@ -113,7 +108,7 @@ TEST(CockpitGrasp, BadInputsAreClearErrorsAndLeaveNoOutput) {
   options.log_path = bad_log;
   options.out_dir = dir + "/out";
   try {
-    physics_io::run_offline(options);
+    physics_io::run_offline(load_scene(options.scene_path), options);
     FAIL() << "no error";
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("bad.csv:3"), std::string::npos) << e.what();
@@ -121,7 +116,7 @@ TEST(CockpitGrasp, BadInputsAreClearErrorsAndLeaveNoOutput) {
   options.log_path = grasp_log_path();
   options.scene_path = dir + "/missing.yaml";
   try {
-    physics_io::run_offline(options);
+    physics_io::run_offline(load_scene(options.scene_path), options);
     FAIL() << "no error";
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("missing.yaml"), std::string::npos) << e.what();

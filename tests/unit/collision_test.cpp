@@ -25,9 +25,9 @@
 #include <string>
 #include <vector>
 
-#include "physics_node/config/hand_config.hpp"
+#include "hand/hand_yaml.hpp"
 #include "physics_node/physics/collision.hpp"
-#include "physics_node/physics/hand_model.hpp"
+#include "hand/hand_model.hpp"
 #include "tests/support/allocation_counter.hpp"
 #include "physics_node/physics/scene.hpp"
 

@@ -7,21 +7,21 @@
 #include <fstream>
 #include <functional>
 
-#include "glove_driver/glove/glove_log.hpp"
-#include "physics_node/config/hand_config.hpp"
+#include "hand/glove_log.hpp"
+#include "hand/hand_yaml.hpp"
 #include "tests/support/process.hpp"
 
-namespace vcockpit::glove {
+namespace vcockpit::hand {
 namespace {
 
-physics::HandModel default_hand() {
+hand::HandModel default_hand() {
   return load_hand_model(std::string(std::getenv("VCOCKPIT_SOURCE_DIR")) + "/config/hand.yaml");
 }
 
 class GloveLogTest : public ::testing::Test {
  protected:
   std::string dir_ = test::make_temp_dir("glove_log_test");
-  physics::HandModel hand_ = default_hand();
+  hand::HandModel hand_ = default_hand();
 
   std::string write(const std::string& name, const std::string& text) {
     const std::string path = dir_ + "/" + name;
@@ -48,7 +48,7 @@ TEST_F(GloveLogTest, CanonicalLogRoundTripsBitExactly) {
     s.p_MT_m = Eigen::Vector3d(0.1 + 1.0 / (i + 3), -0.2, 0.9 + 1e-9 * i);
     s.q_MT = Eigen::Quaterniond(Eigen::AngleAxisd(0.01 * i, Eigen::Vector3d(1, 2, 3).normalized()));
     s.joints_rad = hand_.rest_pose();
-    s.joints_rad[static_cast<int>(physics::Joint::kIndexMcp)] = 0.5 + 1.0 / (i + 7);
+    s.joints_rad[static_cast<int>(hand::Joint::kIndexMcp)] = 0.5 + 1.0 / (i + 7);
     samples.push_back(s);
   }
   const std::string path = dir_ + "/roundtrip.csv";
@@ -79,11 +79,11 @@ TEST_F(GloveLogTest, EulerDegreesAndMissingJointsTakeTheRestPose) {
                           "0.0,0,0,0,90,0,0,30\n0.01,0,0,0,0,0,0,30\n");
   const GloveLog log = read_glove_log(path, hand_);
   ASSERT_EQ(log.samples.size(), 2u);
-  EXPECT_EQ(log.missing_joints.size(), static_cast<std::size_t>(physics::kJointCount - 1));
-  EXPECT_NEAR(log.samples[0].joints_rad[static_cast<int>(physics::Joint::kIndexMcp)],
+  EXPECT_EQ(log.missing_joints.size(), static_cast<std::size_t>(hand::kJointCount - 1));
+  EXPECT_NEAR(log.samples[0].joints_rad[static_cast<int>(hand::Joint::kIndexMcp)],
               30.0 * M_PI / 180.0, 1e-12);
-  EXPECT_EQ(log.samples[0].joints_rad[static_cast<int>(physics::Joint::kMiddleMcp)],
-            hand_.rest_pose()[static_cast<int>(physics::Joint::kMiddleMcp)]);
+  EXPECT_EQ(log.samples[0].joints_rad[static_cast<int>(hand::Joint::kMiddleMcp)],
+            hand_.rest_pose()[static_cast<int>(hand::Joint::kMiddleMcp)]);
   // psi is the first Euler angle of the configured convention; 90 deg about its axis
   const Eigen::Matrix3d R = log.samples[0].q_MT.toRotationMatrix();
   EXPECT_NEAR(std::abs(R.determinant()), 1.0, 1e-12);
@@ -98,8 +98,8 @@ TEST_F(GloveLogTest, BeyondLimitsIsClampedAndCounted) {
   EXPECT_EQ(log.clamped_values, 1);
   EXPECT_NE(log.first_clamp.find("limits.csv:2: column 'index_mcp_deg'"), std::string::npos)
       << log.first_clamp;
-  EXPECT_EQ(log.samples[0].joints_rad[static_cast<int>(physics::Joint::kIndexMcp)],
-            hand_.joints[static_cast<int>(physics::Joint::kIndexMcp)].max_rad);
+  EXPECT_EQ(log.samples[0].joints_rad[static_cast<int>(hand::Joint::kIndexMcp)],
+            hand_.joints[static_cast<int>(hand::Joint::kIndexMcp)].max_rad);
 }
 
 struct BadCase {
@@ -162,4 +162,4 @@ TEST_F(GloveLogTest, UncommittedWriterLeavesNoLogAndNoPartialFile) {
 }
 
 }  // namespace
-}  // namespace vcockpit::glove
+}  // namespace vcockpit::hand

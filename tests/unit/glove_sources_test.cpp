@@ -7,18 +7,19 @@
 #include "common/yaml_config.hpp"
 #include "glove_driver/glove/gesture_script.hpp"
 #include "glove_driver/glove/replay_cursor.hpp"
-#include "glove_driver/glove/sample_validator.hpp"
-#include "physics_node/config/hand_config.hpp"
+#include "hand/sample_validator.hpp"
+#include "hand/tracker.hpp"
+#include "hand/hand_yaml.hpp"
 
 namespace vcockpit::glove {
 namespace {
 
-physics::HandModel default_hand() {
+hand::HandModel default_hand() {
   return load_hand_model(std::string(std::getenv("VCOCKPIT_SOURCE_DIR")) + "/config/hand.yaml");
 }
 
-std::vector<GloveSample> samples_every_10ms(int n, int64_t t0_ns = 5'000'000'000) {
-  std::vector<GloveSample> out(n);
+std::vector<hand::GloveSample> samples_every_10ms(int n, int64_t t0_ns = 5'000'000'000) {
+  std::vector<hand::GloveSample> out(n);
   for (int i = 0; i < n; ++i) out[i].t_ns = t0_ns + 10'000'000LL * i;
   return out;
 }
@@ -26,7 +27,7 @@ std::vector<GloveSample> samples_every_10ms(int n, int64_t t0_ns = 5'000'000'000
 TEST(ReplayCursor, KeepsRelativeTimingScaledByRate) {
   const auto samples = samples_every_10ms(5);
   ReplayCursor cursor(samples, {/*rate=*/2.0, /*loop=*/false, /*start_offset_s=*/0.0});
-  GloveSample s;
+  hand::GloveSample s;
   int64_t due = -1;
   std::vector<int64_t> dues, times;
   while (cursor.next(s, due)) {
@@ -40,7 +41,7 @@ TEST(ReplayCursor, KeepsRelativeTimingScaledByRate) {
 TEST(ReplayCursor, StartOffsetSkipsTheBeginning) {
   const auto samples = samples_every_10ms(10);
   ReplayCursor cursor(samples, {1.0, false, 0.035});
-  GloveSample s;
+  hand::GloveSample s;
   int64_t due = -1;
   ASSERT_TRUE(cursor.next(s, due));
   EXPECT_EQ(s.t_ns, samples[4].t_ns);
@@ -52,7 +53,7 @@ TEST(ReplayCursor, StartOffsetSkipsTheBeginning) {
 TEST(ReplayCursor, LoopingKeepsTimeIncreasingWithTheSameSpacing) {
   const auto samples = samples_every_10ms(3);
   ReplayCursor cursor(samples, {0.0, true, 0.0});
-  GloveSample s;
+  hand::GloveSample s;
   int64_t due = -1;
   std::vector<int64_t> times;
   for (int i = 0; i < 7 && cursor.next(s, due); ++i) times.push_back(s.t_ns - samples[0].t_ns);
@@ -63,32 +64,32 @@ TEST(ReplayCursor, LoopingKeepsTimeIncreasingWithTheSameSpacing) {
 
 TEST(SampleValidator, RejectsNonFiniteBadQuaternionAndStaleAndClampsJoints) {
   const auto hand = default_hand();
-  SampleValidator validator(hand);
-  GloveSample ok;
+  hand::SampleValidator validator(hand);
+  hand::GloveSample ok;
   ok.t_ns = 100;
   ok.joints_rad = hand.rest_pose();
   EXPECT_TRUE(validator.accept(ok));
 
-  GloveSample nan = ok;
+  hand::GloveSample nan = ok;
   nan.t_ns = 200;
   nan.joints_rad[3] = std::nan("");
   EXPECT_FALSE(validator.accept(nan));
 
-  GloveSample bad_q = ok;
+  hand::GloveSample bad_q = ok;
   bad_q.t_ns = 200;
   bad_q.q_MT = Eigen::Quaterniond(2, 0, 0, 0);
   EXPECT_FALSE(validator.accept(bad_q));
 
-  GloveSample stale = ok;
+  hand::GloveSample stale = ok;
   stale.t_ns = 100;
   EXPECT_FALSE(validator.accept(stale));
 
-  GloveSample beyond = ok;
+  hand::GloveSample beyond = ok;
   beyond.t_ns = 300;
-  beyond.joints_rad[static_cast<int>(physics::Joint::kIndexPip)] = 10.0;
+  beyond.joints_rad[static_cast<int>(hand::Joint::kIndexPip)] = 10.0;
   EXPECT_TRUE(validator.accept(beyond));
-  EXPECT_EQ(beyond.joints_rad[static_cast<int>(physics::Joint::kIndexPip)],
-            hand.joints[static_cast<int>(physics::Joint::kIndexPip)].max_rad);
+  EXPECT_EQ(beyond.joints_rad[static_cast<int>(hand::Joint::kIndexPip)],
+            hand.joints[static_cast<int>(hand::Joint::kIndexPip)].max_rad);
 
   const auto& c = validator.counts();
   EXPECT_EQ(c.accepted, 2u);
@@ -114,10 +115,10 @@ TEST(GestureScript, HitsKeyframesExactlyAndMovesSmoothlyBetween) {
   EXPECT_EQ(script.rate_hz(), 500.0);
   EXPECT_EQ(script.duration_ns(), 2'000'000'000);
   Eigen::Isometry3d X_GH;
-  physics::JointAngles q;
+  hand::JointAngles q;
   script.evaluate(1'000'000'000, X_GH, q);
   EXPECT_TRUE(X_GH.translation().isApprox(Eigen::Vector3d(0.2, 0, 1.0), 1e-12));
-  EXPECT_NEAR(q[static_cast<int>(physics::Joint::kIndexMcp)], M_PI / 4, 1e-12);
+  EXPECT_NEAR(q[static_cast<int>(hand::Joint::kIndexMcp)], M_PI / 4, 1e-12);
   // halfway: minimum jerk is symmetric, so half the distance
   script.evaluate(500'000'000, X_GH, q);
   EXPECT_NEAR(X_GH.translation().x(), 0.1, 1e-12);
@@ -135,15 +136,15 @@ TEST(GestureScript, HitsKeyframesExactlyAndMovesSmoothlyBetween) {
 TEST(GestureScript, SampleGoesThroughTheTrackerMounting) {
   const auto hand = default_hand();
   const auto script = GestureScript::parse(ConfigNode::load_string(kScript, "script.yaml"), hand);
-  const GloveSample s = script.sample_at(700'000'000);
+  const hand::GloveSample s = script.sample_at(700'000'000);
   Eigen::Isometry3d X_GH_expected;
-  physics::JointAngles q;
+  hand::JointAngles q;
   script.evaluate(700'000'000, X_GH_expected, q);
   Eigen::Isometry3d X_MT = Eigen::Isometry3d::Identity();
   X_MT.linear() = s.q_MT.toRotationMatrix();
   X_MT.translation() = s.p_MT_m;
   const Eigen::Isometry3d X_GH =
-      hand.tracker.X_GM * physics::X_MH_from_tracker(hand, X_MT, s.joints_rad);
+      hand.tracker.X_GM * hand::X_MH_from_tracker(hand, X_MT, s.joints_rad);
   EXPECT_TRUE(X_GH.isApprox(X_GH_expected, 1e-9));
 }
 

@@ -1,6 +1,6 @@
 // hand.yaml: the shipped hand loads, and every bad value is an error naming file, line and key.
 
-#include "physics_node/config/hand_config.hpp"
+#include "hand/hand_yaml.hpp"
 
 #include <gtest/gtest.h>
 
@@ -22,10 +22,10 @@ namespace {
 using test::read_text;
 using test::source_dir;
 
-using physics::Finger;
-using physics::HandModel;
-using physics::Joint;
-using physics::Link;
+using hand::Finger;
+using hand::HandModel;
+using hand::Joint;
+using hand::Link;
 
 std::string shipped_path() {
   return source_dir() + "/config/hand.yaml";
@@ -72,8 +72,8 @@ std::string valid_hand(const std::string& side = "right") {
       << "tracker:\n  euler: zyx\n  mount: back_of_hand\n"
       << "  X_GM: {position: [0, 0, 1], rpy_deg: [0, 0, 90]}\n"
       << "joints:\n";
-  for (int j = 0; j < physics::kJointCount; ++j) {
-    out << "  " << physics::joint_name(static_cast<Joint>(j))
+  for (int j = 0; j < hand::kJointCount; ++j) {
+    out << "  " << hand::joint_name(static_cast<Joint>(j))
         << ": {rest_deg: 0, min_deg: -20, max_deg: 90}\n";
   }
   out << "palm: {position: [0.045, 0, -0.015], rpy_deg: [0, 0, 0], size: [0.09, 0.085, 0.03]}\n"
@@ -101,10 +101,10 @@ TEST(HandConfig, ShippedHandLoadsAsARightHandWithSaneRanges) {
   const HandModel model = load_hand_model(shipped_path());
   EXPECT_FALSE(model.left);
   EXPECT_EQ(model.tracker.euler_axes, "zyx");
-  EXPECT_EQ(model.tracker.mount, physics::TrackerMount::kBackOfHand);
-  for (int j = 0; j < physics::kJointCount; ++j) {
-    const physics::JointRange& r = model.joints[j];
-    const auto name = physics::joint_name(static_cast<Joint>(j));
+  EXPECT_EQ(model.tracker.mount, hand::TrackerMount::kBackOfHand);
+  for (int j = 0; j < hand::kJointCount; ++j) {
+    const hand::JointRange& r = model.joints[j];
+    const auto name = hand::joint_name(static_cast<Joint>(j));
     EXPECT_LT(r.min_rad, r.max_rad) << name;
     EXPECT_GE(r.rest_rad, r.min_rad) << name;
     EXPECT_LE(r.rest_rad, r.max_rad) << name;
@@ -125,8 +125,8 @@ TEST(HandConfig, ShippedHandHasAdultAnthropometry) {
   EXPECT_DOUBLE_EQ(length(Link::kMiddleProximal), 0.050);
   EXPECT_DOUBLE_EQ(length(Link::kThumbProximal), 0.046);
   EXPECT_DOUBLE_EQ(length(Link::kLittleDistal), 0.018);
-  for (int l = 1; l < physics::kLinkCount; ++l) {
-    const auto name = physics::link_name(static_cast<Link>(l));
+  for (int l = 1; l < hand::kLinkCount; ++l) {
+    const auto name = hand::link_name(static_cast<Link>(l));
     EXPECT_GE(model.capsules[l].radius_m, 0.006) << name;
     EXPECT_LE(model.capsules[l].radius_m, 0.0105) << name;
     EXPECT_GT(model.capsules[l].length_m, 0.015) << name;
@@ -134,8 +134,8 @@ TEST(HandConfig, ShippedHandHasAdultAnthropometry) {
   EXPECT_TRUE(model.palm_size_m.isApprox(Eigen::Vector3d(0.090, 0.085, 0.030), 1e-12));
 
   // hand length: wrist (H origin) to the middle fingertip of the flat hand, ~0.19 m
-  physics::HandLinkPoses poses;
-  physics::forward_kinematics(model, physics::JointAngles{}, poses);
+  hand::HandLinkPoses poses;
+  hand::forward_kinematics(model, hand::JointAngles{}, poses);
   EXPECT_NEAR(poses.p_H_tip[idx(Finger::kMiddle)].x(), 0.19, 0.01);
   EXPECT_GT(poses.p_H_tip[idx(Finger::kThumb)].y(), 0.03);  // right hand: thumb on +y
 }
@@ -148,10 +148,10 @@ TEST(HandConfig, ShippedHandAsLeftIsItsMirrorImage) {
   const HandModel left = parse_hand_model(ConfigNode::load_string(text, "hand_left.yaml"));
   const HandModel right = load_hand_model(shipped_path());
   EXPECT_TRUE(left.left);
-  physics::HandLinkPoses pl, pr;
-  physics::forward_kinematics(left, left.rest_pose(), pl);
-  physics::forward_kinematics(right, right.rest_pose(), pr);
-  for (int f = 0; f < physics::kFingerCount; ++f) {
+  hand::HandLinkPoses pl, pr;
+  hand::forward_kinematics(left, left.rest_pose(), pl);
+  hand::forward_kinematics(right, right.rest_pose(), pr);
+  for (int f = 0; f < hand::kFingerCount; ++f) {
     const Eigen::Vector3d& a = pl.p_H_tip[f];
     const Eigen::Vector3d& b = pr.p_H_tip[f];
     EXPECT_TRUE(a.isApprox(Eigen::Vector3d(b.x(), -b.y(), b.z()), 1e-12)) << f;
@@ -162,12 +162,12 @@ TEST(HandConfig, ShippedHandAsLeftIsItsMirrorImage) {
 TEST(HandConfig, SideLeftIsTheMirroredRightHand) {
   const HandModel right = parse_hand_model(ConfigNode::load_string(valid_hand("right"), "r.yaml"));
   const HandModel left = parse_hand_model(ConfigNode::load_string(valid_hand("left"), "l.yaml"));
-  const HandModel expected = physics::mirrored(right);
+  const HandModel expected = hand::mirrored(right);
   EXPECT_TRUE(left.left);
   EXPECT_FALSE(right.left);
   EXPECT_TRUE(left.X_HP.isApprox(expected.X_HP, 0.0));
   EXPECT_TRUE(left.tracker.X_GM.isApprox(right.tracker.X_GM, 0.0));
-  for (int f = 0; f < physics::kFingerCount; ++f) {
+  for (int f = 0; f < hand::kFingerCount; ++f) {
     EXPECT_TRUE(left.fingers[f].X_HB.isApprox(expected.fingers[f].X_HB, 0.0));
     ASSERT_EQ(left.fingers[f].rows.size(), expected.fingers[f].rows.size());
     for (std::size_t i = 0; i < left.fingers[f].rows.size(); ++i) {

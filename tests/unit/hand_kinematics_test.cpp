@@ -11,11 +11,12 @@
 #include <string>
 
 #include "common/pose.hpp"
-#include "physics_node/config/hand_config.hpp"
-#include "physics_node/physics/hand_model.hpp"
+#include "hand/hand_yaml.hpp"
+#include "hand/hand_model.hpp"
+#include "hand/tracker.hpp"
 #include "tests/support/allocation_counter.hpp"
 
-namespace vcockpit::physics {
+namespace vcockpit::hand {
 namespace {
 
 // to prove forward_kinematics allocates nothing
@@ -399,4 +400,4 @@ TEST(HandTracker, ForearmMountTurnsByWristYawThenPitch) {
 }
 
 }  // namespace
-}  // namespace vcockpit::physics
+}  // namespace vcockpit::hand

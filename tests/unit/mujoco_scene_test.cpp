@@ -20,7 +20,7 @@
 namespace vcockpit::bench {
 namespace {
 
-using physics::kLinkCount;
+using hand::kLinkCount;
 
 int dynamic_count(const physics::Scene& scene) {
   return static_cast<int>(std::count_if(scene.objects.begin(), scene.objects.end(),
@@ -215,7 +215,7 @@ TEST(MujocoScene, OddNamesAndNoHand) {
 TEST(MujocoScene, HandGeomsSitWhereOursDo) {
   const Held& held = held_cockpit();
   const physics::World& world = *held.world;
-  const physics::HandModel& hand = *world.scene().hand;
+  const hand::HandModel& hand = *world.scene().hand;
   MujocoWorld mj(world.scene());
   mj.set_hand(world.X_GL());
   mj.forward();
@@ -283,7 +283,7 @@ TEST(MujocoScene, ReleasedCupFalls) {
   states[static_cast<std::size_t>(cup)].held_by = physics::kNotHeld;
   mj.set_object_states(states);
   // the hand away: nothing holds the cup up
-  std::array<Eigen::Isometry3d, physics::kLinkCount> X_GL = world.X_GL();
+  std::array<Eigen::Isometry3d, hand::kLinkCount> X_GL = world.X_GL();
   for (auto& X : X_GL) X.translation().z() += 10.0;
   mj.set_hand(X_GL);
   const double z0 = mj.object_pose(cup).translation().z();

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "common/pose.hpp"
-#include "physics_node/config/hand_config.hpp"
+#include "hand/hand_yaml.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/test_files.hpp"
 
@@ -108,7 +108,7 @@ TEST_F(ShippedCockpit, WorldAndHand) {
   EXPECT_EQ(scene_->gravity_mps2, Eigen::Vector3d(0.0, 0.0, -9.81));
   EXPECT_EQ(scene_->step_s, 0.001);
   ASSERT_TRUE(scene_->hand.has_value());
-  const physics::HandModel hand = load_hand_model(source_dir() + "/config/hand.yaml");
+  const hand::HandModel hand = load_hand_model(source_dir() + "/config/hand.yaml");
   EXPECT_EQ(scene_->hand->palm_size_m, hand.palm_size_m);
   EXPECT_EQ(scene_->hand->left, hand.left);
   EXPECT_EQ(scene_->hand_material.stiffness_Npm, 2.0e4);

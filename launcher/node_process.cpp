@@ -1,4 +1,4 @@
-#include "scripts/launcher/node_process.hpp"
+#include "launcher/node_process.hpp"
 
 #include <fcntl.h>
 #include <signal.h>

@@ -22,10 +22,10 @@
 #include <vector>
 
 #include "common/atomic_file.hpp"
-#include "glove_driver/glove/glove_sample.hpp"
-#include "physics_node/physics/hand_model.hpp"
+#include "hand/glove_sample.hpp"
+#include "hand/hand_model.hpp"
 
-namespace vcockpit::glove {
+namespace vcockpit::hand {
 
 class GloveLogError : public std::runtime_error {
  public:
@@ -43,7 +43,7 @@ struct GloveLog {
 };
 
 // Reads and validates a whole log. Throws GloveLogError.
-GloveLog read_glove_log(const std::string& path, const physics::HandModel& hand);
+GloveLog read_glove_log(const std::string& path, const hand::HandModel& hand);
 
 // Writes a log atomically: to "<path>.partial", then renamed over <path>. The columns are the
 // canonical ones (t_s, position, quaternion, all 22 joints in rad), full double precision, so
@@ -70,4 +70,4 @@ class GloveLogWriter {
 // The canonical header line (without newline).
 std::string canonical_header();
 
-}  // namespace vcockpit::glove
+}  // namespace vcockpit::hand

@@ -1,6 +1,6 @@
-#include "physics_node/physics/hand_joints.hpp"
+#include "hand/hand_joints.hpp"
 
-namespace vcockpit::physics {
+namespace vcockpit::hand {
 namespace {
 
 constexpr std::array<std::string_view, kJointCount> kJointNames = {
@@ -48,4 +48,4 @@ std::array<Link, 3> finger_links(Finger finger) {
   return {static_cast<Link>(first), static_cast<Link>(first + 1), static_cast<Link>(first + 2)};
 }
 
-}  // namespace vcockpit::physics
+}  // namespace vcockpit::hand

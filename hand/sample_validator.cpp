@@ -1,8 +1,8 @@
-#include "glove_driver/glove/sample_validator.hpp"
+#include "hand/sample_validator.hpp"
 
 #include <cmath>
 
-namespace vcockpit::glove {
+namespace vcockpit::hand {
 namespace {
 
 bool all_finite(const GloveSample& s) {
@@ -28,8 +28,8 @@ bool SampleValidator::accept(GloveSample& sample) {
     ++counts_.rejected_stale;
     return false;
   }
-  physics::JointAngles clamped = sample.joints_rad;
-  if (physics::clamp_to_limits(hand_, clamped) > 0) {
+  hand::JointAngles clamped = sample.joints_rad;
+  if (hand::clamp_to_limits(hand_, clamped) > 0) {
     sample.joints_rad = clamped;
     ++counts_.clamped;
   }
@@ -39,4 +39,4 @@ bool SampleValidator::accept(GloveSample& sample) {
   return true;
 }
 
-}  // namespace vcockpit::glove
+}  // namespace vcockpit::hand

@@ -1,4 +1,4 @@
-#include "physics_node/config/hand_config.hpp"
+#include "hand/hand_yaml.hpp"
 
 #include <sstream>
 #include <utility>
@@ -8,11 +8,11 @@
 namespace vcockpit {
 namespace {
 
-using physics::DhRow;
-using physics::Finger;
-using physics::HandModel;
-using physics::Joint;
-using physics::Link;
+using hand::DhRow;
+using hand::Finger;
+using hand::HandModel;
+using hand::Joint;
+using hand::Link;
 
 std::string format_number(double value) {
   std::ostringstream out;
@@ -24,20 +24,20 @@ std::string format_number(double value) {
 // the names stay defined in hand_joints.cpp only.
 template <std::size_t... I>
 void expect_joint_keys(const ConfigNode& node, std::index_sequence<I...>) {
-  node.expect_keys({physics::joint_name(static_cast<Joint>(I))...});
+  node.expect_keys({hand::joint_name(static_cast<Joint>(I))...});
 }
 
 int link_index(std::string_view name) {
-  for (int i = 0; i < physics::kLinkCount; ++i) {
-    if (physics::link_name(static_cast<Link>(i)) == name) return i;
+  for (int i = 0; i < hand::kLinkCount; ++i) {
+    if (hand::link_name(static_cast<Link>(i)) == name) return i;
   }
   return -1;
 }
 
 std::string finger_link_list(Finger finger) {
   std::string list;
-  for (Link link : physics::finger_links(finger)) {
-    list += (list.empty() ? "" : ", ") + std::string(physics::link_name(link));
+  for (Link link : hand::finger_links(finger)) {
+    list += (list.empty() ? "" : ", ") + std::string(hand::link_name(link));
   }
   return list;
 }
@@ -60,9 +60,9 @@ bool parse_side_is_left(const ConfigNode& node) {
   return side == "left";
 }
 
-physics::TrackerConfig parse_tracker(const ConfigNode& node) {
+hand::TrackerConfig parse_tracker(const ConfigNode& node) {
   node.expect_keys({"euler", "mount", "X_GM"});
-  physics::TrackerConfig tracker;
+  hand::TrackerConfig tracker;
   const ConfigNode euler = node["euler"];
   tracker.euler_axes = euler.as_string();
   if (!is_valid_euler_axes(tracker.euler_axes)) {
@@ -72,9 +72,9 @@ physics::TrackerConfig parse_tracker(const ConfigNode& node) {
   const ConfigNode mount = node["mount"];
   const std::string mount_name = mount.as_string();
   if (mount_name == "back_of_hand") {
-    tracker.mount = physics::TrackerMount::kBackOfHand;
+    tracker.mount = hand::TrackerMount::kBackOfHand;
   } else if (mount_name == "forearm") {
-    tracker.mount = physics::TrackerMount::kForearm;
+    tracker.mount = hand::TrackerMount::kForearm;
   } else {
     mount.fail("unknown tracker mount '" + mount_name + "' (back_of_hand or forearm)");
   }
@@ -82,7 +82,7 @@ physics::TrackerConfig parse_tracker(const ConfigNode& node) {
   return tracker;
 }
 
-physics::JointRange parse_range(const ConfigNode& node) {
+hand::JointRange parse_range(const ConfigNode& node) {
   node.expect_keys({"rest_deg", "min_deg", "max_deg"});
   const double rest_deg = node.get_double("rest_deg");
   const double min_deg = node.get_double("min_deg");
@@ -99,10 +99,10 @@ physics::JointRange parse_range(const ConfigNode& node) {
 }
 
 void parse_joints(const ConfigNode& node,
-                  std::array<physics::JointRange, physics::kJointCount>& out) {
-  expect_joint_keys(node, std::make_index_sequence<physics::kJointCount>{});
-  for (int j = 0; j < physics::kJointCount; ++j) {
-    const std::string name(physics::joint_name(static_cast<Joint>(j)));
+                  std::array<hand::JointRange, hand::kJointCount>& out) {
+  expect_joint_keys(node, std::make_index_sequence<hand::kJointCount>{});
+  for (int j = 0; j < hand::kJointCount; ++j) {
+    const std::string name(hand::joint_name(static_cast<Joint>(j)));
     const auto range = node.find(name);
     if (!range) node.fail("missing joint '" + name + "' (every one of the 22 channels is needed)");
     out[j] = parse_range(*range);
@@ -136,7 +136,7 @@ std::array<double, 3> parse_radii(const ConfigNode& node) {
 
 int parse_row_joint(const ConfigNode& node) {
   const std::string name = node.as_string();
-  const int joint = physics::joint_index(name);
+  const int joint = hand::joint_index(name);
   if (joint < 0) node.fail("unknown joint channel '" + name + "'");
   // the wrist turns the whole hand (see X_MH_from_tracker), never one finger
   if (joint == static_cast<int>(Joint::kWristPitch) ||
@@ -150,8 +150,8 @@ int parse_row_link(const ConfigNode& node, Finger finger) {
   const std::string name = node.as_string();
   const int link = link_index(name);
   Finger owner{};
-  if (link < 0 || !physics::finger_of(static_cast<Link>(link), owner) || owner != finger) {
-    node.fail("unknown link '" + name + "' for the " + std::string(physics::finger_name(finger)) +
+  if (link < 0 || !hand::finger_of(static_cast<Link>(link), owner) || owner != finger) {
+    node.fail("unknown link '" + name + "' for the " + std::string(hand::finger_name(finger)) +
               " (one of: " + finger_link_list(finger) + ")");
   }
   return link;
@@ -179,7 +179,7 @@ DhRow parse_row(const ConfigNode& node, Finger finger) {
 // `a` is the phalanx's length (the single source of truth for capsule lengths).
 void check_links(const std::vector<ConfigNode>& row_nodes, Finger finger, HandModel& model,
                  const std::array<double, 3>& radii, const ConfigNode& chain_node) {
-  const auto links = physics::finger_links(finger);
+  const auto links = hand::finger_links(finger);
   const auto& rows = model.fingers[static_cast<std::size_t>(finger)].rows;
   std::size_t seen = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -196,20 +196,20 @@ void check_links(const std::vector<ConfigNode>& row_nodes, Finger finger, HandMo
     const double length_m = rows[i + 1].a_m;
     if (!(length_m > 0.0)) {
       row_nodes[i + 1]["a"].fail("this row's a is the length of " +
-                                 std::string(physics::link_name(links[seen])) +
+                                 std::string(hand::link_name(links[seen])) +
                                  " and must be positive");
     }
     model.capsules[static_cast<std::size_t>(links[seen])] = {radii[seen], length_m};
     ++seen;
   }
   if (seen < links.size()) {
-    chain_node.fail("no row has link '" + std::string(physics::link_name(links[seen])) + "'");
+    chain_node.fail("no row has link '" + std::string(hand::link_name(links[seen])) + "'");
   }
 }
 
 void parse_finger(const ConfigNode& node, Finger finger, HandModel& model) {
   node.expect_keys({"base", "radius", "chain"});
-  physics::FingerChain& chain = model.fingers[static_cast<std::size_t>(finger)];
+  hand::FingerChain& chain = model.fingers[static_cast<std::size_t>(finger)];
   chain.X_HB = parse_pose(node["base"]);
   const auto radii = parse_radii(node["radius"]);
   const ConfigNode chain_node = node["chain"];
@@ -223,15 +223,15 @@ void parse_finger(const ConfigNode& node, Finger finger, HandModel& model) {
 
 void parse_fingers(const ConfigNode& node, HandModel& model) {
   node.expect_keys({"thumb", "index", "middle", "ring", "little"});
-  for (int f = 0; f < physics::kFingerCount; ++f) {
+  for (int f = 0; f < hand::kFingerCount; ++f) {
     const auto finger = static_cast<Finger>(f);
-    parse_finger(node[physics::finger_name(finger)], finger, model);
+    parse_finger(node[hand::finger_name(finger)], finger, model);
   }
 }
 
 }  // namespace
 
-physics::HandModel parse_hand_model(const ConfigNode& root) {
+hand::HandModel parse_hand_model(const ConfigNode& root) {
   root.expect_keys({"side", "tracker", "joints", "palm", "fingers"});
   const bool left = parse_side_is_left(root["side"]);
   HandModel model;
@@ -240,10 +240,10 @@ physics::HandModel parse_hand_model(const ConfigNode& root) {
   parse_palm(root["palm"], model);
   parse_fingers(root["fingers"], model);
   // the file always describes a right hand; a left one is its mirror image
-  return left ? physics::mirrored(model) : model;
+  return left ? hand::mirrored(model) : model;
 }
 
-physics::HandModel load_hand_model(const std::string& path) {
+hand::HandModel load_hand_model(const std::string& path) {
   return parse_hand_model(ConfigNode::load_file(path));
 }
 

@@ -20,8 +20,8 @@
 #include "common/json.hpp"
 #include "common/logging.hpp"
 #include "common/signals.hpp"
-#include "scripts/launcher/node_process.hpp"
-#include "scripts/launcher/rig_monitor.hpp"
+#include "launcher/node_process.hpp"
+#include "launcher/rig_monitor.hpp"
 
 namespace vcockpit::rig {
 namespace {

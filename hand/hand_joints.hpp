@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
-namespace vcockpit::physics {
+namespace vcockpit::hand {
 
 constexpr int kJointCount = 22;
 constexpr int kLinkCount = 16;
@@ -49,4 +49,4 @@ std::array<Link, 3> finger_links(Finger finger);
 
 using JointAngles = std::array<double, kJointCount>;  // rad, Joint order
 
-}  // namespace vcockpit::physics
+}  // namespace vcockpit::hand

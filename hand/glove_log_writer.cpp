@@ -1,6 +1,6 @@
-#include "glove_driver/glove/glove_log.hpp"
+#include "hand/glove_log.hpp"
 
-namespace vcockpit::glove {
+namespace vcockpit::hand {
 namespace {
 
 // %.17g round-trips every double exactly.
@@ -24,9 +24,9 @@ AtomicFile open_log(const std::string& path) {
 
 std::string canonical_header() {
   std::string header = "t_s,x_m,y_m,z_m,qw,qx,qy,qz";
-  for (int j = 0; j < physics::kJointCount; ++j) {
+  for (int j = 0; j < hand::kJointCount; ++j) {
     header += ",";
-    header += physics::joint_name(static_cast<physics::Joint>(j));
+    header += hand::joint_name(static_cast<hand::Joint>(j));
     header += "_rad";
   }
   return header;
@@ -60,4 +60,4 @@ void write_glove_log(const std::string& path, const std::vector<GloveSample>& sa
   writer.commit();
 }
 
-}  // namespace vcockpit::glove
+}  // namespace vcockpit::hand

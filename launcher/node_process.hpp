@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "scripts/launcher/rig_config.hpp"
+#include "launcher/rig_config.hpp"
 
 namespace vcockpit::rig {
 

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "physics_node/physics/hand_joints.hpp"
+#include "hand/hand_joints.hpp"
 
-namespace vcockpit::physics {
+namespace vcockpit::hand {
 
 // Range of one glove channel (rad). Samples are clamped into [min, max] (and counted).
 struct JointRange {
@@ -87,9 +87,4 @@ int clamp_to_limits(const HandModel& model, JointAngles& q);
 // The mirror image (left hand from right and back): every pose reflected in the xz plane.
 HandModel mirrored(const HandModel& model);
 
-// Palm pose relative to the tracker: identity when the tracker is on the back of the hand; the
-// wrist pitch and yaw channels when it is on the forearm.
-Eigen::Isometry3d X_MH_from_tracker(const HandModel& model, const Eigen::Isometry3d& X_MT,
-                                    const JointAngles& q);
-
-}  // namespace vcockpit::physics
+}  // namespace vcockpit::hand

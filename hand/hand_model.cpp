@@ -1,8 +1,8 @@
-#include "physics_node/physics/hand_model.hpp"
+#include "hand/hand_model.hpp"
 
 #include <cmath>
 
-namespace vcockpit::physics {
+namespace vcockpit::hand {
 namespace {
 
 // theta of a row for the joint angles q: theta_offset + scale * q[joint].
@@ -161,16 +161,4 @@ HandModel mirrored(const HandModel& model) {
 // thumb) and then by wrist pitch about the new y (flexion +, palm side -z):
 //   X_MH = X_MT * Rz(yaw) * Ry(pitch).
 // A left hand is the mirror image, so the same anatomical yaw turns it about -z.
-Eigen::Isometry3d X_MH_from_tracker(const HandModel& model, const Eigen::Isometry3d& X_MT,
-                                    const JointAngles& q) {
-  if (model.tracker.mount == TrackerMount::kBackOfHand) return X_MT;
-  const double yaw_rad = (model.left ? -1.0 : 1.0) * q[static_cast<int>(Joint::kWristYaw)];
-  const double pitch_rad = q[static_cast<int>(Joint::kWristPitch)];
-  Eigen::Isometry3d X_TH = Eigen::Isometry3d::Identity();
-  X_TH.linear() = (Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()) *
-                   Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()))
-                      .toRotationMatrix();
-  return X_MT * X_TH;
-}
-
-}  // namespace vcockpit::physics
+}  // namespace vcockpit::hand

@@ -5,10 +5,10 @@
 
 #include <cstdint>
 
-#include "glove_driver/glove/glove_sample.hpp"
-#include "physics_node/physics/hand_model.hpp"
+#include "hand/glove_sample.hpp"
+#include "hand/hand_model.hpp"
 
-namespace vcockpit::glove {
+namespace vcockpit::hand {
 
 struct ValidationCounts {
   uint64_t accepted = 0;
@@ -21,7 +21,7 @@ struct ValidationCounts {
 
 class SampleValidator {
  public:
-  explicit SampleValidator(const physics::HandModel& hand) : hand_(hand) {}
+  explicit SampleValidator(const hand::HandModel& hand) : hand_(hand) {}
 
   // True if the sample may be published (its joints possibly clamped in place).
   bool accept(GloveSample& sample);
@@ -30,10 +30,10 @@ class SampleValidator {
   void reset_time() { have_last_ = false; }
 
  private:
-  const physics::HandModel& hand_;
+  const hand::HandModel& hand_;
   ValidationCounts counts_;
   int64_t last_t_ns_ = 0;
   bool have_last_ = false;
 };
 
-}  // namespace vcockpit::glove
+}  // namespace vcockpit::hand

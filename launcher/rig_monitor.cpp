@@ -1,4 +1,4 @@
-#include "scripts/launcher/rig_monitor.hpp"
+#include "launcher/rig_monitor.hpp"
 
 #include <algorithm>
 #include <cmath>

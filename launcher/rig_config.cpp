@@ -1,4 +1,4 @@
-#include "scripts/launcher/rig_config.hpp"
+#include "launcher/rig_config.hpp"
 
 #include <filesystem>
 

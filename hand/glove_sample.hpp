@@ -7,19 +7,19 @@
 
 #include <cstdint>
 
-#include "physics_node/physics/hand_joints.hpp"
+#include "hand/hand_joints.hpp"
 
-namespace vcockpit::glove {
+namespace vcockpit::hand {
 
 struct GloveSample {
   int64_t t_ns = 0;                                         // the source's timeline
   Eigen::Vector3d p_MT_m = Eigen::Vector3d::Zero();          // tracker position in frame M
   Eigen::Quaterniond q_MT = Eigen::Quaterniond::Identity();  // tracker orientation, M <- T
-  physics::JointAngles joints_rad{};                         // Joint order
+  hand::JointAngles joints_rad{};                         // Joint order
 };
 
 // Log time (seconds, as written in t_s) <-> nanoseconds, exactly invertible for printed %.17g.
 int64_t log_seconds_to_ns(double t_s);
 double ns_to_log_seconds(int64_t t_ns);
 
-}  // namespace vcockpit::glove
+}  // namespace vcockpit::hand

@@ -5,9 +5,9 @@
 #include <sstream>
 
 #include "common/pose.hpp"
-#include "glove_driver/glove/glove_log.hpp"
+#include "hand/glove_log.hpp"
 
-namespace vcockpit::glove {
+namespace vcockpit::hand {
 namespace {
 
 // What a header column means.
@@ -57,7 +57,7 @@ bool split_unit(const std::string& name, std::string& base, double& to_rad) {
 
 class Reader {
  public:
-  Reader(const std::string& path, const physics::HandModel& hand) : path_(path), hand_(hand) {
+  Reader(const std::string& path, const hand::HandModel& hand) : path_(path), hand_(hand) {
     log_.path = path;
   }
 
@@ -116,7 +116,7 @@ class Reader {
 
   void read_header(const std::string& text) {
     header_line_ = line_no_;
-    std::array<bool, physics::kJointCount> joint_seen{};
+    std::array<bool, hand::kJointCount> joint_seen{};
     for (const std::string& name : split_csv(text)) {
       for (const auto& c : columns_) {
         if (c.name == name) fail(name, "column appears twice");
@@ -125,9 +125,9 @@ class Reader {
       if (columns_.back().field == Field::kJoint) joint_seen[columns_.back().joint] = true;
     }
     require_columns();
-    for (int j = 0; j < physics::kJointCount; ++j) {
+    for (int j = 0; j < hand::kJointCount; ++j) {
       if (!joint_seen[j]) {
-        log_.missing_joints.emplace_back(physics::joint_name(static_cast<physics::Joint>(j)));
+        log_.missing_joints.emplace_back(hand::joint_name(static_cast<hand::Joint>(j)));
       }
     }
   }
@@ -145,7 +145,7 @@ class Reader {
       if (base == "psi") return {name, Field::kPsi, to_rad};
       if (base == "theta") return {name, Field::kTheta, to_rad};
       if (base == "gamma") return {name, Field::kGamma, to_rad};
-      const int joint = physics::joint_index(base);
+      const int joint = hand::joint_index(base);
       if (joint >= 0) return {name, Field::kJoint, to_rad, joint};
     }
     fail(name, "unknown column (expected t_s, x_m, y_m, z_m, qw..qz or psi/theta/gamma, and "
@@ -252,7 +252,7 @@ class Reader {
   }
 
   std::string path_;
-  const physics::HandModel& hand_;
+  const hand::HandModel& hand_;
   GloveLog log_;
   std::vector<Column> columns_;
   bool quaternion_ = true;
@@ -262,8 +262,8 @@ class Reader {
 
 }  // namespace
 
-GloveLog read_glove_log(const std::string& path, const physics::HandModel& hand) {
+GloveLog read_glove_log(const std::string& path, const hand::HandModel& hand) {
   return Reader(path, hand).read();
 }
 
-}  // namespace vcockpit::glove
+}  // namespace vcockpit::hand

@@ -1,19 +1,19 @@
 #pragma once
-// hand.yaml -> physics::HandModel. The schema is documented at the top of config/hand.yaml.
+// hand.yaml -> hand::HandModel. The schema is documented at the top of config/hand.yaml.
 //
 // Every bad value throws vcockpit::ConfigError "file:line:col: key.path: message": unknown keys,
 // missing fields, unknown joint/link names, min > max, rest outside [min, max], negative sizes,
 // bad Euler axes, unknown tracker mount. The file always describes a right hand; `side: left`
-// yields its mirror image (physics::mirrored).
+// yields its mirror image (hand::mirrored).
 
 #include <string>
 
 #include "common/yaml_config.hpp"
-#include "physics_node/physics/hand_model.hpp"
+#include "hand/hand_model.hpp"
 
 namespace vcockpit {
 
-physics::HandModel load_hand_model(const std::string& path);
-physics::HandModel parse_hand_model(const ConfigNode& root);
+hand::HandModel load_hand_model(const std::string& path);
+hand::HandModel parse_hand_model(const ConfigNode& root);
 
 }  // namespace vcockpit
