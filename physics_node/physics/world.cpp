@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "physics_node/physics/contact_sums.hpp"
 #include "physics_node/physics/integrator.hpp"
 
 namespace vcockpit::physics {
@@ -320,7 +321,7 @@ void World::integrate(double dt_s) {
     const ObjectSpec& o = scene_.objects[i];
     BodyState& body = bodies_[i];
     if (!o.dynamic || body.held_by != kNotHeld) continue;
-    const Eigen::Vector3d F = F_G_[i] + o.mass_kg * scene_.gravity_mps2;  // eq. 18
+    const Eigen::Vector3d F = total_force_G(F_G_[i], o.mass_kg, scene_.gravity_mps2);  // eq. 18
     integrate_body(body, F, M_G_[i], o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
   }
 }
