@@ -42,32 +42,6 @@ void finite_difference(const Eigen::Isometry3d& before, const Eigen::Isometry3d&
   w_G = turn.axis() * (turn.angle() / dt_s);
 }
 
-// A lower bound of the effective mass a contact on this body can see,
-// 1 / (1/m + (r x n)^T I^-1 (r x n)): the lever about each principal axis is at most the shape's
-// reach from that axis, and |r x n| is at most the bounding radius. (Inertia from the shape is
-// diagonal in the shape's frame.)
-// Smooth shapes are exact: a contact's normal is the surface normal at the contact, so its line
-// passes through a sphere's centre (no lever: m) or through a capsule's axis segment, r x n =
-// t (a x n) with |t| <= half length, a turn about an axis across the capsule.
-double worst_contact_mass(const ObjectSpec& o) {
-  if (o.shape.kind == ShapeKind::kSphere) return o.mass_kg;
-  if (o.shape.kind == ShapeKind::kCapsule) {
-    const double half_m = 0.5 * o.shape.length_m;
-    const double I_across = std::min(o.I_O(0, 0), o.I_O(1, 1));
-    return 1.0 / (1.0 / o.mass_kg + half_m * half_m / I_across);
-  }
-  const Eigen::Vector3d reach = o.shape.axis_reach_m();
-  double per_axis = 0.0;
-  for (int i = 0; i < 3; ++i) per_axis += reach[i] * reach[i] / o.I_O(i, i);
-  const double r = o.shape.bounding_radius_m();
-  const double I_min = o.I_O.diagonal().minCoeff();
-  return 1.0 / (1.0 / o.mass_kg + std::min(per_axis, r * r / I_min));
-}
-
-double series_stiffness(const Material& a, const Material& b) {
-  return a.stiffness_Npm * b.stiffness_Npm / (a.stiffness_Npm + b.stiffness_Npm);
-}
-
 }  // namespace
 
 const char* stage_name(Stage stage) {
@@ -79,6 +53,7 @@ const char* stage_name(Stage stage) {
 World::World(Scene scene)
     : scene_(std::move(scene)),
       collision_(scene_),
+      substep_choice_(scene_, collision_),
       forces_(scene_.contact.slip_speed_mps),
       object_count_(static_cast<int>(scene_.objects.size())),
       step_ns_(std::llround(scene_.step_s * 1e9)) {
@@ -103,20 +78,6 @@ World::World(Scene scene)
   }
   X_GL_.fill(Eigen::Isometry3d::Identity());
   X_GL_before_ = X_GL_;
-  // the reach broadphase: static boxes once, the rest every step
-  std::vector<BroadphaseBody> kinds;
-  contact_mass_.assign(object_count_, 0.0);
-  for (int i = 0; i < object_count_; ++i) {
-    const ObjectSpec& o = scene_.objects[i];
-    kinds.push_back(o.dynamic ? BroadphaseBody::kDynamic : BroadphaseBody::kStatic);
-    if (o.dynamic) contact_mass_[i] = worst_contact_mass(o);
-  }
-  if (scene_.hand) kinds.insert(kinds.end(), kLinkCount, BroadphaseBody::kHand);
-  reach_ = std::make_unique<SweepAndPrune>(std::move(kinds));
-  for (int i = 0; i < object_count_; ++i)
-    if (!scene_.objects[i].dynamic)
-      reach_->set_box(i, shape_aabb(scene_.objects[i].shape, scene_.objects[i].X_GO));
-  reach_pairs_.reserve(64);
   substeps_ = choose_substeps();  // for the initial state: the count the first step will use
   const int body_count = object_count_ + (scene_.hand ? kLinkCount : 0);
   contact_bodies_.resize(body_count);
@@ -130,64 +91,11 @@ World::World(Scene scene)
 
 World::~World() = default;
 
-// The pairs that can touch within the coming step: boxes around each body's sweep over the step
-// (a dynamic body: where it is, grown by how far it can move; a hand link: its box at the start
-// and at the end of the step), plus a margin.
-void World::find_reachable_pairs() {
-  const double step_s = scene_.step_s;
-  for (int i = 0; i < object_count_; ++i) {
-    const ObjectSpec& o = scene_.objects[i];
-    if (!o.dynamic) continue;  // static boxes were set once
-    const BodyState& body = bodies_[i];
-    Aabb box = shape_aabb(o.shape, body.X_GO);
-    // the farthest a point of it can go in one step: centroid speed, spin times reach, gravity
-    const double reach_m = (body.v_G.norm() + body.w_G.norm() * o.shape.bounding_radius_m()) * step_s +
-                           0.5 * scene_.gravity_mps2.norm() * step_s * step_s + kReachMargin_m;
-    box.lo.array() -= reach_m;
-    box.hi.array() += reach_m;
-    reach_->set_box(i, box);
-  }
-  reach_->set_hand_enabled(hand_active_);
-  if (hand_active_) {
-    HandLinkPoses end;
-    forward_kinematics(*scene_.hand, hand_to_.q_rad, end);
-    for (int l = 0; l < kLinkCount; ++l) {
-      const Link link = static_cast<Link>(l);
-      const Aabb now = collision_.hand_link_box(link, X_GL_[l]);
-      const Aabb then = collision_.hand_link_box(link, hand_to_.X_GH * end.X_HL[l]);
-      reach_->set_box(object_count_ + l,
-                     {now.lo.cwiseMin(then.lo).array() - kReachMargin_m,
-                      now.hi.cwiseMax(then.hi).array() + kReachMargin_m});
-    }
-  }
-  reach_->find_pairs(reach_pairs_);
-}
-
-// Substeps short enough for the stiffest contact that can happen this step, dt <= safety
-// sqrt(m_eff / k) (k the pair's series stiffness, m_eff the least effective mass it can show:
-// against a static, held or hand body the dynamic body's own, between two free bodies the two in
-// series). Only the pairs that can touch within the step count: a cup resting alone does not pay
-// for a pen lying across the cockpit.
+// Substeps for the coming step (substep_choice.hpp): the hand sweeps from its links now to the
+// latest input.
 int World::choose_substeps() {
-  find_reachable_pairs();
-  double dt_max = scene_.step_s;
-  for (const BodyPair& pair : reach_pairs_) {
-    const bool a_free = pair.lo < object_count_ && scene_.objects[pair.lo].dynamic &&
-                        bodies_[pair.lo].held_by == kNotHeld;
-    const bool b_free = pair.hi < object_count_ && scene_.objects[pair.hi].dynamic &&
-                        bodies_[pair.hi].held_by == kNotHeld;
-    if (!a_free && !b_free) continue;  // held objects move with the hand: nothing to integrate
-    const Material& ma = pair.lo < object_count_ ? scene_.objects[pair.lo].material
-                                                 : scene_.hand_material;
-    const Material& mb = pair.hi < object_count_ ? scene_.objects[pair.hi].material
-                                                 : scene_.hand_material;
-    const double inv_m = (a_free ? 1.0 / contact_mass_[pair.lo] : 0.0) +
-                         (b_free ? 1.0 / contact_mass_[pair.hi] : 0.0);
-    const double k = series_stiffness(ma, mb);
-    if (k > 0) dt_max = std::min(dt_max, scene_.contact.substep_safety * std::sqrt(1.0 / (inv_m * k)));
-  }
-  const int n = static_cast<int>(std::ceil(scene_.step_s / dt_max - 1e-9));
-  return std::clamp(n, 1, scene_.contact.max_substeps);
+  return substep_choice_.choose(bodies_, hand_active_ ? &X_GL_ : nullptr, hand_to_.X_GH,
+                                hand_to_.q_rad);
 }
 
 void World::set_hand_input(const HandInput& input) {

@@ -21,6 +21,7 @@
 #include "physics_node/physics/contact_forces.hpp"
 #include "physics_node/physics/grasp.hpp"
 #include "physics_node/physics/scene.hpp"
+#include "physics_node/physics/substep_choice.hpp"
 
 namespace vcockpit::physics {
 
@@ -98,7 +99,6 @@ class World {
     std::size_t history_count = 0;
   };
 
-  void find_reachable_pairs();
   int choose_substeps();
   void substep(double dt_s, double alpha, bool skip_held_hand_pairs);
   void move_hand(double alpha);
@@ -113,6 +113,7 @@ class World {
 
   Scene scene_;
   CollisionWorld collision_;
+  SubstepChoice substep_choice_;
   ContactForceModel forces_;
   int object_count_;
   int substeps_;
@@ -127,11 +128,6 @@ class World {
   std::vector<GraspState> grasp_;
   std::vector<Eigen::Matrix3d> I_O_inv_;  // inverse body-frame inertia, dynamic objects
   std::vector<uint8_t> held_mask_;        // 1 for the objects held at the start of this step
-  std::vector<double> contact_mass_;      // least effective mass a contact can see, dynamic ones
-  // the pairs that can touch within a step (substep choice): objects, then the hand's links
-  std::unique_ptr<SweepAndPrune> reach_;
-  std::vector<BodyPair> reach_pairs_;
-  static constexpr double kReachMargin_m = 0.002;
 
   bool hand_active_ = false;
   HandInput hand_from_;  // at the start of the step
