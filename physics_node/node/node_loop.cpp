@@ -7,6 +7,7 @@
 
 #include "common/clock.hpp"
 #include "common/signals.hpp"
+#include "physics_node/io/grasp_event_text.hpp"
 #include "physics_node/io/hand_input.hpp"
 #include "physics_node/node/loop_stats.hpp"
 #include "physics_node/node/sample_gate.hpp"
@@ -74,7 +75,8 @@ class Node {
     publisher_.publish_events(world_);
     for (const auto& e : world_.step_events()) {
       spdlog::info("{} {} at {:.3f} s: {}", e.grasp ? "GRASP" : "RELEASE",
-                   world_.scene().objects[e.object].name, ns_to_seconds(e.t_ns), e.text.data());
+                   world_.scene().objects[e.object].name, ns_to_seconds(e.t_ns),
+                   physics_io::grasp_event_text(e));
     }
     ++steps_in_period_;
     for (int s = 0; s < physics::kStageCount; ++s) stage_ns_[s] += world_.stage_times().ns[s];

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 
 #include "physics_node/physics/contact_sums.hpp"
 #include "physics_node/physics/integrator.hpp"
@@ -34,13 +33,8 @@ Eigen::Isometry3d interpolate(const Eigen::Isometry3d& a, const Eigen::Isometry3
   return X;
 }
 
-// Velocity of a frame from two poses dt apart (eq. 15 for a tracked, kinematic body).
-void finite_difference(const Eigen::Isometry3d& before, const Eigen::Isometry3d& now, double dt_s,
-                       Eigen::Vector3d& v_G, Eigen::Vector3d& w_G) {
-  v_G = (now.translation() - before.translation()) / dt_s;
-  const Eigen::AngleAxisd turn(now.linear() * before.linear().transpose());
-  w_G = turn.axis() * (turn.angle() / dt_s);
-}
+// 0 for a right hand, 1 for a left one (as the topics name them).
+int hand_id_of(const Scene& scene) { return scene.hand && scene.hand->left ? 1 : 0; }
 
 }  // namespace
 
@@ -55,17 +49,16 @@ World::World(Scene scene)
       collision_(scene_),
       substep_choice_(scene_, collision_),
       forces_(scene_.contact.slip_speed_mps),
+      grasp_tracker_(scene_.grasp, scene_.step_s, scene_.gravity_mps2, hand_id_of(scene_)),
       object_count_(static_cast<int>(scene_.objects.size())),
       step_ns_(std::llround(scene_.step_s * 1e9)) {
-  hand_id_ = scene_.hand && scene_.hand->left ? 1 : 0;
+  hand_id_ = grasp_tracker_.hand_id();
   bodies_.resize(object_count_);
   X_GO_.resize(object_count_);
   X_GO_before_.resize(object_count_);
   grasp_.resize(object_count_);
   I_O_inv_.resize(object_count_);
   held_mask_.assign(object_count_, 0);
-  const std::size_t window = std::max<std::size_t>(
-      2, static_cast<std::size_t>(std::llround(scene_.grasp.velocity_window_s / scene_.step_s)) + 1);
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
     bodies_[i].X_GO = o.X_GO;
@@ -73,7 +66,7 @@ World::World(Scene scene)
     bodies_[i].w_G = o.w_G;
     X_GO_[i] = o.X_GO;
     X_GO_before_[i] = o.X_GO;
-    if (o.dynamic) grasp_[i].history.resize(window);
+    grasp_[i] = grasp_tracker_.initial_hold(o);
     I_O_inv_[i] = o.dynamic ? Eigen::Matrix3d(o.I_O.inverse()) : Eigen::Matrix3d::Zero();
   }
   X_GL_.fill(Eigen::Isometry3d::Identity());
@@ -185,7 +178,7 @@ void World::move_held_objects(double dt_s) {
     if (body.held_by == kNotHeld) continue;
     X_GO_before_[i] = body.X_GO;
     body.X_GO = X_GH_ * grasp_[i].X_HO;  // eq. 29
-    finite_difference(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
+    finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
   }
 }
 
@@ -212,7 +205,7 @@ void World::build_contact_bodies() {
     ContactBody& c = contact_bodies_[object_count_ + l];
     c.X_GB = X_GL_[l];
     if (touching[static_cast<std::size_t>(l)]) {
-      finite_difference(X_GL_before_[l], X_GL_[l], dt_s, c.v_G, c.w_G);
+      finite_difference_velocity(X_GL_before_[l], X_GL_[l], dt_s, c.v_G, c.w_G);
     } else {
       c.v_G.setZero();
       c.w_G.setZero();
@@ -238,6 +231,11 @@ void World::grasp_stage() {
   StageTimer timer(stage_times_, Stage::kGrasp);
   penetration_ = PenetrationStats{};
   if (!scene_.hand) return;
+  const HandNow hand{time_ns_, hand_to_.tracking, X_GH_};
+  const auto grasp_object = [&](int object, const HandContact* contacts, std::size_t count) {
+    grasp_tracker_.update(object, scene_.objects[object], contacts, count, hand, grasp_[object],
+                          bodies_[object], events_);
+  };
   // hand contacts of the last substep, grouped by object (contacts are sorted by body_a)
   std::size_t i = 0;
   int next_object = 0;  // objects before it have had their grasp test this step
@@ -266,110 +264,9 @@ void World::grasp_stage() {
     next_object = object + 1;
   }
   grasp_untouched_up_to(object_count_);
-  record_held_history();
-}
-
-void World::grasp_object(int object, const HandContact* contacts, std::size_t count) {
-  const ObjectSpec& o = scene_.objects[object];
-  if (!o.dynamic) return;
-  BodyState& body = bodies_[object];
-  GraspState& g = grasp_[object];
-  const bool held = body.held_by == hand_id_;
-  if (!held && count == 0) return;
-
-  const GraspCheck check = evaluate_grasp(contacts, count, body.X_GO.translation(), o.mass_kg,
-                                          scene_.gravity_mps2, scene_.grasp, held);
-  if (!held) {
-    const bool cooled = time_ns_ - g.released_at_ns >=
-                        std::llround(scene_.grasp.regrab_cooldown_s * 1e9);
-    if (hand_to_.tracking && cooled && check.holds()) attach(object, check);
-    return;
-  }
-  if (!hand_to_.tracking) {
-    release(object, GraspReason::kGloveLost, check);
-    return;
-  }
-  if (check.holds()) {
-    g.failing_since_ns = -1;
-    return;
-  }
-  if (g.failing_since_ns < 0) g.failing_since_ns = time_ns_;
-  const bool failed_long_enough =
-      time_ns_ - g.failing_since_ns >= std::llround(scene_.grasp.release_delay_s * 1e9);
-  const bool held_long_enough =
-      time_ns_ - g.held_since_ns >= std::llround(scene_.grasp.min_hold_s * 1e9);
-  if (failed_long_enough && held_long_enough) release(object, check.verdict, check);
-}
-
-void World::attach(int object, const GraspCheck& check) {
-  BodyState& body = bodies_[object];
-  GraspState& g = grasp_[object];
-  g.X_HO = X_GH_.inverse() * body.X_GO;  // eq. 28
-  g.held_since_ns = time_ns_;
-  g.failing_since_ns = -1;
-  g.history_next = 0;
-  g.history_count = 0;
-  body.held_by = hand_id_;
-  GraspEvent e;
-  e.t_ns = time_ns_;
-  e.grasp = true;
-  e.hand_id = hand_id_;
-  e.object = object;
-  e.reason = GraspReason::kStableGrasp;
-  e.contacts = check.links_in_contact;
-  e.residual_force_N = check.residual_force_N;
-  e.residual_torque_Nm = check.residual_torque_Nm;
-  std::snprintf(e.text.data(), e.text.size(),
-                "stable grasp: %d links, thumb opposed at %.0f deg, |F| %.2f N, |M| %.3f N m",
-                check.links_in_contact, check.min_thumb_angle_deg, check.residual_force_N,
-                check.residual_torque_Nm);
-  events_.push_back(e);
-}
-
-void World::release(int object, GraspReason reason, const GraspCheck& check) {
-  BodyState& body = bodies_[object];
-  GraspState& g = grasp_[object];
-  // the object leaves with the hand's motion over the last window (no jump, can be thrown)
-  if (g.history_count >= 2) {
-    const std::size_t n = g.history.size();
-    const std::size_t newest = (g.history_next + n - 1) % n;
-    const std::size_t oldest = g.history_count < n ? 0 : g.history_next;
-    const std::size_t span = g.history_count < n ? g.history_count - 1 : n - 1;
-    finite_difference(g.history[oldest], g.history[newest],
-                      static_cast<double>(span) * scene_.step_s, body.v_G, body.w_G);
-  }
-  body.held_by = kNotHeld;
-  g.released_at_ns = time_ns_;
-  g.failing_since_ns = -1;
-  GraspEvent e;
-  e.t_ns = time_ns_;
-  e.grasp = false;
-  e.hand_id = hand_id_;
-  e.object = object;
-  e.reason = reason;
-  e.contacts = check.links_in_contact;
-  e.residual_force_N = check.residual_force_N;
-  e.residual_torque_Nm = check.residual_torque_Nm;
-  if (reason == GraspReason::kGloveLost) {
-    std::snprintf(e.text.data(), e.text.size(), "glove lost");
-  } else {
-    std::snprintf(e.text.data(), e.text.size(),
-                  "%s: %d links, thumb %s, min thumb angle %.0f deg, |F| %.2f N, |M| %.3f N m",
-                  grasp_reason_name(reason), check.links_in_contact,
-                  check.thumb ? "touching" : "off", check.min_thumb_angle_deg,
-                  check.residual_force_N, check.residual_torque_Nm);
-  }
-  events_.push_back(e);
-}
-
-void World::record_held_history() {
-  for (int i = 0; i < object_count_; ++i) {
-    if (bodies_[i].held_by == kNotHeld) continue;
-    GraspState& g = grasp_[i];
-    g.history[g.history_next] = bodies_[i].X_GO;
-    g.history_next = (g.history_next + 1) % g.history.size();
-    g.history_count = std::min(g.history_count + 1, g.history.size());
-  }
+  // held poses for the release velocity
+  for (int o = 0; o < object_count_; ++o)
+    if (bodies_[o].held_by != kNotHeld) grasp_tracker_.record_held_pose(grasp_[o], bodies_[o]);
 }
 
 }  // namespace vcockpit::physics

@@ -20,6 +20,7 @@
 #include "physics_node/physics/collision.hpp"
 #include "physics_node/physics/contact_forces.hpp"
 #include "physics_node/physics/grasp.hpp"
+#include "physics_node/physics/grasp_tracker.hpp"
 #include "physics_node/physics/scene.hpp"
 #include "physics_node/physics/substep_choice.hpp"
 
@@ -40,18 +41,6 @@ const char* stage_name(Stage stage);
 
 struct StageTimes {
   std::array<int64_t, kStageCount> ns{};  // wall time per stage over the last step
-};
-
-struct GraspEvent {
-  int64_t t_ns = 0;
-  bool grasp = true;  // false: release
-  int hand_id = 0;
-  int object = -1;
-  GraspReason reason = GraspReason::kStableGrasp;
-  int contacts = 0;
-  double residual_force_N = 0.0;
-  double residual_torque_Nm = 0.0;
-  std::array<char, 128> text{};  // the reason in words with the figures behind it
 };
 
 // Hand-object penetration over the last step (m).
@@ -89,16 +78,6 @@ class World {
   const PenetrationStats& hand_penetration() const { return penetration_; }
 
  private:
-  struct GraspState {
-    Eigen::Isometry3d X_HO = Eigen::Isometry3d::Identity();
-    int64_t held_since_ns = 0;
-    int64_t failing_since_ns = -1;
-    int64_t released_at_ns = INT64_MIN / 2;
-    std::vector<Eigen::Isometry3d> history;  // pose at the last steps while held (ring)
-    std::size_t history_next = 0;
-    std::size_t history_count = 0;
-  };
-
   int choose_substeps();
   void substep(double dt_s, double alpha, bool skip_held_hand_pairs);
   void move_hand(double alpha);
@@ -106,15 +85,12 @@ class World {
   void build_contact_bodies();
   void integrate(double dt_s);
   void grasp_stage();
-  void grasp_object(int object, const HandContact* contacts, std::size_t count);
-  void attach(int object, const GraspCheck& check);
-  void release(int object, GraspReason reason, const GraspCheck& check);
-  void record_held_history();
 
   Scene scene_;
   CollisionWorld collision_;
   SubstepChoice substep_choice_;
   ContactForceModel forces_;
+  GraspTracker grasp_tracker_;
   int object_count_;
   int substeps_;
   int hand_id_ = 0;
@@ -125,7 +101,7 @@ class World {
   std::vector<BodyState> bodies_;
   std::vector<Eigen::Isometry3d> X_GO_;  // collision input, all objects
   std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
-  std::vector<GraspState> grasp_;
+  std::vector<GraspHold> grasp_;
   std::vector<Eigen::Matrix3d> I_O_inv_;  // inverse body-frame inertia, dynamic objects
   std::vector<uint8_t> held_mask_;        // 1 for the objects held at the start of this step
 
