@@ -22,7 +22,8 @@ GraspTracker::GraspTracker(const GraspParams& params, double step_s,
 
 GraspHold GraspTracker::initial_hold(const ObjectSpec& o) const {
   GraspHold hold;
-  if (o.dynamic) hold.history.resize(window_);
+  // every slot set (Eigen leaves a pose uninitialised), so a state is all defined numbers
+  if (o.dynamic) hold.history.assign(window_, Eigen::Isometry3d::Identity());
   return hold;
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "common/assert.hpp"
 #include "physics_node/physics/contact_sums.hpp"
 #include "physics_node/physics/integrator.hpp"
 
@@ -53,25 +54,25 @@ World::World(Scene scene)
       object_count_(static_cast<int>(scene_.objects.size())),
       step_ns_(std::llround(scene_.step_s * 1e9)) {
   hand_id_ = grasp_tracker_.hand_id();
-  bodies_.resize(object_count_);
+  state_.bodies.resize(object_count_);
   X_GO_.resize(object_count_);
   X_GO_before_.resize(object_count_);
-  grasp_.resize(object_count_);
+  state_.grasp.resize(object_count_);
   I_O_inv_.resize(object_count_);
   held_mask_.assign(object_count_, 0);
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
-    bodies_[i].X_GO = o.X_GO;
-    bodies_[i].v_G = o.v_G;
-    bodies_[i].w_G = o.w_G;
+    state_.bodies[i].X_GO = o.X_GO;
+    state_.bodies[i].v_G = o.v_G;
+    state_.bodies[i].w_G = o.w_G;
     X_GO_[i] = o.X_GO;
     X_GO_before_[i] = o.X_GO;
-    grasp_[i] = grasp_tracker_.initial_hold(o);
+    state_.grasp[i] = grasp_tracker_.initial_hold(o);
     I_O_inv_[i] = o.dynamic ? Eigen::Matrix3d(o.I_O.inverse()) : Eigen::Matrix3d::Zero();
   }
-  X_GL_.fill(Eigen::Isometry3d::Identity());
-  X_GL_before_ = X_GL_;
-  substeps_ = choose_substeps();  // for the initial state: the count the first step will use
+  state_.X_GL.fill(Eigen::Isometry3d::Identity());
+  X_GL_before_ = state_.X_GL;
+  state_.substeps = choose_substeps();  // for the initial state: the count the first step will use
   const int body_count = object_count_ + (scene_.hand ? kLinkCount : 0);
   contact_bodies_.resize(body_count);
   F_G_.resize(body_count);
@@ -80,6 +81,7 @@ World::World(Scene scene)
   applied_.reserve(256);
   hand_contacts_.reserve(64);
   events_.reserve(16);
+  state_.anchors.reserve(256);
 }
 
 World::~World() = default;
@@ -87,18 +89,34 @@ World::~World() = default;
 // Substeps for the coming step (substep_choice.hpp): the hand sweeps from its links now to the
 // latest input.
 int World::choose_substeps() {
-  return substep_choice_.choose(bodies_, hand_active_ ? &X_GL_ : nullptr, hand_to_.X_GH,
-                                hand_to_.q_rad);
+  return substep_choice_.choose(state_.bodies, state_.hand_active ? &state_.X_GL : nullptr, state_.hand_to.X_GH,
+                                state_.hand_to.q_rad);
+}
+
+void World::restore(const WorldState& state) {
+  VCOCKPIT_ASSERT(state.bodies.size() == state_.bodies.size() &&
+                      state.grasp.size() == state_.grasp.size(),
+                  "a world state of another scene (object count)");
+  for (int i = 0; i < object_count_; ++i)
+    VCOCKPIT_ASSERT(state.grasp[i].history.size() == state_.grasp[i].history.size(),
+                    "a world state of another scene (grasp velocity window)");
+  VCOCKPIT_ASSERT(!state.hand_active || scene_.hand.has_value(), "a hand state without a hand");
+  state_ = state;
+  // the last step's observations belong to the world the state came from
+  applied_.clear();
+  events_.clear();
+  stage_times_ = StageTimes{};
+  penetration_ = PenetrationStats{};
 }
 
 void World::set_hand_input(const HandInput& input) {
   if (!scene_.hand) return;
-  hand_to_ = input;
-  if (!hand_active_) {
-    hand_from_ = input;  // first sample: no sweep from nowhere
-    hand_active_ = true;
+  state_.hand_to = input;
+  if (!state_.hand_active) {
+    state_.hand_from = input;  // first sample: no sweep from nowhere
+    state_.hand_active = true;
     move_hand(1.0);
-    X_GL_before_ = X_GL_;
+    X_GL_before_ = state_.X_GL;
   }
 }
 
@@ -107,35 +125,35 @@ void World::step() {
   events_.clear();
   {
     StageTimer timer(stage_times_, Stage::kBroadphase);
-    substeps_ = choose_substeps();
+    state_.substeps = choose_substeps();
   }
   // a held object and the hand move together: their contacts matter to the grasp test only,
   // which reads the last substep's, so the substeps before it leave them out (their friction
   // anchors carry over)
   bool any_held = false;
   for (int i = 0; i < object_count_; ++i) {
-    held_mask_[i] = bodies_[i].held_by != kNotHeld ? 1 : 0;
+    held_mask_[i] = state_.bodies[i].held_by != kNotHeld ? 1 : 0;
     any_held = any_held || held_mask_[i] != 0;
   }
-  const double dt_s = scene_.step_s / substeps_;
-  for (int s = 1; s <= substeps_; ++s)
-    substep(dt_s, static_cast<double>(s) / substeps_, any_held && s < substeps_);
-  time_ns_ += step_ns_;
-  ++steps_;
+  const double dt_s = scene_.step_s / state_.substeps;
+  for (int s = 1; s <= state_.substeps; ++s)
+    substep(dt_s, static_cast<double>(s) / state_.substeps, any_held && s < state_.substeps);
+  state_.time_ns += step_ns_;
+  ++state_.steps;
   grasp_stage();
-  hand_from_ = hand_to_;
+  state_.hand_from = state_.hand_to;
 }
 
 void World::substep(double dt_s, double alpha, bool skip_held_hand_pairs) {
   {
     StageTimer timer(stage_times_, Stage::kHandKinematics);
-    if (hand_active_) move_hand(alpha);
+    if (state_.hand_active) move_hand(alpha);
     move_held_objects(dt_s);
   }
   {
     StageTimer timer(stage_times_, Stage::kBroadphase);
-    for (int i = 0; i < object_count_; ++i) X_GO_[i] = bodies_[i].X_GO;
-    collision_.set_poses(X_GO_, hand_active_ ? &X_GL_ : nullptr);
+    for (int i = 0; i < object_count_; ++i) X_GO_[i] = state_.bodies[i].X_GO;
+    collision_.set_poses(X_GO_, state_.hand_active ? &state_.X_GL : nullptr);
     collision_.find_candidate_pairs();
   }
   {
@@ -152,7 +170,7 @@ void World::substep(double dt_s, double alpha, bool skip_held_hand_pairs) {
     }
     KeptPairs kept;
     if (skip_held_hand_pairs) kept = {&held_mask_, object_count_};
-    forces_.apply(contacts_, contact_bodies_, F_G_, M_G_, applied_, kept);
+    forces_.apply(contacts_, contact_bodies_, F_G_, M_G_, applied_, state_.anchors, kept);
   }
   {
     StageTimer timer(stage_times_, Stage::kIntegrate);
@@ -162,22 +180,22 @@ void World::substep(double dt_s, double alpha, bool skip_held_hand_pairs) {
 
 void World::move_hand(double alpha) {
   const HandModel& hand = *scene_.hand;
-  X_GH_ = interpolate(hand_from_.X_GH, hand_to_.X_GH, alpha);
+  state_.X_GH = interpolate(state_.hand_from.X_GH, state_.hand_to.X_GH, alpha);
   JointAngles q;
   for (int j = 0; j < kJointCount; ++j) {
-    q[j] = hand_from_.q_rad[j] + alpha * (hand_to_.q_rad[j] - hand_from_.q_rad[j]);
+    q[j] = state_.hand_from.q_rad[j] + alpha * (state_.hand_to.q_rad[j] - state_.hand_from.q_rad[j]);
   }
   forward_kinematics(hand, q, link_poses_);
-  X_GL_before_ = X_GL_;
-  for (int l = 0; l < kLinkCount; ++l) X_GL_[l] = X_GH_ * link_poses_.X_HL[l];
+  X_GL_before_ = state_.X_GL;
+  for (int l = 0; l < kLinkCount; ++l) state_.X_GL[l] = state_.X_GH * link_poses_.X_HL[l];
 }
 
 void World::move_held_objects(double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
-    BodyState& body = bodies_[i];
+    BodyState& body = state_.bodies[i];
     if (body.held_by == kNotHeld) continue;
     X_GO_before_[i] = body.X_GO;
-    body.X_GO = X_GH_ * grasp_[i].X_HO;  // eq. 29
+    body.X_GO = state_.X_GH * state_.grasp[i].X_HO;  // eq. 29
     finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
   }
 }
@@ -185,7 +203,7 @@ void World::move_held_objects(double dt_s) {
 void World::build_contact_bodies() {
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
-    const BodyState& s = bodies_[i];
+    const BodyState& s = state_.bodies[i];
     ContactBody& c = contact_bodies_[i];
     c.X_GB = s.X_GO;
     c.v_G = s.v_G;
@@ -200,12 +218,12 @@ void World::build_contact_bodies() {
   std::array<bool, kLinkCount> touching{};
   for (const ContactPoint& c : contacts_)
     if (c.body_b >= object_count_) touching[static_cast<std::size_t>(c.body_b - object_count_)] = true;
-  const double dt_s = scene_.step_s / substeps_;
+  const double dt_s = scene_.step_s / state_.substeps;
   for (int l = 0; l < kLinkCount; ++l) {
     ContactBody& c = contact_bodies_[object_count_ + l];
-    c.X_GB = X_GL_[l];
+    c.X_GB = state_.X_GL[l];
     if (touching[static_cast<std::size_t>(l)]) {
-      finite_difference_velocity(X_GL_before_[l], X_GL_[l], dt_s, c.v_G, c.w_G);
+      finite_difference_velocity(X_GL_before_[l], state_.X_GL[l], dt_s, c.v_G, c.w_G);
     } else {
       c.v_G.setZero();
       c.w_G.setZero();
@@ -220,7 +238,7 @@ void World::build_contact_bodies() {
 void World::integrate(double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
-    BodyState& body = bodies_[i];
+    BodyState& body = state_.bodies[i];
     if (!o.dynamic || body.held_by != kNotHeld) continue;
     const Eigen::Vector3d F = total_force_G(F_G_[i], o.mass_kg, scene_.gravity_mps2);  // eq. 18
     integrate_body(body, F, M_G_[i], o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
@@ -231,10 +249,10 @@ void World::grasp_stage() {
   StageTimer timer(stage_times_, Stage::kGrasp);
   penetration_ = PenetrationStats{};
   if (!scene_.hand) return;
-  const HandNow hand{time_ns_, hand_to_.tracking, X_GH_};
+  const HandNow hand{state_.time_ns, state_.hand_to.tracking, state_.X_GH};
   const auto grasp_object = [&](int object, const HandContact* contacts, std::size_t count) {
-    grasp_tracker_.update(object, scene_.objects[object], contacts, count, hand, grasp_[object],
-                          bodies_[object], events_);
+    grasp_tracker_.update(object, scene_.objects[object], contacts, count, hand,
+                          state_.grasp[object], state_.bodies[object], events_);
   };
   // hand contacts of the last substep, grouped by object (contacts are sorted by body_a)
   std::size_t i = 0;
@@ -266,7 +284,8 @@ void World::grasp_stage() {
   grasp_untouched_up_to(object_count_);
   // held poses for the release velocity
   for (int o = 0; o < object_count_; ++o)
-    if (bodies_[o].held_by != kNotHeld) grasp_tracker_.record_held_pose(grasp_[o], bodies_[o]);
+    if (state_.bodies[o].held_by != kNotHeld)
+      grasp_tracker_.record_held_pose(state_.grasp[o], state_.bodies[o]);
 }
 
 }  // namespace vcockpit::physics

@@ -7,12 +7,19 @@
 //
 // Deterministic: fixed steps, no clock in the results (stage timings are observations only),
 // every container iterated in a fixed order. The same scene and inputs give bit-identical states.
+//
+// Constant model, mutable state (MuJoCo's mjModel / mjData): the Scene never changes; a
+// WorldState (world_state.hpp) holds everything that carries from step to step, and the rest
+// of the world is per-step scratch. state() / restore() take and put back that state.
+//
+// The stages live in their own files: substep_choice (how many substeps), collision and
+// manifold_clipper (contacts), contact_forces with normal_force / friction_force /
+// contact_sums (eqs. 11-19), integrator (eqs. 20-25), grasp and grasp_tracker (eqs. 28-31).
 
 #include <Eigen/Geometry>
 
 #include <array>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "physics_node/physics/body.hpp"
@@ -23,15 +30,9 @@
 #include "physics_node/physics/grasp_tracker.hpp"
 #include "physics_node/physics/scene.hpp"
 #include "physics_node/physics/substep_choice.hpp"
+#include "physics_node/physics/world_state.hpp"
 
 namespace vcockpit::physics {
-
-// What the tracked hand looks like now: the wrist in the world and the 22 joint angles.
-struct HandInput {
-  Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
-  JointAngles q_rad{};
-  bool tracking = true;  // false: glove lost; the hand stays, held objects are let go
-};
 
 enum class Stage : uint8_t {
   kHandKinematics, kBroadphase, kNarrowphase, kForces, kGrasp, kIntegrate, kCount
@@ -59,19 +60,26 @@ class World {
   void set_hand_input(const HandInput& input);
   void step();
 
+  // Everything that carries from step to step; a world restored to it (from this world or
+  // another of the same scene) steps bit-identically to the one it was taken from. The state
+  // must come from a world of the same scene (checked: sizes).
+  const WorldState& state() const { return state_; }
+  void restore(const WorldState& state);
+
   const Scene& scene() const { return scene_; }
-  int64_t time_ns() const { return time_ns_; }
-  uint64_t step_count() const { return steps_; }
-  int substeps() const { return substeps_; }  // of the last step (chosen every step)
+  int64_t time_ns() const { return state_.time_ns; }
+  uint64_t step_count() const { return state_.steps; }
+  int substeps() const { return state_.substeps; }  // of the last step (chosen every step)
   int hand_id() const { return hand_id_; }
-  bool hand_active() const { return hand_active_; }
+  bool hand_active() const { return state_.hand_active; }
 
-  const std::vector<BodyState>& bodies() const { return bodies_; }
-  const Eigen::Isometry3d& X_GH() const { return X_GH_; }
-  const std::array<Eigen::Isometry3d, kLinkCount>& X_GL() const { return X_GL_; }
+  const std::vector<BodyState>& bodies() const { return state_.bodies; }
+  const Eigen::Isometry3d& X_GH() const { return state_.X_GH; }
+  const std::array<Eigen::Isometry3d, kLinkCount>& X_GL() const { return state_.X_GL; }
   // Pose of the held object in the hand frame (eq. 28), valid while held.
-  const Eigen::Isometry3d& X_HO(int object) const { return grasp_[object].X_HO; }
+  const Eigen::Isometry3d& X_HO(int object) const { return state_.grasp[object].X_HO; }
 
+  // Observations of the last step (empty after a restore until the next step).
   const std::vector<GraspEvent>& step_events() const { return events_; }
   const std::vector<AppliedContact>& contacts() const { return applied_; }
   const StageTimes& stage_times() const { return stage_times_; }
@@ -86,39 +94,32 @@ class World {
   void integrate(double dt_s);
   void grasp_stage();
 
+  // the model and the stages (constant once built)
   Scene scene_;
   CollisionWorld collision_;
   SubstepChoice substep_choice_;
   ContactForceModel forces_;
   GraspTracker grasp_tracker_;
   int object_count_;
-  int substeps_;
   int hand_id_ = 0;
   int64_t step_ns_;
-  int64_t time_ns_ = 0;
-  uint64_t steps_ = 0;
-
-  std::vector<BodyState> bodies_;
-  std::vector<Eigen::Isometry3d> X_GO_;  // collision input, all objects
-  std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
-  std::vector<GraspHold> grasp_;
   std::vector<Eigen::Matrix3d> I_O_inv_;  // inverse body-frame inertia, dynamic objects
-  std::vector<uint8_t> held_mask_;        // 1 for the objects held at the start of this step
 
-  bool hand_active_ = false;
-  HandInput hand_from_;  // at the start of the step
-  HandInput hand_to_;    // at its end
-  Eigen::Isometry3d X_GH_ = Eigen::Isometry3d::Identity();
-  std::array<Eigen::Isometry3d, kLinkCount> X_GL_;
-  std::array<Eigen::Isometry3d, kLinkCount> X_GL_before_;
+  WorldState state_;
+
+  // scratch: rebuilt every step or substep before it is read
+  std::vector<Eigen::Isometry3d> X_GO_;         // collision input, all objects
+  std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
+  std::vector<uint8_t> held_mask_;              // 1 for the objects held at the start of this step
+  std::array<Eigen::Isometry3d, kLinkCount> X_GL_before_;  // the links one substep ago
   HandLinkPoses link_poses_;
-
   std::vector<ContactPoint> contacts_;
   std::vector<ContactBody> contact_bodies_;
   std::vector<Eigen::Vector3d> F_G_;
   std::vector<Eigen::Vector3d> M_G_;
-  std::vector<AppliedContact> applied_;
   std::vector<HandContact> hand_contacts_;
+  // observations of the last step
+  std::vector<AppliedContact> applied_;
   std::vector<GraspEvent> events_;
   StageTimes stage_times_;
   PenetrationStats penetration_;
