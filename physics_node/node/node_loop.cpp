@@ -73,6 +73,12 @@ class Node {
     world_.step();
     stats_.step_compute.record_ns(monotonic_now_ns() - start_ns);
     publisher_.publish_events(world_);
+    for (const auto& f : world_.step_faults()) {
+      spdlog::warn("object '{}' (#{}): {} at {:.3f} s, put back where it was at the step's start, "
+                   "at rest (further faults of it are counted, not logged)",
+                   world_.scene().objects[f.object].name, f.object,
+                   physics::body_fault_name(f.what), ns_to_seconds(f.first_t_ns));
+    }
     for (const auto& e : world_.step_events()) {
       spdlog::info("{} {} at {:.3f} s: {}", e.grasp ? "GRASP" : "RELEASE",
                    world_.scene().objects[e.object].name, ns_to_seconds(e.t_ns),

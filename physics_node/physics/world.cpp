@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "common/assert.hpp"
 #include "physics_node/physics/contact_sums.hpp"
@@ -51,8 +52,11 @@ World::World(Scene scene)
       substep_choice_(scene_, collision_),
       forces_(scene_.contact.slip_speed_mps),
       grasp_tracker_(scene_.grasp, scene_.step_s, scene_.gravity_mps2, hand_id_of(scene_)),
+      body_check_(scene_),
       object_count_(static_cast<int>(scene_.objects.size())),
       step_ns_(std::llround(scene_.step_s * 1e9)) {
+  if (scene_.contact.max_substeps < 1 || !(scene_.step_s > 0.0))
+    throw std::invalid_argument("World: the step and max_substeps must be positive");
   hand_id_ = grasp_tracker_.hand_id();
   state_.bodies.resize(object_count_);
   X_GO_.resize(object_count_);
@@ -60,6 +64,7 @@ World::World(Scene scene)
   state_.grasp.resize(object_count_);
   I_O_inv_.resize(object_count_);
   held_mask_.assign(object_count_, 0);
+  start_bodies_.resize(object_count_);
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
     state_.bodies[i].X_GO = o.X_GO;
@@ -107,6 +112,7 @@ void World::restore(const WorldState& state) {
   events_.clear();
   stage_times_ = StageTimes{};
   penetration_ = PenetrationStats{};
+  body_check_.clear_new_faults();
 }
 
 void World::set_hand_input(const HandInput& input) {
@@ -123,10 +129,14 @@ void World::set_hand_input(const HandInput& input) {
 void World::step() {
   stage_times_ = StageTimes{};
   events_.clear();
+  body_check_.clear_new_faults();
+  std::copy(state_.bodies.begin(), state_.bodies.end(), start_bodies_.begin());
   {
     StageTimer timer(stage_times_, Stage::kBroadphase);
     state_.substeps = choose_substeps();
   }
+  VCOCKPIT_ASSERT(state_.substeps >= 1 && state_.substeps <= scene_.contact.max_substeps,
+                  "substeps in [1, max_substeps]");
   // a held object and the hand move together: their contacts matter to the grasp test only,
   // which reads the last substep's, so the substeps before it leave them out (their friction
   // anchors carry over)
@@ -140,6 +150,10 @@ void World::step() {
     substep(dt_s, static_cast<double>(s) / state_.substeps, any_held && s < state_.substeps);
   state_.time_ns += step_ns_;
   ++state_.steps;
+  {
+    StageTimer timer(stage_times_, Stage::kIntegrate);
+    body_check_.check(state_.bodies, start_bodies_, state_.time_ns);
+  }
   grasp_stage();
   state_.hand_from = state_.hand_to;
 }

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "physics_node/physics/body.hpp"
+#include "physics_node/physics/body_check.hpp"
 #include "physics_node/physics/broadphase.hpp"
 #include "physics_node/physics/collision.hpp"
 #include "physics_node/physics/contact_forces.hpp"
@@ -85,6 +86,12 @@ class World {
   const StageTimes& stage_times() const { return stage_times_; }
   const PenetrationStats& hand_penetration() const { return penetration_; }
 
+  // Bodies found broken after a step and put back (body_check.hpp): every object ever found,
+  // with its count, and those found for the first time in the last step (for the adapters to
+  // name once). Diagnostics of this world: restore() keeps them.
+  const std::vector<BodyFault>& body_faults() const { return body_check_.faults(); }
+  const std::vector<BodyFault>& step_faults() const { return body_check_.new_faults(); }
+
  private:
   int choose_substeps();
   void substep(double dt_s, double alpha, bool skip_held_hand_pairs);
@@ -100,6 +107,7 @@ class World {
   SubstepChoice substep_choice_;
   ContactForceModel forces_;
   GraspTracker grasp_tracker_;
+  BodyCheck body_check_;
   int object_count_;
   int hand_id_ = 0;
   int64_t step_ns_;
@@ -111,6 +119,7 @@ class World {
   std::vector<Eigen::Isometry3d> X_GO_;         // collision input, all objects
   std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
   std::vector<uint8_t> held_mask_;              // 1 for the objects held at the start of this step
+  std::vector<BodyState> start_bodies_;         // the bodies at the start of this step
   std::array<Eigen::Isometry3d, kLinkCount> X_GL_before_;  // the links one substep ago
   HandLinkPoses link_poses_;
   std::vector<ContactPoint> contacts_;

@@ -1,6 +1,8 @@
 // The world's state (world_state.hpp): two worlds stepping the same inputs stay bit-identical
 // (equal hashes), a world restored to a state continues exactly as the original (through a grasp
-// and a release), and the hash sees a body move by one ulp.
+// and a release), and the hash sees a body move by one ulp. The body check (body_check.hpp): a
+// body given an absurd or NaN velocity is caught, named once, counted, and put back at rest
+// where it was, and the world goes on with finite states.
 
 #include <gtest/gtest.h>
 
@@ -16,6 +18,7 @@
 #include "physics_node/io/hand_input.hpp"
 #include "physics_node/physics/world.hpp"
 #include "physics_node/physics/world_state_hash.hpp"
+#include "tests/support/scene_builder.hpp"
 
 namespace vcockpit::physics {
 namespace {
@@ -161,6 +164,128 @@ TEST(WorldState, HashSeesEveryPart) {
   EXPECT_TRUE(changed([&](WorldState& s) { s.grasp[cockpit.cup].released_at_ns = 0; }));
   EXPECT_TRUE(changed([&](WorldState& s) { s.grasp[cockpit.cup].history[1].translation().z() = 1; }));
   EXPECT_TRUE(changed([](WorldState& s) { s.anchors.push_back(StickAnchor{}); }));
+}
+
+// A floor with two 10 cm boxes resting on it, far apart: "runaway" and "steady".
+Scene two_boxes() {
+  Scene scene;
+  scene.objects.push_back(test::floor_box(test::material(1e5)));
+  const Shape cube = Shape::box({0.1, 0.1, 0.1});
+  scene.objects.push_back(
+      test::dynamic_object("runaway", cube, 0.5, test::at(0.0, 0.0, 0.05), test::material(1e5)));
+  scene.objects.push_back(
+      test::dynamic_object("steady", cube, 0.5, test::at(1.0, 0.0, 0.05), test::material(1e5)));
+  return scene;
+}
+
+bool all_finite(const World& world) {
+  for (const BodyState& b : world.bodies())
+    if (!b.X_GO.matrix().allFinite() || !b.v_G.allFinite() || !b.w_G.allFinite()) return false;
+  return true;
+}
+
+TEST(BodyCheck, AbsurdSpeedIsCaughtNamedOnceAndPutBackAtRest) {
+  Scene scene = two_boxes();
+  const int runaway = scene.find_object("runaway");
+  scene.objects[runaway].v_G = {1e300, 0.0, 0.0};  // m/s
+  World world(scene);
+  const Eigen::Isometry3d start = world.bodies()[runaway].X_GO;
+
+  world.step();
+  ASSERT_EQ(world.step_faults().size(), 1u);
+  const BodyFault& f = world.step_faults()[0];
+  EXPECT_EQ(f.object, runaway);
+  EXPECT_EQ(world.scene().objects[f.object].name, "runaway");
+  EXPECT_EQ(f.what, BodyFaultKind::kTooFast);
+  EXPECT_EQ(f.first_t_ns, world.time_ns());
+  const BodyState& body = world.bodies()[runaway];
+  EXPECT_TRUE(same_bits(body.X_GO, start)) << "back where it was at the step's start";
+  EXPECT_EQ(body.v_G, Eigen::Vector3d::Zero());
+  EXPECT_EQ(body.w_G, Eigen::Vector3d::Zero());
+
+  for (int i = 0; i < 500; ++i) {
+    world.step();
+    ASSERT_TRUE(all_finite(world)) << "step " << i;
+    ASSERT_TRUE(world.step_faults().empty()) << "reported once";
+  }
+  ASSERT_EQ(world.body_faults().size(), 1u);
+  EXPECT_EQ(world.body_faults()[0].object, runaway);
+  EXPECT_EQ(world.body_faults()[0].count, 1u);
+  // both boxes rest on the floor, centroids 5 cm up less m g / k_eff
+  for (int object : {runaway, scene.find_object("steady")}) {
+    EXPECT_NEAR(world.bodies()[object].X_GO.translation().z(), 0.05, 1e-3);
+    EXPECT_LT(world.bodies()[object].v_G.norm(), 1e-3);
+  }
+}
+
+TEST(BodyCheck, NanVelocityIsCaughtAndTheWorldGoesOn) {
+  const Scene scene = two_boxes();
+  const int runaway = scene.find_object("runaway");
+  World world(scene);
+  for (int i = 0; i < 100; ++i) world.step();
+  ASSERT_TRUE(world.body_faults().empty());
+  WorldState bad = world.state();
+  bad.bodies[runaway].v_G.x() = std::numeric_limits<double>::quiet_NaN();
+  world.restore(bad);
+
+  world.step();
+  ASSERT_EQ(world.step_faults().size(), 1u);
+  EXPECT_EQ(world.step_faults()[0].object, runaway);
+  EXPECT_EQ(world.step_faults()[0].what, BodyFaultKind::kNonFinite);
+  EXPECT_TRUE(same_bits(world.bodies()[runaway].X_GO, bad.bodies[runaway].X_GO));
+  EXPECT_EQ(world.bodies()[runaway].v_G, Eigen::Vector3d::Zero());
+  for (int i = 0; i < 500; ++i) {
+    world.step();
+    ASSERT_TRUE(all_finite(world)) << "step " << i;
+    ASSERT_TRUE(world.step_faults().empty());
+  }
+  ASSERT_EQ(world.body_faults().size(), 1u);
+  EXPECT_EQ(world.body_faults()[0].count, 1u);
+
+  // broken again later: counted, not reported again
+  bad = world.state();
+  bad.bodies[runaway].w_G.z() = std::numeric_limits<double>::infinity();
+  world.restore(bad);
+  world.step();
+  EXPECT_TRUE(world.step_faults().empty());
+  ASSERT_EQ(world.body_faults().size(), 1u);
+  EXPECT_EQ(world.body_faults()[0].count, 2u);
+  EXPECT_EQ(world.body_faults()[0].what, BodyFaultKind::kNonFinite) << "the first fault's kind";
+  EXPECT_TRUE(all_finite(world));
+}
+
+TEST(BodyCheck, BrokenStartFallsBackToTheInitialPose) {
+  const Scene scene = two_boxes();
+  const int runaway = scene.find_object("runaway");
+  World world(scene);
+  WorldState bad = world.state();
+  bad.bodies[runaway].X_GO.translation().x() = std::numeric_limits<double>::quiet_NaN();
+  world.restore(bad);
+  world.step();
+  ASSERT_EQ(world.step_faults().size(), 1u);
+  EXPECT_TRUE(same_bits(world.bodies()[runaway].X_GO, scene.objects[runaway].X_GO));
+}
+
+TEST(BodyCheck, LimitsOnSpeedSpinAndDistance) {
+  const SanityLimits limits;  // 100 m/s, 1000 rad/s, 1 km
+  BodyState b;
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kNone);
+  b.v_G = {99.0, 0.0, 0.0};
+  b.w_G = {0.0, 999.0, 0.0};
+  b.X_GO.translation() = Eigen::Vector3d(0.0, 0.0, 999.0);
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kNone);
+  b.v_G.x() = 101.0;
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kTooFast);
+  b.v_G.x() = 1e200;  // |v|^2 overflows: still too fast, not missed
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kTooFast);
+  b.v_G.x() = 0.0;
+  b.w_G.y() = 1001.0;
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kSpinning);
+  b.w_G.y() = 0.0;
+  b.X_GO.translation().z() = 1001.0;
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kTooFar);
+  b.X_GO.linear()(1, 1) = -std::numeric_limits<double>::infinity();
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kNonFinite);
 }
 
 }  // namespace
