@@ -8,11 +8,11 @@
 #include <fcl/narrowphase/collision_object.h>
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "common/assert.hpp"
 #include "physics_node/physics/broadphase.hpp"
 #include "physics_node/physics/manifold_clipper.hpp"
 
@@ -401,7 +401,7 @@ CollisionWorld::~CollisionWorld() = default;
 void CollisionWorld::set_poses(const std::vector<Eigen::Isometry3d>& X_GO,
                                const std::array<Eigen::Isometry3d, kLinkCount>* X_GL) {
   Impl& m = *impl_;
-  assert(static_cast<int>(X_GO.size()) == object_count_);
+  VCOCKPIT_ASSERT(static_cast<int>(X_GO.size()) == object_count_, "one pose per object");
   const int n = std::min(object_count_, static_cast<int>(X_GO.size()));
   for (int i = 0; i < n; ++i)
     if (m.bodies[static_cast<std::size_t>(i)].kind == BodyKind::kDynamic)
