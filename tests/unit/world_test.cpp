@@ -18,6 +18,7 @@
 #include "physics_node/io/hand_input.hpp"
 #include "physics_node/physics/world.hpp"
 #include "physics_node/physics/world_state_hash.hpp"
+#include "tests/support/allocation_counter.hpp"
 #include "tests/support/scene_builder.hpp"
 
 namespace vcockpit::physics {
@@ -286,6 +287,34 @@ TEST(BodyCheck, LimitsOnSpeedSpinAndDistance) {
   EXPECT_EQ(check_body(b, limits), BodyFaultKind::kTooFar);
   b.X_GO.linear()(1, 1) = -std::numeric_limits<double>::infinity();
   EXPECT_EQ(check_body(b, limits), BodyFaultKind::kNonFinite);
+}
+
+TEST(WorldStep, AllocatesNothingOnceWarm) {
+  // round bodies resting on a box floor take the face test, never FCL (whose narrowphase
+  // allocates): so the rest of the step, stages, state and checks included, is counted
+  Scene scene;
+  scene.objects.push_back(test::floor_box(test::material(1e5)));
+  scene.objects.push_back(test::dynamic_object("cup", Shape::cylinder(0.035, 0.1), 0.2,
+                                               test::at(0.0, 0.0, 0.05), test::material(3e4)));
+  scene.objects.push_back(test::dynamic_object("pen", Shape::capsule(0.005, 0.12), 0.02,
+                                               test::at(0.3, 0.0, 0.005, 0, 90, 0),
+                                               test::material(3e4)));
+  World world(scene);
+  for (int i = 0; i < 300; ++i) world.step();
+  ASSERT_FALSE(world.contacts().empty());
+  test::g_allocations = 0;
+  test::g_count_allocations = true;
+  static void* volatile sink = nullptr;  // control: the counter sees an allocation
+  sink = ::operator new(16);
+  test::g_count_allocations = false;
+  ::operator delete(sink);
+  ASSERT_EQ(test::g_allocations.load(), 1);
+  test::g_allocations = 0;
+  test::g_count_allocations = true;
+  for (int i = 0; i < 100; ++i) world.step();
+  test::g_count_allocations = false;
+  EXPECT_EQ(test::g_allocations.load(), 0);
+  EXPECT_TRUE(world.body_faults().empty());
 }
 
 }  // namespace
