@@ -19,8 +19,8 @@ namespace vcockpit::detail {
 
 }  // namespace vcockpit::detail
 
-#define VCOCKPIT_ASSERT(cond, message)                                           \
-  do {                                                                           \
-    if (!(cond)) [[unlikely]]                                                    \
-      ::vcockpit::detail::assert_failed(__FILE__, __LINE__, #cond, (message));   \
+#define VCOCKPIT_ASSERT(cond, message)                                         \
+  do {                                                                         \
+    if (!(cond)) [[unlikely]]                                                  \
+      ::vcockpit::detail::assert_failed(__FILE__, __LINE__, #cond, (message)); \
   } while (false)

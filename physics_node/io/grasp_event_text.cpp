@@ -17,8 +17,8 @@ std::string grasp_event_text(const physics::GraspEvent& e) {
     std::snprintf(text.data(), text.size(),
                   "%s: %d links, thumb %s, min thumb angle %.0f deg, |F| %.2f N, |M| %.3f N m",
                   physics::grasp_reason_name(e.reason), e.contacts,
-                  e.thumb_touching ? "touching" : "off", e.min_thumb_angle_deg,
-                  e.residual_force_N, e.residual_torque_Nm);
+                  e.thumb_touching ? "touching" : "off", e.min_thumb_angle_deg, e.residual_force_N,
+                  e.residual_torque_Nm);
   }
   return text.data();
 }

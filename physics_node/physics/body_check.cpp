@@ -6,11 +6,16 @@ namespace vcockpit::physics {
 
 const char* body_fault_name(BodyFaultKind what) {
   switch (what) {
-    case BodyFaultKind::kNone: return "sound";
-    case BodyFaultKind::kNonFinite: return "non-finite pose or velocity";
-    case BodyFaultKind::kTooFast: return "speed beyond the limit";
-    case BodyFaultKind::kSpinning: return "spin beyond the limit";
-    case BodyFaultKind::kTooFar: return "beyond the distance limit from the origin";
+    case BodyFaultKind::kNone:
+      return "sound";
+    case BodyFaultKind::kNonFinite:
+      return "non-finite pose or velocity";
+    case BodyFaultKind::kTooFast:
+      return "speed beyond the limit";
+    case BodyFaultKind::kSpinning:
+      return "spin beyond the limit";
+    case BodyFaultKind::kTooFar:
+      return "beyond the distance limit from the origin";
   }
   return "unknown";
 }

@@ -10,7 +10,9 @@
 namespace vcockpit::physics {
 namespace {
 
-bool pair_before(int a0, int b0, int a1, int b1) { return a0 != a1 ? a0 < a1 : b0 < b1; }
+bool pair_before(int a0, int b0, int a1, int b1) {
+  return a0 != a1 ? a0 < a1 : b0 < b1;
+}
 
 }  // namespace
 
@@ -24,7 +26,8 @@ const StickAnchor* ContactForceModel::match_anchor(const std::vector<StickAnchor
   const StickAnchor* best = nullptr;
   std::size_t best_index = 0;
   double best_d2 = kAnchorMatch_m * kAnchorMatch_m;
-  for (auto it = first; it != previous.end() && it->body_a == c.body_a && it->body_b == c.body_b; ++it) {
+  for (auto it = first; it != previous.end() && it->body_a == c.body_a && it->body_b == c.body_b;
+       ++it) {
     const auto index = static_cast<std::size_t>(it - previous.begin());
     if (anchor_used_[index] != 0) continue;
     const double d2 = (it->p_A - p_A).squaredNorm();

@@ -10,7 +10,6 @@
 // the same pair within kAnchorMatch_m of it.
 
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <vector>
 
@@ -73,7 +72,7 @@ class ContactForceModel {
                                   const Eigen::Vector3d& p_A);
 
   double slip_speed_mps_;
-  std::vector<StickAnchor> anchors_;       // the model's own (the overload without anchors)
+  std::vector<StickAnchor> anchors_;  // the model's own (the overload without anchors)
   // scratch of one substep
   std::vector<StickAnchor> next_anchors_;  // being built
   std::vector<uint8_t> anchor_used_;       // previous anchors already matched

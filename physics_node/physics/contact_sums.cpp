@@ -4,7 +4,8 @@
 
 namespace vcockpit::physics {
 
-Eigen::Vector3d contact_force_G(double N, const Eigen::Vector3d& n_G, const Eigen::Vector3d& f_t_G) {
+Eigen::Vector3d contact_force_G(double N, const Eigen::Vector3d& n_G,
+                                const Eigen::Vector3d& f_t_G) {
   return N * n_G + f_t_G;
 }
 

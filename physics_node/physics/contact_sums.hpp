@@ -6,7 +6,6 @@
 // Forces act on body b along +n and on body a opposite.
 
 #include <Eigen/Core>
-
 #include <vector>
 
 #include "physics_node/physics/body.hpp"

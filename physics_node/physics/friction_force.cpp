@@ -58,9 +58,9 @@ PatchDecision decide_patch(const PatchSums& sums, const PairFriction& mu, double
 }
 
 Eigen::Vector3d friction_force_G(const PatchDecision& d, const FrictionPoint& w,
-                                 const PairFriction& mu, const NormalPair& k,
-                                 const ContactBody& A, const Eigen::Isometry3d& X_BG,
-                                 const ContactPoint& c, StickAnchor& anchor) {
+                                 const PairFriction& mu, const NormalPair& k, const ContactBody& A,
+                                 const Eigen::Isometry3d& X_BG, const ContactPoint& c,
+                                 StickAnchor& anchor) {
   const bool sticking = d.sticking;
   const bool restart = d.restart;
   anchor.sticking = sticking;

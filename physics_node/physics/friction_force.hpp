@@ -59,7 +59,7 @@ void stick_spring(const StickAnchor& anchor, const ContactBody& A, const Contact
 // Eqs. 15-16 over the patch: what the pair's points add up to.
 struct PatchSums {
   double N_sum = 0.0;
-  double speed_weighted = 0.0;  // sum of N |v_t|
+  double speed_weighted = 0.0;                            // sum of N |v_t|
   Eigen::Vector3d spring_sum = Eigen::Vector3d::Zero();   // loaded points' springs
   Eigen::Vector3d f_trial_sum = Eigen::Vector3d::Zero();  // loaded points' spring + damper
   bool was_sliding = false;  // a matched anchor was sliding on the previous substep
@@ -70,16 +70,16 @@ struct PatchSums {
 // Eqs. 15-17: the pair sticks or slides as a whole.
 struct PatchDecision {
   bool sticking = false;
-  bool restart = false;       // anchors start over where the points are
-  double stick_scale = 1.0;   // sticking: the spring + damper scaled to at most twice the cap
+  bool restart = false;      // anchors start over where the points are
+  double stick_scale = 1.0;  // sticking: the spring + damper scaled to at most twice the cap
 };
 PatchDecision decide_patch(const PatchSums& sums, const PairFriction& mu, double slip_speed_mps);
 
 // Eqs. 16-17: one point's friction force on b (a gets its opposite), and its anchor for the next
 // substep (it follows a sliding point; it starts over on a restart or when the point unloads).
 Eigen::Vector3d friction_force_G(const PatchDecision& d, const FrictionPoint& w,
-                                 const PairFriction& mu, const NormalPair& k,
-                                 const ContactBody& A, const Eigen::Isometry3d& X_BG,
-                                 const ContactPoint& c, StickAnchor& anchor);
+                                 const PairFriction& mu, const NormalPair& k, const ContactBody& A,
+                                 const Eigen::Isometry3d& X_BG, const ContactPoint& c,
+                                 StickAnchor& anchor);
 
 }  // namespace vcockpit::physics

@@ -28,8 +28,8 @@ GraspHold GraspTracker::initial_hold(const ObjectSpec& o) const {
 }
 
 void GraspTracker::update(int object, const ObjectSpec& o, const HandContact* contacts,
-                          std::size_t count, const HandNow& hand, GraspHold& hold,
-                          BodyState& body, std::vector<GraspEvent>& events) const {
+                          std::size_t count, const HandNow& hand, GraspHold& hold, BodyState& body,
+                          std::vector<GraspEvent>& events) const {
   if (!o.dynamic) return;
   const bool held = body.held_by == hand_id_;
   if (!held && count == 0) return;
@@ -38,8 +38,8 @@ void GraspTracker::update(int object, const ObjectSpec& o, const HandContact* co
   decide(object, check, hand, hold, body, events);
 }
 
-void GraspTracker::decide(int object, const GraspCheck& check, const HandNow& hand,
-                          GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events) const {
+void GraspTracker::decide(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
+                          BodyState& body, std::vector<GraspEvent>& events) const {
   VCOCKPIT_ASSERT(hold.history.size() >= 2, "grasp decisions are for dynamic objects only");
   const bool held = body.held_by == hand_id_;
   if (!held) {
@@ -62,8 +62,8 @@ void GraspTracker::decide(int object, const GraspCheck& check, const HandNow& ha
     release(object, check.verdict, check, hand, hold, body, events);
 }
 
-void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& hand,
-                          GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events) const {
+void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
+                          BodyState& body, std::vector<GraspEvent>& events) const {
   hold.X_HO = hand.X_GH.inverse() * body.X_GO;  // eq. 28
   hold.held_since_ns = hand.t_ns;
   hold.failing_since_ns = -1;
@@ -91,8 +91,8 @@ void GraspTracker::release(int object, GraspReason reason, const GraspCheck& che
   events.push_back(event(object, false, reason, check, hand));
 }
 
-GraspEvent GraspTracker::event(int object, bool grasp, GraspReason reason,
-                               const GraspCheck& check, const HandNow& hand) const {
+GraspEvent GraspTracker::event(int object, bool grasp, GraspReason reason, const GraspCheck& check,
+                               const HandNow& hand) const {
   GraspEvent e;
   e.t_ns = hand.t_ns;
   e.grasp = grasp;

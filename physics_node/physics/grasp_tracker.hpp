@@ -12,7 +12,6 @@
 // (physics_node/io/grasp_event_text.hpp).
 
 #include <Eigen/Geometry>
-
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -30,18 +29,18 @@ struct GraspEvent {
   int object = -1;
   GraspReason reason = GraspReason::kStableGrasp;
   // the stable-grasp test at the decision (for a lost glove: of the last contacts)
-  int contacts = 0;                   // hand links touching the object
+  int contacts = 0;  // hand links touching the object
   bool thumb_touching = false;
-  double min_thumb_angle_deg = 0.0;   // smallest thumb-finger normal angle (180: no finger)
-  double residual_force_N = 0.0;      // eq. 30's |sum F|
-  double residual_torque_Nm = 0.0;    // eq. 31's |sum M|
+  double min_thumb_angle_deg = 0.0;  // smallest thumb-finger normal angle (180: no finger)
+  double residual_force_N = 0.0;     // eq. 30's |sum F|
+  double residual_torque_Nm = 0.0;   // eq. 31's |sum M|
 };
 
 // One object's grasp state, carried from step to step.
 struct GraspHold {
   Eigen::Isometry3d X_HO = Eigen::Isometry3d::Identity();  // eq. 28, valid while held
   int64_t held_since_ns = 0;
-  int64_t failing_since_ns = -1;         // the test has failed since then; -1: it holds
+  int64_t failing_since_ns = -1;           // the test has failed since then; -1: it holds
   int64_t released_at_ns = INT64_MIN / 2;  // long ago: no cooldown at the start
   std::vector<Eigen::Isometry3d> history;  // pose at the last steps while held (ring)
   std::size_t history_next = 0;

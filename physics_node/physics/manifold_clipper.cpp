@@ -74,8 +74,8 @@ bool box_reference(const ClipBody& box, const Eigen::Isometry3d& X, const Eigen:
 }
 
 // The cylinder cap n_RI is along (either cap: the one facing the other body).
-bool cap_reference(const ClipBody& cylinder, const Eigen::Isometry3d& X, const Eigen::Vector3d& n_RI,
-                   ReferenceFace& ref) {
+bool cap_reference(const ClipBody& cylinder, const Eigen::Isometry3d& X,
+                   const Eigen::Vector3d& n_RI, ReferenceFace& ref) {
   const Eigen::Matrix3d R = X.linear();
   const Eigen::Vector3d c = X.translation();
   const Eigen::Vector3d a = R.col(2);
@@ -101,8 +101,8 @@ bool cap_reference(const ClipBody& cylinder, const Eigen::Isometry3d& X, const E
 }
 
 // A cylinder's feature facing direction w (unit, toward the reference body).
-void cylinder_incident(const ClipBody& cylinder, const Eigen::Isometry3d& X, const Eigen::Vector3d& w,
-                       IncidentFeature& inc) {
+void cylinder_incident(const ClipBody& cylinder, const Eigen::Isometry3d& X,
+                       const Eigen::Vector3d& w, IncidentFeature& inc) {
   const Eigen::Matrix3d R = X.linear();
   const Eigen::Vector3d c = X.translation();
   const Eigen::Vector3d a = R.col(2);

@@ -28,15 +28,14 @@
 // Plain Eigen in and out (no FCL), fixed-size work space, no allocation.
 
 #include <Eigen/Geometry>
-
 #include <array>
 
 #include "physics_node/physics/scene.hpp"
 
 namespace vcockpit::physics {
 
-constexpr int kRimVertices = 8;          // a cap rim as the incident feature
-constexpr int kReferenceCapSides = 16;   // a cap as the reference face: circumscribed polygon
+constexpr int kRimVertices = 8;         // a cap rim as the incident feature
+constexpr int kReferenceCapSides = 16;  // a cap as the reference face: circumscribed polygon
 constexpr int kMaxPolygon = kRimVertices + kReferenceCapSides + 8;  // clipping adds <= 1 a plane
 constexpr int kMaxCandidates = kMaxPolygon + 1;                     // + a rim's deepest point
 constexpr int kMaxManifold = 4;
@@ -45,8 +44,8 @@ constexpr int kMaxManifold = 4;
 struct ClipBody {
   ShapeKind shape = ShapeKind::kBox;
   Eigen::Isometry3d X_GB = Eigen::Isometry3d::Identity();
-  double radius_m = 0.0;       // cylinder and capsule
-  double half_length_m = 0.0;  // cylinder; capsule without its end caps
+  double radius_m = 0.0;                                  // cylinder and capsule
+  double half_length_m = 0.0;                             // cylinder; capsule without its end caps
   Eigen::Vector3d half_size_m = Eigen::Vector3d::Zero();  // box
 };
 
@@ -99,7 +98,8 @@ bool wants_manifold(ShapeKind a, ShapeKind b);
 // most area outside that triangle. Near-duplicates and collinear extras are never picked.
 // Indices into cand in `pick`; returns how many.
 int reduce_manifold(const std::array<Candidate, kMaxCandidates>& cand, int n,
-                    const Eigen::Vector3d& normal, int max_out, std::array<int, kMaxManifold>& pick);
+                    const Eigen::Vector3d& normal, int max_out,
+                    std::array<int, kMaxManifold>& pick);
 
 class ManifoldClipper {
  public:

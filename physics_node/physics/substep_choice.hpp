@@ -9,7 +9,6 @@
 // cockpit.
 
 #include <Eigen/Geometry>
-
 #include <array>
 #include <vector>
 

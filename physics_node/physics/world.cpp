@@ -94,8 +94,8 @@ World::~World() = default;
 // Substeps for the coming step (substep_choice.hpp): the hand sweeps from its links now to the
 // latest input.
 int World::choose_substeps() {
-  return substep_choice_.choose(state_.bodies, state_.hand_active ? &state_.X_GL : nullptr, state_.hand_to.X_GH,
-                                state_.hand_to.q_rad);
+  return substep_choice_.choose(state_.bodies, state_.hand_active ? &state_.X_GL : nullptr,
+                                state_.hand_to.X_GH, state_.hand_to.q_rad);
 }
 
 void World::restore(const WorldState& state) {

@@ -101,7 +101,8 @@ class World {
   void integrate(double dt_s);
   void grasp_stage();
 
-  // the model and the stages (constant once built)
+  // the model and the stages: built once; what they keep between steps (sweep orders, work
+  // space) never changes a result, which is why a restored world steps like the original
   Scene scene_;
   CollisionWorld collision_;
   SubstepChoice substep_choice_;

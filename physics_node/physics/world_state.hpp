@@ -5,7 +5,6 @@
 // A world restored to a WorldState steps bit-identically to the world it was taken from.
 
 #include <Eigen/Geometry>
-
 #include <array>
 #include <cstdint>
 #include <vector>

@@ -20,11 +20,13 @@ class Fnv1a64 {
   void flag(bool b) { u64(b ? 1u : 0u); }
   void f64(double d) { u64(std::bit_cast<uint64_t>(d)); }
   void vec(const Eigen::Vector3d& v) {
-    for (int i = 0; i < 3; ++i) f64(v[i]);
+    for (int i = 0; i < 3; ++i)
+      f64(v[i]);
   }
   void pose(const Eigen::Isometry3d& X) {
     for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 3; ++r) f64(X.matrix()(r, c));
+      for (int r = 0; r < 3; ++r)
+        f64(X.matrix()(r, c));
   }
 
  private:
@@ -36,7 +38,8 @@ class Fnv1a64 {
 void hash_hand(Fnv1a64& h, const HandInput& hand) {
   h.pose(hand.X_GH);
   h.size(hand.q_rad.size());
-  for (double q : hand.q_rad) h.f64(q);
+  for (double q : hand.q_rad)
+    h.f64(q);
   h.flag(hand.tracking);
 }
 
@@ -48,7 +51,8 @@ void hash_hold(Fnv1a64& h, const GraspHold& g) {
   h.size(g.history_next);
   h.size(g.history_count);
   h.size(g.history.size());
-  for (const Eigen::Isometry3d& X : g.history) h.pose(X);
+  for (const Eigen::Isometry3d& X : g.history)
+    h.pose(X);
 }
 
 }  // namespace
@@ -70,9 +74,11 @@ uint64_t hash_world_state(const WorldState& s) {
   hash_hand(h, s.hand_to);
   h.pose(s.X_GH);
   h.size(s.X_GL.size());
-  for (const Eigen::Isometry3d& X : s.X_GL) h.pose(X);
+  for (const Eigen::Isometry3d& X : s.X_GL)
+    h.pose(X);
   h.size(s.grasp.size());
-  for (const GraspHold& g : s.grasp) hash_hold(h, g);
+  for (const GraspHold& g : s.grasp)
+    hash_hold(h, g);
   h.size(s.anchors.size());
   for (const StickAnchor& a : s.anchors) {
     h.i64(a.body_a);

@@ -1,11 +1,11 @@
 // Grasp events in words: the exact strings the world wrote before events became data (the
 // offline events.jsonl and the grasp_event topic's reason depend on them).
 
+#include "physics_node/io/grasp_event_text.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
-
-#include "physics_node/io/grasp_event_text.hpp"
 
 namespace vcockpit::physics_io {
 namespace {
@@ -34,8 +34,9 @@ TEST(GraspEventText, ReleaseNamesItsReasonAndTheFiguresBehindIt) {
   e.min_thumb_angle_deg = 180.0;
   e.residual_force_N = 1.962;
   e.residual_torque_Nm = 0.0;
-  EXPECT_EQ(grasp_event_text(e), "too few contacts: 0 links, thumb off, min thumb angle 180 deg, "
-                                 "|F| 1.96 N, |M| 0.000 N m");
+  EXPECT_EQ(grasp_event_text(e),
+            "too few contacts: 0 links, thumb off, min thumb angle 180 deg, "
+            "|F| 1.96 N, |M| 0.000 N m");
   EXPECT_EQ(grasp_event_text(event(false, physics::GraspReason::kForceResidual)),
             "force residual too large: 3 links, thumb touching, min thumb angle 153 deg, "
             "|F| 2.37 N, |M| 0.096 N m");

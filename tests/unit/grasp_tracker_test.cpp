@@ -2,11 +2,11 @@
 // outcomes: attach (eq. 28), minimum hold, release delay, re-grab cooldown, glove lost, and the
 // release velocity from the held poses.
 
+#include "physics_node/physics/grasp_tracker.hpp"
+
 #include <gtest/gtest.h>
 
 #include <vector>
-
-#include "physics_node/physics/grasp_tracker.hpp"
 
 namespace vcockpit::physics {
 namespace {

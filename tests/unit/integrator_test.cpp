@@ -3,11 +3,11 @@
 // rotation increment is the exact exponential map at any angle; finite differences of poses
 // give back the velocities that made them.
 
+#include "physics_node/physics/integrator.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "physics_node/physics/integrator.hpp"
 
 namespace vcockpit::physics {
 namespace {

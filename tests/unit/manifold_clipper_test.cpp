@@ -2,11 +2,11 @@
 // an overhang clipped to the face, a normal off every face left to the narrowphase, and the
 // reduction keeping the deepest point and the spread ones.
 
+#include "physics_node/physics/manifold_clipper.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "physics_node/physics/manifold_clipper.hpp"
 
 namespace vcockpit::physics {
 namespace {
@@ -35,7 +35,8 @@ ClipBody cylinder(const Eigen::Vector3d& p_G, const Eigen::Matrix3d& R_GB) {
 
 // The cylinder's axis along x, lying kDepth_m deep in the table's top.
 ClipBody lying_cylinder(double x_m) {
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
   return cylinder({x_m, 0.0, 0.1 + kRadius_m - kDepth_m}, R);
 }
 
@@ -87,7 +88,8 @@ TEST(ManifoldClipper, UprightCylinderKeepsFourSpreadRimPoints) {
       cylinder({0.0, 0.0, 0.1 + kHalfLength_m - kDepth_m}, Eigen::Matrix3d::Identity());
   const int n = clipper.clip(table(), cup, Eigen::Vector3d::UnitZ(), out);
   ASSERT_EQ(n, 4);
-  const Eigen::Vector2d expected[4] = {{kRadius_m, 0}, {-kRadius_m, 0}, {0, kRadius_m}, {0, -kRadius_m}};
+  const Eigen::Vector2d expected[4] = {
+      {kRadius_m, 0}, {-kRadius_m, 0}, {0, kRadius_m}, {0, -kRadius_m}};
   for (int i = 0; i < n; ++i) {
     EXPECT_NEAR(out[i].depth_m, kDepth_m, 1e-12);
     EXPECT_NEAR(out[i].p_G.x(), expected[i].x(), 1e-12) << "point " << i;
@@ -107,7 +109,8 @@ TEST(ManifoldClipper, TiltedCylinderWithOneRimPointInGivesItsDeepestPoint) {
   // tilted 5 deg about y, 0.1 mm deep: only the rim's lowest point reaches into the face (the
   // next rim points are 0.77 mm higher)
   constexpr double kShallow_m = 1e-4;
-  const Eigen::Matrix3d R = Eigen::AngleAxisd(5.0 * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(5.0 * M_PI / 180, Eigen::Vector3d::UnitY()).toRotationMatrix();
   const double lowest_above_centre_m =
       kHalfLength_m * std::cos(5.0 * M_PI / 180) + kRadius_m * std::sin(5.0 * M_PI / 180);
   const ClipBody cup = cylinder({0.0, 0.0, 0.1 + lowest_above_centre_m - kShallow_m}, R);
@@ -139,18 +142,19 @@ TEST(ManifoldClipper, WantsAManifoldOnlyForFlatRoundContacts) {
   EXPECT_TRUE(wants_manifold(ShapeKind::kCapsule, ShapeKind::kBox));
   EXPECT_TRUE(wants_manifold(ShapeKind::kCylinder, ShapeKind::kCapsule));
   EXPECT_TRUE(wants_manifold(ShapeKind::kCylinder, ShapeKind::kCylinder));
-  EXPECT_FALSE(wants_manifold(ShapeKind::kBox, ShapeKind::kBox));      // FCL's own 4 points
-  EXPECT_FALSE(wants_manifold(ShapeKind::kBox, ShapeKind::kSphere));   // one point is right
+  EXPECT_FALSE(wants_manifold(ShapeKind::kBox, ShapeKind::kBox));     // FCL's own 4 points
+  EXPECT_FALSE(wants_manifold(ShapeKind::kBox, ShapeKind::kSphere));  // one point is right
   EXPECT_FALSE(wants_manifold(ShapeKind::kCapsule, ShapeKind::kCapsule));
 }
 
 TEST(ManifoldReduction, KeepsTheDeepestThenTheSpreadPoints) {
   // a 2 cm square's corners, its centre (deepest) and a near-duplicate of one corner
   std::array<Candidate, kMaxCandidates> cand;
-  const Eigen::Vector3d q[] = {{0.01, 0.01, 0}, {-0.01, 0.01, 0}, {0.0, 0.0, 0},
+  const Eigen::Vector3d q[] = {{0.01, 0.01, 0},   {-0.01, 0.01, 0}, {0.0, 0.0, 0},
                                {-0.01, -0.01, 0}, {0.01, -0.01, 0}, {0.01, -0.01 + 1e-8, 0}};
   const double depth_m[] = {1e-3, 1e-3, 2e-3, 1e-3, 1e-3, 1.5e-3};
-  for (int i = 0; i < 6; ++i) cand[i] = {q[i], depth_m[i]};
+  for (int i = 0; i < 6; ++i)
+    cand[i] = {q[i], depth_m[i]};
   std::array<int, kMaxManifold> pick{};
   const int n = reduce_manifold(cand, 6, Eigen::Vector3d::UnitZ(), 4, pick);
   ASSERT_EQ(n, 4);

@@ -4,6 +4,8 @@
 // body given an absurd or NaN velocity is caught, named once, counted, and put back at rest
 // where it was, and the world goes on with finite states.
 
+#include "physics_node/physics/world.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,7 +18,6 @@
 #include "glove_driver/glove/glove_log.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/hand_input.hpp"
-#include "physics_node/physics/world.hpp"
 #include "physics_node/physics/world_state_hash.hpp"
 #include "tests/support/allocation_counter.hpp"
 #include "tests/support/scene_builder.hpp"
@@ -48,7 +49,8 @@ struct GloveFeed {
   void feed(World& world) {
     const int64_t t0 = samples->front().t_ns;
     while (next < samples->size() && (*samples)[next].t_ns - t0 <= world.time_ns())
-      world.set_hand_input(physics_io::hand_input_from_glove(*world.scene().hand, (*samples)[next++]));
+      world.set_hand_input(
+          physics_io::hand_input_from_glove(*world.scene().hand, (*samples)[next++]));
   }
   void run_until(World& world, double t_s) {
     while (world.time_ns() < std::llround(t_s * 1e9)) {
@@ -163,7 +165,8 @@ TEST(WorldState, HashSeesEveryPart) {
   EXPECT_TRUE(changed([](WorldState& s) { s.hand_from.tracking = false; }));
   EXPECT_TRUE(changed([](WorldState& s) { s.X_GL[3].translation().y() = 0.5; }));
   EXPECT_TRUE(changed([&](WorldState& s) { s.grasp[cockpit.cup].released_at_ns = 0; }));
-  EXPECT_TRUE(changed([&](WorldState& s) { s.grasp[cockpit.cup].history[1].translation().z() = 1; }));
+  EXPECT_TRUE(
+      changed([&](WorldState& s) { s.grasp[cockpit.cup].history[1].translation().z() = 1; }));
   EXPECT_TRUE(changed([](WorldState& s) { s.anchors.push_back(StickAnchor{}); }));
 }
 
@@ -223,7 +226,8 @@ TEST(BodyCheck, NanVelocityIsCaughtAndTheWorldGoesOn) {
   const Scene scene = two_boxes();
   const int runaway = scene.find_object("runaway");
   World world(scene);
-  for (int i = 0; i < 100; ++i) world.step();
+  for (int i = 0; i < 100; ++i)
+    world.step();
   ASSERT_TRUE(world.body_faults().empty());
   WorldState bad = world.state();
   bad.bodies[runaway].v_G.x() = std::numeric_limits<double>::quiet_NaN();
@@ -300,7 +304,8 @@ TEST(WorldStep, AllocatesNothingOnceWarm) {
                                                test::at(0.3, 0.0, 0.005, 0, 90, 0),
                                                test::material(3e4)));
   World world(scene);
-  for (int i = 0; i < 300; ++i) world.step();
+  for (int i = 0; i < 300; ++i)
+    world.step();
   ASSERT_FALSE(world.contacts().empty());
   test::g_allocations = 0;
   test::g_count_allocations = true;
@@ -311,7 +316,8 @@ TEST(WorldStep, AllocatesNothingOnceWarm) {
   ASSERT_EQ(test::g_allocations.load(), 1);
   test::g_allocations = 0;
   test::g_count_allocations = true;
-  for (int i = 0; i < 100; ++i) world.step();
+  for (int i = 0; i < 100; ++i)
+    world.step();
   test::g_count_allocations = false;
   EXPECT_EQ(test::g_allocations.load(), 0);
   EXPECT_TRUE(world.body_faults().empty());
