@@ -1,5 +1,7 @@
 #include "physics_node/io/offline_runner.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -62,6 +64,12 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   auto step = [&] {
     world.step();
     events.write(world);
+    for (const auto& f : world.step_faults()) {
+      spdlog::warn("object '{}' (#{}): {} at {:.3f} s, put back where it was at the step's start, "
+                   "at rest (further faults of it are counted, not logged)",
+                   world.scene().objects[f.object].name, f.object,
+                   physics::body_fault_name(f.what), ns_to_seconds(f.first_t_ns));
+    }
     const auto& pen = world.hand_penetration();
     summary.penetration_max_m = std::max(summary.penetration_max_m, pen.max_m);
     summary.penetration_sum_m += pen.sum_m;

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "common/json.hpp"
+#include "physics_node/io/grasp_event_text.hpp"
 
 namespace vcockpit::physics_io {
 
@@ -41,7 +42,7 @@ void EventWriter::write(const physics::World& world) {
                  static_cast<double>(e.t_ns) / 1e9, e.grasp ? "grasp" : "release",
                  hand_name(e.hand_id).c_str(),
                  json_string(world.scene().objects[e.object].name).c_str(),
-                 json_string(e.text.data()).c_str(), e.contacts, e.residual_force_N,
+                 json_string(grasp_event_text(e)).c_str(), e.contacts, e.residual_force_N,
                  e.residual_torque_Nm);
   }
 }

@@ -7,6 +7,7 @@
 
 #include "common/clock.hpp"
 #include "common/signals.hpp"
+#include "physics_node/io/grasp_event_text.hpp"
 #include "physics_node/io/hand_input.hpp"
 #include "physics_node/io/replay_driver.hpp"
 #include "physics_node/node/loop_stats.hpp"
@@ -74,9 +75,16 @@ class Node {
     world_.step();
     stats_.step_compute.record_ns(monotonic_now_ns() - start_ns);
     publisher_.publish_events(world_);
+    for (const auto& f : world_.step_faults()) {
+      spdlog::warn("object '{}' (#{}): {} at {:.3f} s, put back where it was at the step's start, "
+                   "at rest (further faults of it are counted, not logged)",
+                   world_.scene().objects[f.object].name, f.object,
+                   physics::body_fault_name(f.what), ns_to_seconds(f.first_t_ns));
+    }
     for (const auto& e : world_.step_events()) {
       spdlog::info("{} {} at {:.3f} s: {}", e.grasp ? "GRASP" : "RELEASE",
-                   world_.scene().objects[e.object].name, ns_to_seconds(e.t_ns), e.text.data());
+                   world_.scene().objects[e.object].name, ns_to_seconds(e.t_ns),
+                   physics_io::grasp_event_text(e));
     }
     ++steps_in_period_;
     for (int s = 0; s < physics::kStageCount; ++s) stage_ns_[s] += world_.stage_times().ns[s];

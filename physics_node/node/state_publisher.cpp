@@ -2,6 +2,7 @@
 
 #include "common/clock.hpp"
 #include "idl/topics/pose_convert.hpp"
+#include "physics_node/io/grasp_event_text.hpp"
 
 namespace vcockpit::physics_node {
 namespace {
@@ -92,7 +93,7 @@ void StatePublisher::publish_events(const physics::World& world) {
     event_msg_.hand_id(static_cast<uint32_t>(e.hand_id));
     event_msg_.object_id(static_cast<uint32_t>(e.object));
     event_msg_.kind(e.grasp ? cockpit::GRASP : cockpit::RELEASE);
-    event_msg_.reason(e.text.data());
+    event_msg_.reason(physics_io::grasp_event_text(e).c_str());
     event_msg_.contact_count(static_cast<uint32_t>(e.contacts));
     event_msg_.residual_force_N(e.residual_force_N);
     event_msg_.residual_torque_Nm(e.residual_torque_Nm);

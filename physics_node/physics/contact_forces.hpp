@@ -1,34 +1,21 @@
 #pragma once
-// Virtual forces at contacts (paper §4.2, eqs. 11-19, with DESIGN.md's corrections):
-//   normal   N = k_pt d + c_pt d_dot, never pulling (N >= 0). k_pt is the pair's series
-//            stiffness k1 k2 / (k1 + k2) (eqs. 11-14) shared among the points the narrowphase
-//            reported for the pair, so a resting depth is m g / k_eff however many points;
-//            c_pt from the damping ratio, the pair's stiffness and effective mass.
-//   friction a pair of bodies is sticking or sliding, as one patch over its points.
-//            Sticking: each point pulls with a tangential spring from where sticking began,
-//            and the pair's total is capped at mu_s sum(N) (eq. 16); when the springs alone
-//            pull harder than that it slides. (The damper is not counted in that test: it is
-//            what keeps a freshly loaded spring from overshooting the cap, and its transient
-//            would otherwise break every loaded contact loose; it is clipped at twice the cap.)
-//            Sliding: mu_d N against each point's relative motion (eq. 17) until the pair's
-//            |v_t| < epsilon (eq. 15's test), when it sticks again. A new pair sticks if it is
-//            slower than epsilon. Deciding by speed alone would let the stick spring's own small
-//            oscillation (mm/s) throw a loaded contact into sliding; capping per point would let
-//            the lightly loaded points of a rocking box slip first and drag the rest along.
-//            mu = sqrt(mu1 mu2) per pair.
-// Forces act on body b along +n and on body a opposite; torques about each body's frame origin
-// (its centroid) are (p - c) x F (the paper's F x r with r from the contact to the centroid).
-//
-// Stick anchors persist between substeps: a new contact takes the anchor of the previous
-// substep's contact of the same pair within kAnchorMatch_m of it.
+// Virtual forces at contacts (paper §4.2, eqs. 11-19, with DESIGN.md's corrections), in three
+// stages named after the equations:
+//   normal_force.hpp    eqs. 11-14 and the normal dashpot: N = k_pt d + c_pt d_dot, N >= 0
+//   friction_force.hpp  eqs. 15-17: a pair sticks (a tangential spring capped at mu_s sum(N))
+//                       or slides (mu_d N against the relative motion) as one patch
+//   contact_sums.hpp    eqs. 18-19: each body's force sum and torque sum about its centroid
+// This model runs them over a substep's contacts, pair by pair, and keeps the stick anchors
+// from substep to substep: a new contact takes the anchor of the previous substep's contact of
+// the same pair within kAnchorMatch_m of it.
 
 #include <Eigen/Core>
-
 #include <cstdint>
 #include <vector>
 
 #include "physics_node/physics/body.hpp"
 #include "physics_node/physics/contact.hpp"
+#include "physics_node/physics/friction_force.hpp"
 
 namespace vcockpit::physics {
 
@@ -58,39 +45,38 @@ class ContactForceModel {
 
   // Computes every contact's force for bodies `bodies` (indexed like the contacts) and adds them
   // to F_G / M_G (force and torque about each body's origin). `contacts` must be sorted by pair.
-  // Updates the stick anchors (those of `kept` pairs absent from `contacts` carry over). No
-  // allocation once the vectors have grown to the scene's size.
+  // Updates the stick anchors `anchors` (the previous substep's in, this one's out; those of
+  // `kept` pairs absent from `contacts` carry over). No allocation once the vectors have grown
+  // to the scene's size.
   void apply(const std::vector<ContactPoint>& contacts, const std::vector<ContactBody>& bodies,
              std::vector<Eigen::Vector3d>& F_G, std::vector<Eigen::Vector3d>& M_G,
-             std::vector<AppliedContact>& applied, const KeptPairs& kept = {});
+             std::vector<AppliedContact>& applied, std::vector<StickAnchor>& anchors,
+             const KeptPairs& kept = {});
+  // The same with anchors the model keeps itself.
+  void apply(const std::vector<ContactPoint>& contacts, const std::vector<ContactBody>& bodies,
+             std::vector<Eigen::Vector3d>& F_G, std::vector<Eigen::Vector3d>& M_G,
+             std::vector<AppliedContact>& applied, const KeptPairs& kept = {}) {
+    apply(contacts, bodies, F_G, M_G, applied, anchors_, kept);
+  }
 
   void reset() { anchors_.clear(); }
 
  private:
-  struct Anchor {
-    int body_a = -1;
-    int body_b = -1;
-    Eigen::Vector3d p_A = Eigen::Vector3d::Zero();  // contact point in A's frame (to match)
-    Eigen::Vector3d r_A = Eigen::Vector3d::Zero();  // anchor fixed on A, A's frame
-    Eigen::Vector3d r_B = Eigen::Vector3d::Zero();  // anchor fixed on B, B's frame
-    bool sticking = true;
-    bool used = false;
-  };
-
-  const Anchor* match_anchor(const ContactPoint& c, const Eigen::Vector3d& p_A);
-
-  // one point of the pair being solved
-  struct PointWork {
-    double N = 0.0;
-    Eigen::Vector3d v_t = Eigen::Vector3d::Zero();
-    Eigen::Vector3d f_spring = Eigen::Vector3d::Zero();
-    Eigen::Vector3d f_t = Eigen::Vector3d::Zero();  // spring + damper
-  };
-  std::vector<PointWork> work_;
+  // One pair's points, contacts[first, end): normal forces, friction, and their sums.
+  void solve_pair(const std::vector<ContactPoint>& contacts, std::size_t first, std::size_t end,
+                  const std::vector<ContactBody>& bodies, std::vector<Eigen::Vector3d>& F_G,
+                  std::vector<Eigen::Vector3d>& M_G, std::vector<AppliedContact>& applied,
+                  const std::vector<StickAnchor>& previous);
+  // The previous substep's unused anchor of c's pair nearest p_A (within kAnchorMatch_m), if any.
+  const StickAnchor* match_anchor(const std::vector<StickAnchor>& previous, const ContactPoint& c,
+                                  const Eigen::Vector3d& p_A);
 
   double slip_speed_mps_;
-  std::vector<Anchor> anchors_;       // previous substep's, sorted by pair
-  std::vector<Anchor> next_anchors_;  // being built this substep
+  std::vector<StickAnchor> anchors_;  // the model's own (the overload without anchors)
+  // scratch of one substep
+  std::vector<StickAnchor> next_anchors_;  // being built
+  std::vector<uint8_t> anchor_used_;       // previous anchors already matched
+  std::vector<FrictionPoint> work_;        // the pair being solved
 };
 
 }  // namespace vcockpit::physics

@@ -25,4 +25,11 @@ void integrate_body(BodyState& body, const Eigen::Vector3d& F_G, const Eigen::Ve
   body.X_GO.linear() = q.toRotationMatrix();
 }
 
+void finite_difference_velocity(const Eigen::Isometry3d& before, const Eigen::Isometry3d& now,
+                                double dt_s, Eigen::Vector3d& v_G, Eigen::Vector3d& w_G) {
+  v_G = (now.translation() - before.translation()) / dt_s;
+  const Eigen::AngleAxisd turn(now.linear() * before.linear().transpose());
+  w_G = turn.axis() * (turn.angle() / dt_s);
+}
+
 }  // namespace vcockpit::physics

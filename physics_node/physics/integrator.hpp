@@ -21,4 +21,9 @@ void integrate_body(BodyState& body, const Eigen::Vector3d& F_G, const Eigen::Ve
 // Rotation by the rotation vector w dt (exponential map), exact for any angle.
 Eigen::Quaterniond rotation_increment(const Eigen::Vector3d& w_G, double dt_s);
 
+// Velocity of a frame from two poses dt apart (eq. 15 for a tracked, kinematic body): what the
+// hand's links and a held object move at, and what a released object leaves with.
+void finite_difference_velocity(const Eigen::Isometry3d& before, const Eigen::Isometry3d& now,
+                                double dt_s, Eigen::Vector3d& v_G, Eigen::Vector3d& w_G);
+
 }  // namespace vcockpit::physics

@@ -83,6 +83,15 @@ struct ContactParams {
   int max_points_per_pair = 4;
 };
 
+// Beyond these a body's state is taken as broken (nothing in a cockpit gets there; a blown-up
+// contact or a bad state does): after each step such a body is put back where it was at the
+// step's start, at rest, and counted (MuJoCo's mj_checkPos / mj_checkVel warn and reset).
+struct SanityLimits {
+  double max_speed_mps = 100.0;    // a thrown object ~20 m/s, a hand ~10 m/s
+  double max_spin_radps = 1000.0;  // ~160 rev/s: a spun knob or a tossed pen stays well below
+  double max_distance_m = 1000.0;  // from the world origin: a cockpit is a few metres across
+};
+
 struct Scene {
   Eigen::Vector3d gravity_mps2{0.0, 0.0, -9.81};
   double step_s = 0.001;
@@ -91,6 +100,7 @@ struct Scene {
   Material hand_material{2.0e4, 0.7, 1.0, 0.8};  // skin on a glove: grippy and soft
   GraspParams grasp;
   ContactParams contact;
+  SanityLimits limits;
 
   // -1 when no object has that name.
   int find_object(const std::string& name) const;

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
+#include <stdexcept>
 
+#include "common/assert.hpp"
+#include "physics_node/physics/contact_sums.hpp"
 #include "physics_node/physics/integrator.hpp"
 
 namespace vcockpit::physics {
@@ -33,39 +35,8 @@ Eigen::Isometry3d interpolate(const Eigen::Isometry3d& a, const Eigen::Isometry3
   return X;
 }
 
-// Velocity of a frame from two poses dt apart (eq. 15 for a tracked, kinematic body).
-void finite_difference(const Eigen::Isometry3d& before, const Eigen::Isometry3d& now, double dt_s,
-                       Eigen::Vector3d& v_G, Eigen::Vector3d& w_G) {
-  v_G = (now.translation() - before.translation()) / dt_s;
-  const Eigen::AngleAxisd turn(now.linear() * before.linear().transpose());
-  w_G = turn.axis() * (turn.angle() / dt_s);
-}
-
-// A lower bound of the effective mass a contact on this body can see,
-// 1 / (1/m + (r x n)^T I^-1 (r x n)): the lever about each principal axis is at most the shape's
-// reach from that axis, and |r x n| is at most the bounding radius. (Inertia from the shape is
-// diagonal in the shape's frame.)
-// Smooth shapes are exact: a contact's normal is the surface normal at the contact, so its line
-// passes through a sphere's centre (no lever: m) or through a capsule's axis segment, r x n =
-// t (a x n) with |t| <= half length, a turn about an axis across the capsule.
-double worst_contact_mass(const ObjectSpec& o) {
-  if (o.shape.kind == ShapeKind::kSphere) return o.mass_kg;
-  if (o.shape.kind == ShapeKind::kCapsule) {
-    const double half_m = 0.5 * o.shape.length_m;
-    const double I_across = std::min(o.I_O(0, 0), o.I_O(1, 1));
-    return 1.0 / (1.0 / o.mass_kg + half_m * half_m / I_across);
-  }
-  const Eigen::Vector3d reach = o.shape.axis_reach_m();
-  double per_axis = 0.0;
-  for (int i = 0; i < 3; ++i) per_axis += reach[i] * reach[i] / o.I_O(i, i);
-  const double r = o.shape.bounding_radius_m();
-  const double I_min = o.I_O.diagonal().minCoeff();
-  return 1.0 / (1.0 / o.mass_kg + std::min(per_axis, r * r / I_min));
-}
-
-double series_stiffness(const Material& a, const Material& b) {
-  return a.stiffness_Npm * b.stiffness_Npm / (a.stiffness_Npm + b.stiffness_Npm);
-}
+// 0 for a right hand, 1 for a left one (as the topics name them).
+int hand_id_of(const Scene& scene) { return scene.hand && scene.hand->left ? 1 : 0; }
 
 }  // namespace
 
@@ -78,45 +49,35 @@ const char* stage_name(Stage stage) {
 World::World(Scene scene)
     : scene_(std::move(scene)),
       collision_(scene_),
+      substep_choice_(scene_, collision_),
       forces_(scene_.contact.slip_speed_mps),
+      grasp_tracker_(scene_.grasp, scene_.step_s, scene_.gravity_mps2, hand_id_of(scene_)),
+      body_check_(scene_),
       object_count_(static_cast<int>(scene_.objects.size())),
       step_ns_(std::llround(scene_.step_s * 1e9)) {
-  hand_id_ = scene_.hand && scene_.hand->left ? 1 : 0;
-  bodies_.resize(object_count_);
+  if (scene_.contact.max_substeps < 1 || !(scene_.step_s > 0.0))
+    throw std::invalid_argument("World: the step and max_substeps must be positive");
+  hand_id_ = grasp_tracker_.hand_id();
+  state_.bodies.resize(object_count_);
   X_GO_.resize(object_count_);
   X_GO_before_.resize(object_count_);
-  grasp_.resize(object_count_);
+  state_.grasp.resize(object_count_);
   I_O_inv_.resize(object_count_);
   held_mask_.assign(object_count_, 0);
-  const std::size_t window = std::max<std::size_t>(
-      2, static_cast<std::size_t>(std::llround(scene_.grasp.velocity_window_s / scene_.step_s)) + 1);
+  start_bodies_.resize(object_count_);
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
-    bodies_[i].X_GO = o.X_GO;
-    bodies_[i].v_G = o.v_G;
-    bodies_[i].w_G = o.w_G;
+    state_.bodies[i].X_GO = o.X_GO;
+    state_.bodies[i].v_G = o.v_G;
+    state_.bodies[i].w_G = o.w_G;
     X_GO_[i] = o.X_GO;
     X_GO_before_[i] = o.X_GO;
-    if (o.dynamic) grasp_[i].history.resize(window);
+    state_.grasp[i] = grasp_tracker_.initial_hold(o);
     I_O_inv_[i] = o.dynamic ? Eigen::Matrix3d(o.I_O.inverse()) : Eigen::Matrix3d::Zero();
   }
-  X_GL_.fill(Eigen::Isometry3d::Identity());
-  X_GL_before_ = X_GL_;
-  // the reach broadphase: static boxes once, the rest every step
-  std::vector<BroadphaseBody> kinds;
-  contact_mass_.assign(object_count_, 0.0);
-  for (int i = 0; i < object_count_; ++i) {
-    const ObjectSpec& o = scene_.objects[i];
-    kinds.push_back(o.dynamic ? BroadphaseBody::kDynamic : BroadphaseBody::kStatic);
-    if (o.dynamic) contact_mass_[i] = worst_contact_mass(o);
-  }
-  if (scene_.hand) kinds.insert(kinds.end(), kLinkCount, BroadphaseBody::kHand);
-  reach_ = std::make_unique<SweepAndPrune>(std::move(kinds));
-  for (int i = 0; i < object_count_; ++i)
-    if (!scene_.objects[i].dynamic)
-      reach_->set_box(i, shape_aabb(scene_.objects[i].shape, scene_.objects[i].X_GO));
-  reach_pairs_.reserve(64);
-  substeps_ = choose_substeps();  // for the initial state: the count the first step will use
+  state_.X_GL.fill(Eigen::Isometry3d::Identity());
+  X_GL_before_ = state_.X_GL;
+  state_.substeps = choose_substeps();  // for the initial state: the count the first step will use
   const int body_count = object_count_ + (scene_.hand ? kLinkCount : 0);
   contact_bodies_.resize(body_count);
   F_G_.resize(body_count);
@@ -125,115 +86,88 @@ World::World(Scene scene)
   applied_.reserve(256);
   hand_contacts_.reserve(64);
   events_.reserve(16);
+  state_.anchors.reserve(256);
 }
 
 World::~World() = default;
 
-// The pairs that can touch within the coming step: boxes around each body's sweep over the step
-// (a dynamic body: where it is, grown by how far it can move; a hand link: its box at the start
-// and at the end of the step), plus a margin.
-void World::find_reachable_pairs() {
-  const double step_s = scene_.step_s;
-  for (int i = 0; i < object_count_; ++i) {
-    const ObjectSpec& o = scene_.objects[i];
-    if (!o.dynamic) continue;  // static boxes were set once
-    const BodyState& body = bodies_[i];
-    Aabb box = shape_aabb(o.shape, body.X_GO);
-    // the farthest a point of it can go in one step: centroid speed, spin times reach, gravity
-    const double reach_m = (body.v_G.norm() + body.w_G.norm() * o.shape.bounding_radius_m()) * step_s +
-                           0.5 * scene_.gravity_mps2.norm() * step_s * step_s + kReachMargin_m;
-    box.lo.array() -= reach_m;
-    box.hi.array() += reach_m;
-    reach_->set_box(i, box);
-  }
-  reach_->set_hand_enabled(hand_active_);
-  if (hand_active_) {
-    HandLinkPoses end;
-    forward_kinematics(*scene_.hand, hand_to_.q_rad, end);
-    for (int l = 0; l < kLinkCount; ++l) {
-      const Link link = static_cast<Link>(l);
-      const Aabb now = collision_.hand_link_box(link, X_GL_[l]);
-      const Aabb then = collision_.hand_link_box(link, hand_to_.X_GH * end.X_HL[l]);
-      reach_->set_box(object_count_ + l,
-                     {now.lo.cwiseMin(then.lo).array() - kReachMargin_m,
-                      now.hi.cwiseMax(then.hi).array() + kReachMargin_m});
-    }
-  }
-  reach_->find_pairs(reach_pairs_);
+// Substeps for the coming step (substep_choice.hpp): the hand sweeps from its links now to the
+// latest input.
+int World::choose_substeps() {
+  return substep_choice_.choose(state_.bodies, state_.hand_active ? &state_.X_GL : nullptr,
+                                state_.hand_to.X_GH, state_.hand_to.q_rad);
 }
 
-// Substeps short enough for the stiffest contact that can happen this step, dt <= safety
-// sqrt(m_eff / k) (k the pair's series stiffness, m_eff the least effective mass it can show:
-// against a static, held or hand body the dynamic body's own, between two free bodies the two in
-// series). Only the pairs that can touch within the step count: a cup resting alone does not pay
-// for a pen lying across the cockpit.
-int World::choose_substeps() {
-  find_reachable_pairs();
-  double dt_max = scene_.step_s;
-  for (const BodyPair& pair : reach_pairs_) {
-    const bool a_free = pair.lo < object_count_ && scene_.objects[pair.lo].dynamic &&
-                        bodies_[pair.lo].held_by == kNotHeld;
-    const bool b_free = pair.hi < object_count_ && scene_.objects[pair.hi].dynamic &&
-                        bodies_[pair.hi].held_by == kNotHeld;
-    if (!a_free && !b_free) continue;  // held objects move with the hand: nothing to integrate
-    const Material& ma = pair.lo < object_count_ ? scene_.objects[pair.lo].material
-                                                 : scene_.hand_material;
-    const Material& mb = pair.hi < object_count_ ? scene_.objects[pair.hi].material
-                                                 : scene_.hand_material;
-    const double inv_m = (a_free ? 1.0 / contact_mass_[pair.lo] : 0.0) +
-                         (b_free ? 1.0 / contact_mass_[pair.hi] : 0.0);
-    const double k = series_stiffness(ma, mb);
-    if (k > 0) dt_max = std::min(dt_max, scene_.contact.substep_safety * std::sqrt(1.0 / (inv_m * k)));
-  }
-  const int n = static_cast<int>(std::ceil(scene_.step_s / dt_max - 1e-9));
-  return std::clamp(n, 1, scene_.contact.max_substeps);
+void World::restore(const WorldState& state) {
+  VCOCKPIT_ASSERT(state.bodies.size() == state_.bodies.size() &&
+                      state.grasp.size() == state_.grasp.size(),
+                  "a world state of another scene (object count)");
+  for (int i = 0; i < object_count_; ++i)
+    VCOCKPIT_ASSERT(state.grasp[i].history.size() == state_.grasp[i].history.size(),
+                    "a world state of another scene (grasp velocity window)");
+  VCOCKPIT_ASSERT(!state.hand_active || scene_.hand.has_value(), "a hand state without a hand");
+  state_ = state;
+  // the last step's observations belong to the world the state came from
+  applied_.clear();
+  events_.clear();
+  stage_times_ = StageTimes{};
+  penetration_ = PenetrationStats{};
+  body_check_.clear_new_faults();
 }
 
 void World::set_hand_input(const HandInput& input) {
   if (!scene_.hand) return;
-  hand_to_ = input;
-  if (!hand_active_) {
-    hand_from_ = input;  // first sample: no sweep from nowhere
-    hand_active_ = true;
+  state_.hand_to = input;
+  if (!state_.hand_active) {
+    state_.hand_from = input;  // first sample: no sweep from nowhere
+    state_.hand_active = true;
     move_hand(1.0);
-    X_GL_before_ = X_GL_;
+    X_GL_before_ = state_.X_GL;
   }
 }
 
 void World::step() {
   stage_times_ = StageTimes{};
   events_.clear();
+  body_check_.clear_new_faults();
+  std::copy(state_.bodies.begin(), state_.bodies.end(), start_bodies_.begin());
   {
     StageTimer timer(stage_times_, Stage::kBroadphase);
-    substeps_ = choose_substeps();
+    state_.substeps = choose_substeps();
   }
+  VCOCKPIT_ASSERT(state_.substeps >= 1 && state_.substeps <= scene_.contact.max_substeps,
+                  "substeps in [1, max_substeps]");
   // a held object and the hand move together: their contacts matter to the grasp test only,
   // which reads the last substep's, so the substeps before it leave them out (their friction
   // anchors carry over)
   bool any_held = false;
   for (int i = 0; i < object_count_; ++i) {
-    held_mask_[i] = bodies_[i].held_by != kNotHeld ? 1 : 0;
+    held_mask_[i] = state_.bodies[i].held_by != kNotHeld ? 1 : 0;
     any_held = any_held || held_mask_[i] != 0;
   }
-  const double dt_s = scene_.step_s / substeps_;
-  for (int s = 1; s <= substeps_; ++s)
-    substep(dt_s, static_cast<double>(s) / substeps_, any_held && s < substeps_);
-  time_ns_ += step_ns_;
-  ++steps_;
+  const double dt_s = scene_.step_s / state_.substeps;
+  for (int s = 1; s <= state_.substeps; ++s)
+    substep(dt_s, static_cast<double>(s) / state_.substeps, any_held && s < state_.substeps);
+  state_.time_ns += step_ns_;
+  ++state_.steps;
+  {
+    StageTimer timer(stage_times_, Stage::kIntegrate);
+    body_check_.check(state_.bodies, start_bodies_, state_.time_ns);
+  }
   grasp_stage();
-  hand_from_ = hand_to_;
+  state_.hand_from = state_.hand_to;
 }
 
 void World::substep(double dt_s, double alpha, bool skip_held_hand_pairs) {
   {
     StageTimer timer(stage_times_, Stage::kHandKinematics);
-    if (hand_active_) move_hand(alpha);
+    if (state_.hand_active) move_hand(alpha);
     move_held_objects(dt_s);
   }
   {
     StageTimer timer(stage_times_, Stage::kBroadphase);
-    for (int i = 0; i < object_count_; ++i) X_GO_[i] = bodies_[i].X_GO;
-    collision_.set_poses(X_GO_, hand_active_ ? &X_GL_ : nullptr);
+    for (int i = 0; i < object_count_; ++i) X_GO_[i] = state_.bodies[i].X_GO;
+    collision_.set_poses(X_GO_, state_.hand_active ? &state_.X_GL : nullptr);
     collision_.find_candidate_pairs();
   }
   {
@@ -250,7 +184,7 @@ void World::substep(double dt_s, double alpha, bool skip_held_hand_pairs) {
     }
     KeptPairs kept;
     if (skip_held_hand_pairs) kept = {&held_mask_, object_count_};
-    forces_.apply(contacts_, contact_bodies_, F_G_, M_G_, applied_, kept);
+    forces_.apply(contacts_, contact_bodies_, F_G_, M_G_, applied_, state_.anchors, kept);
   }
   {
     StageTimer timer(stage_times_, Stage::kIntegrate);
@@ -260,30 +194,30 @@ void World::substep(double dt_s, double alpha, bool skip_held_hand_pairs) {
 
 void World::move_hand(double alpha) {
   const HandModel& hand = *scene_.hand;
-  X_GH_ = interpolate(hand_from_.X_GH, hand_to_.X_GH, alpha);
+  state_.X_GH = interpolate(state_.hand_from.X_GH, state_.hand_to.X_GH, alpha);
   JointAngles q;
   for (int j = 0; j < kJointCount; ++j) {
-    q[j] = hand_from_.q_rad[j] + alpha * (hand_to_.q_rad[j] - hand_from_.q_rad[j]);
+    q[j] = state_.hand_from.q_rad[j] + alpha * (state_.hand_to.q_rad[j] - state_.hand_from.q_rad[j]);
   }
   forward_kinematics(hand, q, link_poses_);
-  X_GL_before_ = X_GL_;
-  for (int l = 0; l < kLinkCount; ++l) X_GL_[l] = X_GH_ * link_poses_.X_HL[l];
+  X_GL_before_ = state_.X_GL;
+  for (int l = 0; l < kLinkCount; ++l) state_.X_GL[l] = state_.X_GH * link_poses_.X_HL[l];
 }
 
 void World::move_held_objects(double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
-    BodyState& body = bodies_[i];
+    BodyState& body = state_.bodies[i];
     if (body.held_by == kNotHeld) continue;
     X_GO_before_[i] = body.X_GO;
-    body.X_GO = X_GH_ * grasp_[i].X_HO;  // eq. 29
-    finite_difference(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
+    body.X_GO = state_.X_GH * state_.grasp[i].X_HO;  // eq. 29
+    finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
   }
 }
 
 void World::build_contact_bodies() {
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
-    const BodyState& s = bodies_[i];
+    const BodyState& s = state_.bodies[i];
     ContactBody& c = contact_bodies_[i];
     c.X_GB = s.X_GO;
     c.v_G = s.v_G;
@@ -298,12 +232,12 @@ void World::build_contact_bodies() {
   std::array<bool, kLinkCount> touching{};
   for (const ContactPoint& c : contacts_)
     if (c.body_b >= object_count_) touching[static_cast<std::size_t>(c.body_b - object_count_)] = true;
-  const double dt_s = scene_.step_s / substeps_;
+  const double dt_s = scene_.step_s / state_.substeps;
   for (int l = 0; l < kLinkCount; ++l) {
     ContactBody& c = contact_bodies_[object_count_ + l];
-    c.X_GB = X_GL_[l];
+    c.X_GB = state_.X_GL[l];
     if (touching[static_cast<std::size_t>(l)]) {
-      finite_difference(X_GL_before_[l], X_GL_[l], dt_s, c.v_G, c.w_G);
+      finite_difference_velocity(X_GL_before_[l], state_.X_GL[l], dt_s, c.v_G, c.w_G);
     } else {
       c.v_G.setZero();
       c.w_G.setZero();
@@ -318,9 +252,9 @@ void World::build_contact_bodies() {
 void World::integrate(double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
-    BodyState& body = bodies_[i];
+    BodyState& body = state_.bodies[i];
     if (!o.dynamic || body.held_by != kNotHeld) continue;
-    const Eigen::Vector3d F = F_G_[i] + o.mass_kg * scene_.gravity_mps2;  // eq. 18
+    const Eigen::Vector3d F = total_force_G(F_G_[i], o.mass_kg, scene_.gravity_mps2);  // eq. 18
     integrate_body(body, F, M_G_[i], o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
   }
 }
@@ -329,6 +263,11 @@ void World::grasp_stage() {
   StageTimer timer(stage_times_, Stage::kGrasp);
   penetration_ = PenetrationStats{};
   if (!scene_.hand) return;
+  const HandNow hand{state_.time_ns, state_.hand_to.tracking, state_.X_GH};
+  const auto grasp_object = [&](int object, const HandContact* contacts, std::size_t count) {
+    grasp_tracker_.update(object, scene_.objects[object], contacts, count, hand,
+                          state_.grasp[object], state_.bodies[object], events_);
+  };
   // hand contacts of the last substep, grouped by object (contacts are sorted by body_a)
   std::size_t i = 0;
   int next_object = 0;  // objects before it have had their grasp test this step
@@ -357,110 +296,10 @@ void World::grasp_stage() {
     next_object = object + 1;
   }
   grasp_untouched_up_to(object_count_);
-  record_held_history();
-}
-
-void World::grasp_object(int object, const HandContact* contacts, std::size_t count) {
-  const ObjectSpec& o = scene_.objects[object];
-  if (!o.dynamic) return;
-  BodyState& body = bodies_[object];
-  GraspState& g = grasp_[object];
-  const bool held = body.held_by == hand_id_;
-  if (!held && count == 0) return;
-
-  const GraspCheck check = evaluate_grasp(contacts, count, body.X_GO.translation(), o.mass_kg,
-                                          scene_.gravity_mps2, scene_.grasp, held);
-  if (!held) {
-    const bool cooled = time_ns_ - g.released_at_ns >=
-                        std::llround(scene_.grasp.regrab_cooldown_s * 1e9);
-    if (hand_to_.tracking && cooled && check.holds()) attach(object, check);
-    return;
-  }
-  if (!hand_to_.tracking) {
-    release(object, GraspReason::kGloveLost, check);
-    return;
-  }
-  if (check.holds()) {
-    g.failing_since_ns = -1;
-    return;
-  }
-  if (g.failing_since_ns < 0) g.failing_since_ns = time_ns_;
-  const bool failed_long_enough =
-      time_ns_ - g.failing_since_ns >= std::llround(scene_.grasp.release_delay_s * 1e9);
-  const bool held_long_enough =
-      time_ns_ - g.held_since_ns >= std::llround(scene_.grasp.min_hold_s * 1e9);
-  if (failed_long_enough && held_long_enough) release(object, check.verdict, check);
-}
-
-void World::attach(int object, const GraspCheck& check) {
-  BodyState& body = bodies_[object];
-  GraspState& g = grasp_[object];
-  g.X_HO = X_GH_.inverse() * body.X_GO;  // eq. 28
-  g.held_since_ns = time_ns_;
-  g.failing_since_ns = -1;
-  g.history_next = 0;
-  g.history_count = 0;
-  body.held_by = hand_id_;
-  GraspEvent e;
-  e.t_ns = time_ns_;
-  e.grasp = true;
-  e.hand_id = hand_id_;
-  e.object = object;
-  e.reason = GraspReason::kStableGrasp;
-  e.contacts = check.links_in_contact;
-  e.residual_force_N = check.residual_force_N;
-  e.residual_torque_Nm = check.residual_torque_Nm;
-  std::snprintf(e.text.data(), e.text.size(),
-                "stable grasp: %d links, thumb opposed at %.0f deg, |F| %.2f N, |M| %.3f N m",
-                check.links_in_contact, check.min_thumb_angle_deg, check.residual_force_N,
-                check.residual_torque_Nm);
-  events_.push_back(e);
-}
-
-void World::release(int object, GraspReason reason, const GraspCheck& check) {
-  BodyState& body = bodies_[object];
-  GraspState& g = grasp_[object];
-  // the object leaves with the hand's motion over the last window (no jump, can be thrown)
-  if (g.history_count >= 2) {
-    const std::size_t n = g.history.size();
-    const std::size_t newest = (g.history_next + n - 1) % n;
-    const std::size_t oldest = g.history_count < n ? 0 : g.history_next;
-    const std::size_t span = g.history_count < n ? g.history_count - 1 : n - 1;
-    finite_difference(g.history[oldest], g.history[newest],
-                      static_cast<double>(span) * scene_.step_s, body.v_G, body.w_G);
-  }
-  body.held_by = kNotHeld;
-  g.released_at_ns = time_ns_;
-  g.failing_since_ns = -1;
-  GraspEvent e;
-  e.t_ns = time_ns_;
-  e.grasp = false;
-  e.hand_id = hand_id_;
-  e.object = object;
-  e.reason = reason;
-  e.contacts = check.links_in_contact;
-  e.residual_force_N = check.residual_force_N;
-  e.residual_torque_Nm = check.residual_torque_Nm;
-  if (reason == GraspReason::kGloveLost) {
-    std::snprintf(e.text.data(), e.text.size(), "glove lost");
-  } else {
-    std::snprintf(e.text.data(), e.text.size(),
-                  "%s: %d links, thumb %s, min thumb angle %.0f deg, |F| %.2f N, |M| %.3f N m",
-                  grasp_reason_name(reason), check.links_in_contact,
-                  check.thumb ? "touching" : "off", check.min_thumb_angle_deg,
-                  check.residual_force_N, check.residual_torque_Nm);
-  }
-  events_.push_back(e);
-}
-
-void World::record_held_history() {
-  for (int i = 0; i < object_count_; ++i) {
-    if (bodies_[i].held_by == kNotHeld) continue;
-    GraspState& g = grasp_[i];
-    g.history[g.history_next] = bodies_[i].X_GO;
-    g.history_next = (g.history_next + 1) % g.history.size();
-    g.history_count = std::min(g.history_count + 1, g.history.size());
-  }
+  // held poses for the release velocity
+  for (int o = 0; o < object_count_; ++o)
+    if (state_.bodies[o].held_by != kNotHeld)
+      grasp_tracker_.record_held_pose(state_.grasp[o], state_.bodies[o]);
 }
 
 }  // namespace vcockpit::physics

@@ -7,29 +7,33 @@
 //
 // Deterministic: fixed steps, no clock in the results (stage timings are observations only),
 // every container iterated in a fixed order. The same scene and inputs give bit-identical states.
+//
+// Constant model, mutable state (MuJoCo's mjModel / mjData): the Scene never changes; a
+// WorldState (world_state.hpp) holds everything that carries from step to step, and the rest
+// of the world is per-step scratch. state() / restore() take and put back that state.
+//
+// The stages live in their own files: substep_choice (how many substeps), collision and
+// manifold_clipper (contacts), contact_forces with normal_force / friction_force /
+// contact_sums (eqs. 11-19), integrator (eqs. 20-25), grasp and grasp_tracker (eqs. 28-31).
 
 #include <Eigen/Geometry>
 
 #include <array>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "physics_node/physics/body.hpp"
+#include "physics_node/physics/body_check.hpp"
 #include "physics_node/physics/broadphase.hpp"
 #include "physics_node/physics/collision.hpp"
 #include "physics_node/physics/contact_forces.hpp"
 #include "physics_node/physics/grasp.hpp"
+#include "physics_node/physics/grasp_tracker.hpp"
 #include "physics_node/physics/scene.hpp"
+#include "physics_node/physics/substep_choice.hpp"
+#include "physics_node/physics/world_state.hpp"
 
 namespace vcockpit::physics {
-
-// What the tracked hand looks like now: the wrist in the world and the 22 joint angles.
-struct HandInput {
-  Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
-  JointAngles q_rad{};
-  bool tracking = true;  // false: glove lost; the hand stays, held objects are let go
-};
 
 enum class Stage : uint8_t {
   kHandKinematics, kBroadphase, kNarrowphase, kForces, kGrasp, kIntegrate, kCount
@@ -39,18 +43,6 @@ const char* stage_name(Stage stage);
 
 struct StageTimes {
   std::array<int64_t, kStageCount> ns{};  // wall time per stage over the last step
-};
-
-struct GraspEvent {
-  int64_t t_ns = 0;
-  bool grasp = true;  // false: release
-  int hand_id = 0;
-  int object = -1;
-  GraspReason reason = GraspReason::kStableGrasp;
-  int contacts = 0;
-  double residual_force_N = 0.0;
-  double residual_torque_Nm = 0.0;
-  std::array<char, 128> text{};  // the reason in words with the figures behind it
 };
 
 // Hand-object penetration over the last step (m).
@@ -69,36 +61,38 @@ class World {
   void set_hand_input(const HandInput& input);
   void step();
 
+  // Everything that carries from step to step; a world restored to it (from this world or
+  // another of the same scene) steps bit-identically to the one it was taken from. The state
+  // must come from a world of the same scene (checked: sizes).
+  const WorldState& state() const { return state_; }
+  void restore(const WorldState& state);
+
   const Scene& scene() const { return scene_; }
-  int64_t time_ns() const { return time_ns_; }
-  uint64_t step_count() const { return steps_; }
-  int substeps() const { return substeps_; }  // of the last step (chosen every step)
+  int64_t time_ns() const { return state_.time_ns; }
+  uint64_t step_count() const { return state_.steps; }
+  int substeps() const { return state_.substeps; }  // of the last step (chosen every step)
   int hand_id() const { return hand_id_; }
-  bool hand_active() const { return hand_active_; }
+  bool hand_active() const { return state_.hand_active; }
 
-  const std::vector<BodyState>& bodies() const { return bodies_; }
-  const Eigen::Isometry3d& X_GH() const { return X_GH_; }
-  const std::array<Eigen::Isometry3d, kLinkCount>& X_GL() const { return X_GL_; }
+  const std::vector<BodyState>& bodies() const { return state_.bodies; }
+  const Eigen::Isometry3d& X_GH() const { return state_.X_GH; }
+  const std::array<Eigen::Isometry3d, kLinkCount>& X_GL() const { return state_.X_GL; }
   // Pose of the held object in the hand frame (eq. 28), valid while held.
-  const Eigen::Isometry3d& X_HO(int object) const { return grasp_[object].X_HO; }
+  const Eigen::Isometry3d& X_HO(int object) const { return state_.grasp[object].X_HO; }
 
+  // Observations of the last step (empty after a restore until the next step).
   const std::vector<GraspEvent>& step_events() const { return events_; }
   const std::vector<AppliedContact>& contacts() const { return applied_; }
   const StageTimes& stage_times() const { return stage_times_; }
   const PenetrationStats& hand_penetration() const { return penetration_; }
 
- private:
-  struct GraspState {
-    Eigen::Isometry3d X_HO = Eigen::Isometry3d::Identity();
-    int64_t held_since_ns = 0;
-    int64_t failing_since_ns = -1;
-    int64_t released_at_ns = INT64_MIN / 2;
-    std::vector<Eigen::Isometry3d> history;  // pose at the last steps while held (ring)
-    std::size_t history_next = 0;
-    std::size_t history_count = 0;
-  };
+  // Bodies found broken after a step and put back (body_check.hpp): every object ever found,
+  // with its count, and those found for the first time in the last step (for the adapters to
+  // name once). Diagnostics of this world: restore() keeps them.
+  const std::vector<BodyFault>& body_faults() const { return body_check_.faults(); }
+  const std::vector<BodyFault>& step_faults() const { return body_check_.new_faults(); }
 
-  void find_reachable_pairs();
+ private:
   int choose_substeps();
   void substep(double dt_s, double alpha, bool skip_held_hand_pairs);
   void move_hand(double alpha);
@@ -106,47 +100,36 @@ class World {
   void build_contact_bodies();
   void integrate(double dt_s);
   void grasp_stage();
-  void grasp_object(int object, const HandContact* contacts, std::size_t count);
-  void attach(int object, const GraspCheck& check);
-  void release(int object, GraspReason reason, const GraspCheck& check);
-  void record_held_history();
 
+  // the model and the stages: built once; what they keep between steps (sweep orders, work
+  // space) never changes a result, which is why a restored world steps like the original
   Scene scene_;
   CollisionWorld collision_;
+  SubstepChoice substep_choice_;
   ContactForceModel forces_;
+  GraspTracker grasp_tracker_;
+  BodyCheck body_check_;
   int object_count_;
-  int substeps_;
   int hand_id_ = 0;
   int64_t step_ns_;
-  int64_t time_ns_ = 0;
-  uint64_t steps_ = 0;
-
-  std::vector<BodyState> bodies_;
-  std::vector<Eigen::Isometry3d> X_GO_;  // collision input, all objects
-  std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
-  std::vector<GraspState> grasp_;
   std::vector<Eigen::Matrix3d> I_O_inv_;  // inverse body-frame inertia, dynamic objects
-  std::vector<uint8_t> held_mask_;        // 1 for the objects held at the start of this step
-  std::vector<double> contact_mass_;      // least effective mass a contact can see, dynamic ones
-  // the pairs that can touch within a step (substep choice): objects, then the hand's links
-  std::unique_ptr<SweepAndPrune> reach_;
-  std::vector<BodyPair> reach_pairs_;
-  static constexpr double kReachMargin_m = 0.002;
 
-  bool hand_active_ = false;
-  HandInput hand_from_;  // at the start of the step
-  HandInput hand_to_;    // at its end
-  Eigen::Isometry3d X_GH_ = Eigen::Isometry3d::Identity();
-  std::array<Eigen::Isometry3d, kLinkCount> X_GL_;
-  std::array<Eigen::Isometry3d, kLinkCount> X_GL_before_;
+  WorldState state_;
+
+  // scratch: rebuilt every step or substep before it is read
+  std::vector<Eigen::Isometry3d> X_GO_;         // collision input, all objects
+  std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
+  std::vector<uint8_t> held_mask_;              // 1 for the objects held at the start of this step
+  std::vector<BodyState> start_bodies_;         // the bodies at the start of this step
+  std::array<Eigen::Isometry3d, kLinkCount> X_GL_before_;  // the links one substep ago
   HandLinkPoses link_poses_;
-
   std::vector<ContactPoint> contacts_;
   std::vector<ContactBody> contact_bodies_;
   std::vector<Eigen::Vector3d> F_G_;
   std::vector<Eigen::Vector3d> M_G_;
-  std::vector<AppliedContact> applied_;
   std::vector<HandContact> hand_contacts_;
+  // observations of the last step
+  std::vector<AppliedContact> applied_;
   std::vector<GraspEvent> events_;
   StageTimes stage_times_;
   PenetrationStats penetration_;

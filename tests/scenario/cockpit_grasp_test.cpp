@@ -9,6 +9,7 @@
 
 #include "hand/glove_log.hpp"
 #include "physics_node/config/scene_config.hpp"
+#include "physics_node/io/grasp_event_text.hpp"
 #include "physics_node/io/replay_driver.hpp"
 #include "physics_node/io/offline_runner.hpp"
 #include "tests/support/process.hpp"
@@ -46,7 +47,8 @@ TEST(CockpitGrasp, CupIsGraspedLiftedReleasedAndComesToRest) {
     world.step();
     for (const auto& e : world.step_events()) {
       EXPECT_EQ(e.object, cup) << "unexpected " << (e.grasp ? "grasp" : "release") << " of "
-                               << world.scene().objects[e.object].name << ": " << e.text.data();
+                               << world.scene().objects[e.object].name << ": "
+                               << physics_io::grasp_event_text(e);
       if (e.grasp) {
         ++grasps;
         grasp_ns = e.t_ns;
@@ -56,7 +58,8 @@ TEST(CockpitGrasp, CupIsGraspedLiftedReleasedAndComesToRest) {
         release_ns = e.t_ns;
       }
       std::printf("%.3f s %s %s: %s\n", e.t_ns * 1e-9, e.grasp ? "GRASP" : "RELEASE",
-                  world.scene().objects[e.object].name.c_str(), e.text.data());
+                  world.scene().objects[e.object].name.c_str(),
+                  physics_io::grasp_event_text(e).c_str());
     }
     const auto& body = world.bodies()[cup];
     if (body.held_by != physics::kNotHeld) {

@@ -1,0 +1,26 @@
+#include "physics_node/io/grasp_event_text.hpp"
+
+#include <array>
+#include <cstdio>
+
+namespace vcockpit::physics_io {
+
+std::string grasp_event_text(const physics::GraspEvent& e) {
+  std::array<char, 128> text{};
+  if (e.grasp) {
+    std::snprintf(text.data(), text.size(),
+                  "stable grasp: %d links, thumb opposed at %.0f deg, |F| %.2f N, |M| %.3f N m",
+                  e.contacts, e.min_thumb_angle_deg, e.residual_force_N, e.residual_torque_Nm);
+  } else if (e.reason == physics::GraspReason::kGloveLost) {
+    std::snprintf(text.data(), text.size(), "glove lost");
+  } else {
+    std::snprintf(text.data(), text.size(),
+                  "%s: %d links, thumb %s, min thumb angle %.0f deg, |F| %.2f N, |M| %.3f N m",
+                  physics::grasp_reason_name(e.reason), e.contacts,
+                  e.thumb_touching ? "touching" : "off", e.min_thumb_angle_deg, e.residual_force_N,
+                  e.residual_torque_Nm);
+  }
+  return text.data();
+}
+
+}  // namespace vcockpit::physics_io

@@ -1,0 +1,116 @@
+#include "physics_node/physics/grasp_tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/assert.hpp"
+#include "physics_node/physics/integrator.hpp"
+
+namespace vcockpit::physics {
+
+GraspTracker::GraspTracker(const GraspParams& params, double step_s,
+                           const Eigen::Vector3d& gravity_mps2, int hand_id)
+    : params_(params),
+      step_s_(step_s),
+      gravity_mps2_(gravity_mps2),
+      hand_id_(hand_id),
+      window_(std::max<std::size_t>(
+          2, static_cast<std::size_t>(std::llround(params.velocity_window_s / step_s)) + 1)),
+      regrab_cooldown_ns_(std::llround(params.regrab_cooldown_s * 1e9)),
+      release_delay_ns_(std::llround(params.release_delay_s * 1e9)),
+      min_hold_ns_(std::llround(params.min_hold_s * 1e9)) {}
+
+GraspHold GraspTracker::initial_hold(const ObjectSpec& o) const {
+  GraspHold hold;
+  // every slot set (Eigen leaves a pose uninitialised), so a state is all defined numbers
+  if (o.dynamic) hold.history.assign(window_, Eigen::Isometry3d::Identity());
+  return hold;
+}
+
+void GraspTracker::update(int object, const ObjectSpec& o, const HandContact* contacts,
+                          std::size_t count, const HandNow& hand, GraspHold& hold, BodyState& body,
+                          std::vector<GraspEvent>& events) const {
+  if (!o.dynamic) return;
+  const bool held = body.held_by == hand_id_;
+  if (!held && count == 0) return;
+  const GraspCheck check = evaluate_grasp(contacts, count, body.X_GO.translation(), o.mass_kg,
+                                          gravity_mps2_, params_, held);
+  decide(object, check, hand, hold, body, events);
+}
+
+void GraspTracker::decide(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
+                          BodyState& body, std::vector<GraspEvent>& events) const {
+  VCOCKPIT_ASSERT(hold.history.size() >= 2, "grasp decisions are for dynamic objects only");
+  const bool held = body.held_by == hand_id_;
+  if (!held) {
+    const bool cooled = hand.t_ns - hold.released_at_ns >= regrab_cooldown_ns_;
+    if (hand.tracking && cooled && check.holds()) attach(object, check, hand, hold, body, events);
+    return;
+  }
+  if (!hand.tracking) {
+    release(object, GraspReason::kGloveLost, check, hand, hold, body, events);
+    return;
+  }
+  if (check.holds()) {
+    hold.failing_since_ns = -1;
+    return;
+  }
+  if (hold.failing_since_ns < 0) hold.failing_since_ns = hand.t_ns;
+  const bool failed_long_enough = hand.t_ns - hold.failing_since_ns >= release_delay_ns_;
+  const bool held_long_enough = hand.t_ns - hold.held_since_ns >= min_hold_ns_;
+  if (failed_long_enough && held_long_enough)
+    release(object, check.verdict, check, hand, hold, body, events);
+}
+
+void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
+                          BodyState& body, std::vector<GraspEvent>& events) const {
+  hold.X_HO = hand.X_GH.inverse() * body.X_GO;  // eq. 28
+  hold.held_since_ns = hand.t_ns;
+  hold.failing_since_ns = -1;
+  hold.history_next = 0;
+  hold.history_count = 0;
+  body.held_by = hand_id_;
+  events.push_back(event(object, true, GraspReason::kStableGrasp, check, hand));
+}
+
+void GraspTracker::release(int object, GraspReason reason, const GraspCheck& check,
+                           const HandNow& hand, GraspHold& hold, BodyState& body,
+                           std::vector<GraspEvent>& events) const {
+  // the object leaves with the hand's motion over the last window (no jump, can be thrown)
+  if (hold.history_count >= 2) {
+    const std::size_t n = hold.history.size();
+    const std::size_t newest = (hold.history_next + n - 1) % n;
+    const std::size_t oldest = hold.history_count < n ? 0 : hold.history_next;
+    const std::size_t span = hold.history_count < n ? hold.history_count - 1 : n - 1;
+    finite_difference_velocity(hold.history[oldest], hold.history[newest],
+                               static_cast<double>(span) * step_s_, body.v_G, body.w_G);
+  }
+  body.held_by = kNotHeld;
+  hold.released_at_ns = hand.t_ns;
+  hold.failing_since_ns = -1;
+  events.push_back(event(object, false, reason, check, hand));
+}
+
+GraspEvent GraspTracker::event(int object, bool grasp, GraspReason reason, const GraspCheck& check,
+                               const HandNow& hand) const {
+  GraspEvent e;
+  e.t_ns = hand.t_ns;
+  e.grasp = grasp;
+  e.hand_id = hand_id_;
+  e.object = object;
+  e.reason = reason;
+  e.contacts = check.links_in_contact;
+  e.thumb_touching = check.thumb;
+  e.min_thumb_angle_deg = check.min_thumb_angle_deg;
+  e.residual_force_N = check.residual_force_N;
+  e.residual_torque_Nm = check.residual_torque_Nm;
+  return e;
+}
+
+void GraspTracker::record_held_pose(GraspHold& hold, const BodyState& body) const {
+  hold.history[hold.history_next] = body.X_GO;
+  hold.history_next = (hold.history_next + 1) % hold.history.size();
+  hold.history_count = std::min(hold.history_count + 1, hold.history.size());
+}
+
+}  // namespace vcockpit::physics

@@ -1,0 +1,99 @@
+#pragma once
+// The grasp tracker (paper §4.4, and what DESIGN.md adds against the chatter the paper
+// describes): per object, its grasp state and the decision to attach or release it.
+//   attach   the stable-grasp test holds (grasp.hpp), the glove is tracked and the re-grab
+//            cooldown since the object's last release has passed: X_HO = X_GH^-1 X_GO (eq. 28),
+//            and the object follows the hand, X_GO = X_GH X_HO (eq. 29, the world's motion stage);
+//   release  the test (looser while held: hysteresis) has failed for release_delay_s in a row and
+//            the object has been held for min_hold_s; at once when the glove is lost. The object
+//            leaves with the hand's motion over velocity_window_s (its held poses), so it can be
+//            set down or thrown without a jump.
+// Events are data: the figures behind each decision. Adapters put them in words
+// (physics_node/io/grasp_event_text.hpp).
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "physics_node/physics/body.hpp"
+#include "physics_node/physics/grasp.hpp"
+#include "physics_node/physics/scene.hpp"
+
+namespace vcockpit::physics {
+
+struct GraspEvent {
+  int64_t t_ns = 0;
+  bool grasp = true;  // false: release
+  int hand_id = 0;
+  int object = -1;
+  GraspReason reason = GraspReason::kStableGrasp;
+  // the stable-grasp test at the decision (for a lost glove: of the last contacts)
+  int contacts = 0;  // hand links touching the object
+  bool thumb_touching = false;
+  double min_thumb_angle_deg = 0.0;  // smallest thumb-finger normal angle (180: no finger)
+  double residual_force_N = 0.0;     // eq. 30's |sum F|
+  double residual_torque_Nm = 0.0;   // eq. 31's |sum M|
+};
+
+// One object's grasp state, carried from step to step.
+struct GraspHold {
+  Eigen::Isometry3d X_HO = Eigen::Isometry3d::Identity();  // eq. 28, valid while held
+  int64_t held_since_ns = 0;
+  int64_t failing_since_ns = -1;           // the test has failed since then; -1: it holds
+  int64_t released_at_ns = INT64_MIN / 2;  // long ago: no cooldown at the start
+  std::vector<Eigen::Isometry3d> history;  // pose at the last steps while held (ring)
+  std::size_t history_next = 0;
+  std::size_t history_count = 0;
+};
+
+// The hand at the end of a step, as the decisions see it.
+struct HandNow {
+  int64_t t_ns = 0;
+  bool tracking = true;
+  Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
+};
+
+class GraspTracker {
+ public:
+  GraspTracker(const GraspParams& params, double step_s, const Eigen::Vector3d& gravity_mps2,
+               int hand_id);
+
+  int hand_id() const { return hand_id_; }
+
+  // An object's state at the start: a ring of held poses over the velocity window if dynamic.
+  GraspHold initial_hold(const ObjectSpec& o) const;
+
+  // One object's step: the stable-grasp test of the hand's contacts on it (eqs. 30-31 and the
+  // gesture), then the decision. Objects neither held nor touched are left alone.
+  void update(int object, const ObjectSpec& o, const HandContact* contacts, std::size_t count,
+              const HandNow& hand, GraspHold& hold, BodyState& body,
+              std::vector<GraspEvent>& events) const;
+
+  // The attach/release decision for one dynamic object given its test: attaches (eq. 28) or
+  // releases it, appending the event.
+  void decide(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
+              BodyState& body, std::vector<GraspEvent>& events) const;
+
+  // After the step's decisions: a held object's pose into its ring (for its release velocity).
+  void record_held_pose(GraspHold& hold, const BodyState& body) const;
+
+ private:
+  void attach(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
+              BodyState& body, std::vector<GraspEvent>& events) const;
+  void release(int object, GraspReason reason, const GraspCheck& check, const HandNow& hand,
+               GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events) const;
+  GraspEvent event(int object, bool grasp, GraspReason reason, const GraspCheck& check,
+                   const HandNow& hand) const;
+
+  GraspParams params_;
+  double step_s_;
+  Eigen::Vector3d gravity_mps2_;
+  int hand_id_;
+  std::size_t window_;  // poses in the release-velocity ring
+  int64_t regrab_cooldown_ns_;
+  int64_t release_delay_ns_;
+  int64_t min_hold_ns_;
+};
+
+}  // namespace vcockpit::physics

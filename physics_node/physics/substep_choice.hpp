@@ -1,0 +1,56 @@
+#pragma once
+// Substeps short enough for the stiffest contact that can happen within a step (paper §4.3's
+// semi-implicit Euler is stable on a spring below 2 sqrt(m/k); keep a margin):
+//   dt_sub <= safety sqrt(m_eff / k)
+// with k a pair's series stiffness and m_eff the least effective mass it can show: against a
+// static, held or hand body the free body's own, between two free bodies the two in series.
+// Only the pairs that can touch within the step count (sweep and prune over boxes grown by how far
+// each body can move in the step): a cup resting alone does not pay for a pen lying across the
+// cockpit.
+
+#include <Eigen/Geometry>
+#include <array>
+#include <vector>
+
+#include "physics_node/physics/body.hpp"
+#include "physics_node/physics/broadphase.hpp"
+#include "physics_node/physics/collision.hpp"
+#include "physics_node/physics/scene.hpp"
+
+namespace vcockpit::physics {
+
+// A lower bound of the effective mass a contact on this dynamic object can see,
+// 1 / (1/m + (r x n)^T I^-1 (r x n)) over every point and normal of its shape (kg).
+double worst_contact_mass(const ObjectSpec& o);
+
+class SubstepChoice {
+ public:
+  // `collision` gives the hand links' boxes; both must outlive this.
+  SubstepChoice(const Scene& scene, const CollisionWorld& collision);
+
+  // The substep count, in [1, contact.max_substeps], for the step that starts with the bodies in
+  // `bodies` and, when the hand is active (X_GL_now not null), its links at X_GL_now moving to
+  // the wrist pose X_GH_end with the joint angles q_end.
+  int choose(const std::vector<BodyState>& bodies,
+             const std::array<Eigen::Isometry3d, kLinkCount>* X_GL_now,
+             const Eigen::Isometry3d& X_GH_end, const JointAngles& q_end);
+
+  // The pairs that could touch within the last chosen step: objects, then the hand's links.
+  const std::vector<BodyPair>& reachable_pairs() const { return reach_pairs_; }
+
+ private:
+  void find_reachable_pairs(const std::vector<BodyState>& bodies,
+                            const std::array<Eigen::Isometry3d, kLinkCount>* X_GL_now,
+                            const Eigen::Isometry3d& X_GH_end, const JointAngles& q_end);
+
+  static constexpr double kReachMargin_m = 0.002;
+
+  const Scene& scene_;
+  const CollisionWorld& collision_;
+  int object_count_;
+  std::vector<double> contact_mass_;  // worst_contact_mass of the dynamic objects
+  SweepAndPrune reach_;
+  std::vector<BodyPair> reach_pairs_;
+};
+
+}  // namespace vcockpit::physics

@@ -1,0 +1,44 @@
+#pragma once
+// The mutable state of a world (MuJoCo's mjData without its scratch): everything that carries
+// from one step to the next and affects results. The Scene is the constant model beside it; the
+// world's per-step scratch (contacts, forces, work arrays) is rebuilt every step and is not here.
+// A world restored to a WorldState steps bit-identically to the world it was taken from.
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "physics_node/physics/body.hpp"
+#include "physics_node/physics/friction_force.hpp"
+#include "physics_node/physics/grasp_tracker.hpp"
+#include "physics_node/physics/scene.hpp"
+
+namespace vcockpit::physics {
+
+// What the tracked hand looks like now: the wrist in the world and the 22 joint angles.
+struct HandInput {
+  Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
+  JointAngles q_rad{};
+  bool tracking = true;  // false: glove lost; the hand stays, held objects are let go
+};
+
+struct WorldState {
+  int64_t time_ns = 0;
+  uint64_t steps = 0;
+  int substeps = 1;  // the last step's count (chosen afresh every step: an observation)
+
+  std::vector<BodyState> bodies;  // per object, the scene's order
+  std::vector<GraspHold> grasp;   // per object: the grasp tracker's state
+
+  bool hand_active = false;  // a hand input has arrived (and the scene has a hand)
+  HandInput hand_from;       // the hand at the start of the coming step
+  HandInput hand_to;         // at its end: the latest input
+  // the hand now (after the last substep): the coming step's link velocities and reach start here
+  Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
+  std::array<Eigen::Isometry3d, kLinkCount> X_GL;
+
+  std::vector<StickAnchor> anchors;  // friction stick anchors of the last substep, by pair
+};
+
+}  // namespace vcockpit::physics

@@ -1,0 +1,187 @@
+// The grasp tracker's attach/release decision, driven step by step with stable-grasp test
+// outcomes: attach (eq. 28), minimum hold, release delay, re-grab cooldown, glove lost, and the
+// release velocity from the held poses.
+
+#include "physics_node/physics/grasp_tracker.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace vcockpit::physics {
+namespace {
+
+constexpr double kStep_s = 0.001;
+constexpr int64_t kStep_ns = 1'000'000;
+constexpr int kHand = 0;
+
+GraspParams params() {
+  GraspParams p;
+  p.min_hold_s = 0.2;
+  p.release_delay_s = 0.03;
+  p.regrab_cooldown_s = 0.3;
+  p.velocity_window_s = 0.02;
+  return p;
+}
+
+GraspCheck holding() {
+  GraspCheck c;
+  c.links_in_contact = 4;
+  c.thumb = true;
+  c.min_thumb_angle_deg = 150.0;
+  c.residual_force_N = 0.5;
+  c.residual_torque_Nm = 0.01;
+  c.verdict = GraspReason::kStableGrasp;
+  return c;
+}
+
+GraspCheck failing(GraspReason why = GraspReason::kTooFewContacts) {
+  GraspCheck c;
+  c.links_in_contact = 1;
+  c.thumb = false;
+  c.min_thumb_angle_deg = 180.0;
+  c.residual_force_N = 1.96;
+  c.verdict = why;
+  return c;
+}
+
+// One object and the hand, stepped the way the world does: decide, move a held object with the
+// hand (eq. 29), record its pose.
+struct Rig {
+  GraspTracker tracker{params(), kStep_s, {0.0, 0.0, -9.81}, kHand};
+  ObjectSpec cup;
+  GraspHold hold;
+  BodyState body;
+  std::vector<GraspEvent> events;
+  int64_t t_ns = 0;
+  Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d hand_v_G = Eigen::Vector3d::Zero();
+
+  Rig() {
+    cup.dynamic = true;
+    cup.mass_kg = 0.2;
+    hold = tracker.initial_hold(cup);
+    body.X_GO.translation() = Eigen::Vector3d(0.1, 0.0, 0.05);
+  }
+
+  // Steps until t_s, every step with the same test outcome; returns the events of those steps.
+  std::vector<GraspEvent> run_until(double t_s, const GraspCheck& check, bool tracking = true) {
+    std::vector<GraspEvent> out;
+    while (t_ns < std::llround(t_s * 1e9)) {
+      t_ns += kStep_ns;
+      X_GH.translation() += hand_v_G * kStep_s;
+      if (body.held_by == kHand) body.X_GO = X_GH * hold.X_HO;  // eq. 29
+      events.clear();
+      tracker.decide(0, check, HandNow{t_ns, tracking, X_GH}, hold, body, events);
+      if (body.held_by != kNotHeld) tracker.record_held_pose(hold, body);
+      out.insert(out.end(), events.begin(), events.end());
+    }
+    return out;
+  }
+};
+
+TEST(GraspTracker, StableTestAttachesWithTheHandFrameOfEq28) {
+  Rig rig;
+  rig.X_GH.translation() = Eigen::Vector3d(0.05, 0.0, 0.1);
+  const auto events = rig.run_until(0.001, holding());
+  ASSERT_EQ(events.size(), 1u);
+  const GraspEvent& e = events[0];
+  EXPECT_TRUE(e.grasp);
+  EXPECT_EQ(e.object, 0);
+  EXPECT_EQ(e.hand_id, kHand);
+  EXPECT_EQ(e.t_ns, 1'000'000);
+  EXPECT_EQ(e.reason, GraspReason::kStableGrasp);
+  EXPECT_EQ(e.contacts, 4);
+  EXPECT_TRUE(e.thumb_touching);
+  EXPECT_DOUBLE_EQ(e.min_thumb_angle_deg, 150.0);
+  EXPECT_DOUBLE_EQ(e.residual_force_N, 0.5);
+  EXPECT_DOUBLE_EQ(e.residual_torque_Nm, 0.01);
+  EXPECT_EQ(rig.body.held_by, kHand);
+  EXPECT_TRUE(rig.hold.X_HO.translation().isApprox(Eigen::Vector3d(0.05, 0.0, -0.05), 1e-15));
+  // holding on gives no more events
+  EXPECT_TRUE(rig.run_until(1.0, holding()).empty());
+}
+
+TEST(GraspTracker, NoGraspWhileTheGloveIsLost) {
+  Rig rig;
+  EXPECT_TRUE(rig.run_until(0.1, holding(), /*tracking=*/false).empty());
+  EXPECT_EQ(rig.body.held_by, kNotHeld);
+}
+
+TEST(GraspTracker, MinimumHoldKeepsAFailingGraspUntilItHasHeld200ms) {
+  Rig rig;
+  rig.run_until(0.001, holding());  // grasped at 1 ms
+  const auto events = rig.run_until(1.0, failing());
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_FALSE(events[0].grasp);
+  EXPECT_EQ(events[0].reason, GraspReason::kTooFewContacts);
+  EXPECT_EQ(events[0].t_ns, 201'000'000) << "failing since 2 ms, but held only from 1 ms";
+  EXPECT_EQ(events[0].contacts, 1);
+  EXPECT_FALSE(events[0].thumb_touching);
+  EXPECT_EQ(rig.body.held_by, kNotHeld);
+}
+
+TEST(GraspTracker, ReleaseWaitsForTheTestToFail30msInARow) {
+  Rig rig;
+  rig.run_until(0.001, holding());
+  rig.run_until(0.5, holding());  // well past the minimum hold
+  // failing for 20 ms, then holding once: the delay starts over
+  EXPECT_TRUE(rig.run_until(0.520, failing()).empty());
+  EXPECT_TRUE(rig.run_until(0.521, holding()).empty());
+  EXPECT_TRUE(rig.run_until(0.551, failing()).empty()) << "failing since 522 ms: 29 ms";
+  const auto events = rig.run_until(0.6, failing(GraspReason::kForceResidual));
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].t_ns, 552'000'000) << "failing since 522 ms: released at 552 ms";
+  EXPECT_EQ(events[0].reason, GraspReason::kForceResidual);
+}
+
+TEST(GraspTracker, CooldownBlocksARegrabFor300msAfterARelease) {
+  Rig rig;
+  rig.run_until(0.001, holding());
+  rig.run_until(0.5, holding());
+  const auto released = rig.run_until(0.6, failing());
+  ASSERT_EQ(released.size(), 1u);
+  const int64_t release_ns = released[0].t_ns;
+  const auto regrabbed = rig.run_until(2.0, holding());
+  ASSERT_FALSE(regrabbed.empty());
+  EXPECT_TRUE(regrabbed[0].grasp);
+  EXPECT_EQ(regrabbed[0].t_ns, release_ns + 300'000'000);
+}
+
+TEST(GraspTracker, LostGloveReleasesAtOnceEvenBeforeTheMinimumHold) {
+  Rig rig;
+  rig.run_until(0.001, holding());
+  const auto events = rig.run_until(0.002, holding(), /*tracking=*/false);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_FALSE(events[0].grasp);
+  EXPECT_EQ(events[0].reason, GraspReason::kGloveLost);
+  EXPECT_EQ(events[0].t_ns, 2'000'000);
+  EXPECT_EQ(rig.body.held_by, kNotHeld);
+}
+
+TEST(GraspTracker, ReleasedObjectLeavesWithTheHandsVelocity) {
+  Rig rig;
+  rig.run_until(0.001, holding());
+  rig.hand_v_G = {0.5, 0.0, 0.2};  // m/s
+  rig.run_until(0.3, holding());
+  rig.run_until(0.4, failing());
+  ASSERT_EQ(rig.body.held_by, kNotHeld);
+  EXPECT_TRUE(rig.body.v_G.isApprox(rig.hand_v_G, 1e-9)) << rig.body.v_G.transpose();
+  EXPECT_LT(rig.body.w_G.norm(), 1e-9);
+}
+
+TEST(GraspTracker, StaticObjectsAndUntouchedFreeOnesAreLeftAlone) {
+  Rig rig;
+  std::vector<GraspEvent> events;
+  ObjectSpec panel;  // static
+  GraspHold panel_hold = rig.tracker.initial_hold(panel);
+  EXPECT_TRUE(panel_hold.history.empty());
+  BodyState panel_body;
+  rig.tracker.update(1, panel, nullptr, 0, HandNow{}, panel_hold, panel_body, events);
+  rig.tracker.update(0, rig.cup, nullptr, 0, HandNow{}, rig.hold, rig.body, events);
+  EXPECT_TRUE(events.empty());
+  EXPECT_EQ(rig.body.held_by, kNotHeld);
+}
+
+}  // namespace
+}  // namespace vcockpit::physics

@@ -1,0 +1,327 @@
+// The world's state (world_state.hpp): two worlds stepping the same inputs stay bit-identical
+// (equal hashes), a world restored to a state continues exactly as the original (through a grasp
+// and a release), and the hash sees a body move by one ulp. The body check (body_check.hpp): a
+// body given an absurd or NaN velocity is caught, named once, counted, and put back at rest
+// where it was, and the world goes on with finite states.
+
+#include "physics_node/physics/world.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "hand/glove_log.hpp"
+#include "physics_node/config/scene_config.hpp"
+#include "physics_node/io/hand_input.hpp"
+#include "physics_node/physics/world_state_hash.hpp"
+#include "tests/support/allocation_counter.hpp"
+#include "tests/support/scene_builder.hpp"
+
+namespace vcockpit::physics {
+namespace {
+
+std::string source_dir() {
+  const char* dir = std::getenv("VCOCKPIT_SOURCE_DIR");
+  return dir ? dir : ".";
+}
+
+// The default cockpit and its bundled grasping log: the cup is grasped at 2.63 s, lifted and
+// released at 6.48 s.
+struct Cockpit {
+  Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
+  std::vector<hand::GloveSample> samples =
+      hand::read_glove_log(source_dir() + "/config/glove_logs/reach_grasp_lift_release.csv",
+                            *scene.hand)
+          .samples;
+  int cup = scene.find_object("cup");
+};
+
+// Feeds a world the log's samples up to its time, as the offline runner does.
+struct GloveFeed {
+  const std::vector<hand::GloveSample>* samples;
+  std::size_t next = 0;
+
+  void feed(World& world) {
+    const int64_t t0 = samples->front().t_ns;
+    while (next < samples->size() && (*samples)[next].t_ns - t0 <= world.time_ns())
+      world.set_hand_input(
+          physics_io::hand_input_from_glove(*world.scene().hand, (*samples)[next++]));
+  }
+  void run_until(World& world, double t_s) {
+    while (world.time_ns() < std::llround(t_s * 1e9)) {
+      world.step();
+      feed(world);
+    }
+  }
+};
+
+bool same_bits(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return std::memcmp(a.matrix().data(), b.matrix().data(), sizeof(double) * 16) == 0;
+}
+
+TEST(WorldState, TwoWorldsSteppingTheSameInputsHaveEqualHashes) {
+  const Cockpit cockpit;
+  World a(cockpit.scene), b(cockpit.scene);
+  GloveFeed feed_a{&cockpit.samples}, feed_b{&cockpit.samples};
+  feed_a.feed(a);
+  feed_b.feed(b);
+  EXPECT_EQ(hash_world_state(a.state()), hash_world_state(b.state()));
+  for (int i = 0; i < 3000; ++i) {  // through the grasp at 2.63 s
+    a.step();
+    b.step();
+    feed_a.feed(a);
+    feed_b.feed(b);
+    ASSERT_EQ(hash_world_state(a.state()), hash_world_state(b.state())) << "step " << i;
+  }
+  EXPECT_NE(a.bodies()[cockpit.cup].held_by, kNotHeld) << "the cup is held by now";
+}
+
+TEST(WorldState, RestoredWorldContinuesBitIdenticallyThroughGraspAndRelease) {
+  const Cockpit cockpit;
+  World original(cockpit.scene);
+  GloveFeed feed{&cockpit.samples};
+  feed.feed(original);
+  feed.run_until(original, 4.0);  // the cup held, lifted
+  ASSERT_NE(original.bodies()[cockpit.cup].held_by, kNotHeld);
+  const WorldState saved = original.state();
+
+  World restored(cockpit.scene);
+  restored.restore(saved);
+  GloveFeed restored_feed = feed;
+  EXPECT_EQ(hash_world_state(restored.state()), hash_world_state(saved));
+  EXPECT_TRUE(restored.step_events().empty());
+  EXPECT_TRUE(restored.contacts().empty());
+
+  int events = 0;
+  while (original.time_ns() < 7'500'000'000) {  // past the release at 6.48 s
+    original.step();
+    restored.step();
+    ASSERT_EQ(hash_world_state(original.state()), hash_world_state(restored.state()))
+        << "at " << original.time_ns() * 1e-9 << " s";
+    ASSERT_EQ(original.step_events().size(), restored.step_events().size());
+    events += static_cast<int>(original.step_events().size());
+    feed.feed(original);
+    restored_feed.feed(restored);
+  }
+  EXPECT_EQ(events, 1) << "the release";
+  EXPECT_EQ(restored.bodies()[cockpit.cup].held_by, kNotHeld);
+  for (std::size_t i = 0; i < original.bodies().size(); ++i)
+    EXPECT_TRUE(same_bits(original.bodies()[i].X_GO, restored.bodies()[i].X_GO)) << "object " << i;
+}
+
+TEST(WorldState, RestoringAWorldReplaysItsOwnFuture) {
+  const Cockpit cockpit;
+  World world(cockpit.scene);
+  GloveFeed feed{&cockpit.samples};
+  feed.feed(world);
+  feed.run_until(world, 2.5);  // the hand closing on the cup: contacts and stick anchors
+  const WorldState saved = world.state();
+  const GloveFeed saved_feed = feed;
+  EXPECT_FALSE(saved.anchors.empty()) << "the fingers touch the cup";
+  feed.run_until(world, 3.0);
+  const uint64_t first = hash_world_state(world.state());
+
+  world.restore(saved);
+  feed = saved_feed;
+  feed.run_until(world, 3.0);
+  EXPECT_EQ(hash_world_state(world.state()), first);
+}
+
+TEST(WorldState, HashChangesWhenABodyMovesByOneUlp) {
+  const Cockpit cockpit;
+  World world(cockpit.scene);
+  WorldState state = world.state();
+  const uint64_t before = hash_world_state(state);
+  EXPECT_EQ(hash_world_state(state), before) << "a function of the state only";
+  double& x_m = state.bodies[cockpit.cup].X_GO.translation().x();
+  x_m = std::nextafter(x_m, std::numeric_limits<double>::infinity());
+  EXPECT_NE(hash_world_state(state), before);
+
+  world.step();  // the cup settles a little on the console
+  EXPECT_NE(hash_world_state(world.state()), before);
+}
+
+TEST(WorldState, HashSeesEveryPart) {
+  const Cockpit cockpit;
+  World world(cockpit.scene);
+  const WorldState base = world.state();
+  const uint64_t h = hash_world_state(base);
+  auto changed = [&](auto&& edit) {
+    WorldState s = base;
+    edit(s);
+    return hash_world_state(s) != h;
+  };
+  EXPECT_TRUE(changed([](WorldState& s) { s.time_ns += 1; }));
+  EXPECT_TRUE(changed([](WorldState& s) { s.steps += 1; }));
+  EXPECT_TRUE(changed([&](WorldState& s) { s.bodies[cockpit.cup].w_G.z() = 1e-300; }));
+  EXPECT_TRUE(changed([&](WorldState& s) { s.bodies[cockpit.cup].held_by = 0; }));
+  EXPECT_TRUE(changed([](WorldState& s) { s.hand_active = true; }));
+  EXPECT_TRUE(changed([](WorldState& s) { s.hand_to.q_rad[5] = 0.1; }));
+  EXPECT_TRUE(changed([](WorldState& s) { s.hand_from.tracking = false; }));
+  EXPECT_TRUE(changed([](WorldState& s) { s.X_GL[3].translation().y() = 0.5; }));
+  EXPECT_TRUE(changed([&](WorldState& s) { s.grasp[cockpit.cup].released_at_ns = 0; }));
+  EXPECT_TRUE(
+      changed([&](WorldState& s) { s.grasp[cockpit.cup].history[1].translation().z() = 1; }));
+  EXPECT_TRUE(changed([](WorldState& s) { s.anchors.push_back(StickAnchor{}); }));
+}
+
+// A floor with two 10 cm boxes resting on it, far apart: "runaway" and "steady".
+Scene two_boxes() {
+  Scene scene;
+  scene.objects.push_back(test::floor_box(test::material(1e5)));
+  const Shape cube = Shape::box({0.1, 0.1, 0.1});
+  scene.objects.push_back(
+      test::dynamic_object("runaway", cube, 0.5, test::at(0.0, 0.0, 0.05), test::material(1e5)));
+  scene.objects.push_back(
+      test::dynamic_object("steady", cube, 0.5, test::at(1.0, 0.0, 0.05), test::material(1e5)));
+  return scene;
+}
+
+bool all_finite(const World& world) {
+  for (const BodyState& b : world.bodies())
+    if (!b.X_GO.matrix().allFinite() || !b.v_G.allFinite() || !b.w_G.allFinite()) return false;
+  return true;
+}
+
+TEST(BodyCheck, AbsurdSpeedIsCaughtNamedOnceAndPutBackAtRest) {
+  Scene scene = two_boxes();
+  const int runaway = scene.find_object("runaway");
+  scene.objects[runaway].v_G = {1e300, 0.0, 0.0};  // m/s
+  World world(scene);
+  const Eigen::Isometry3d start = world.bodies()[runaway].X_GO;
+
+  world.step();
+  ASSERT_EQ(world.step_faults().size(), 1u);
+  const BodyFault& f = world.step_faults()[0];
+  EXPECT_EQ(f.object, runaway);
+  EXPECT_EQ(world.scene().objects[f.object].name, "runaway");
+  EXPECT_EQ(f.what, BodyFaultKind::kTooFast);
+  EXPECT_EQ(f.first_t_ns, world.time_ns());
+  const BodyState& body = world.bodies()[runaway];
+  EXPECT_TRUE(same_bits(body.X_GO, start)) << "back where it was at the step's start";
+  EXPECT_EQ(body.v_G, Eigen::Vector3d::Zero());
+  EXPECT_EQ(body.w_G, Eigen::Vector3d::Zero());
+
+  for (int i = 0; i < 500; ++i) {
+    world.step();
+    ASSERT_TRUE(all_finite(world)) << "step " << i;
+    ASSERT_TRUE(world.step_faults().empty()) << "reported once";
+  }
+  ASSERT_EQ(world.body_faults().size(), 1u);
+  EXPECT_EQ(world.body_faults()[0].object, runaway);
+  EXPECT_EQ(world.body_faults()[0].count, 1u);
+  // both boxes rest on the floor, centroids 5 cm up less m g / k_eff
+  for (int object : {runaway, scene.find_object("steady")}) {
+    EXPECT_NEAR(world.bodies()[object].X_GO.translation().z(), 0.05, 1e-3);
+    EXPECT_LT(world.bodies()[object].v_G.norm(), 1e-3);
+  }
+}
+
+TEST(BodyCheck, NanVelocityIsCaughtAndTheWorldGoesOn) {
+  const Scene scene = two_boxes();
+  const int runaway = scene.find_object("runaway");
+  World world(scene);
+  for (int i = 0; i < 100; ++i)
+    world.step();
+  ASSERT_TRUE(world.body_faults().empty());
+  WorldState bad = world.state();
+  bad.bodies[runaway].v_G.x() = std::numeric_limits<double>::quiet_NaN();
+  world.restore(bad);
+
+  world.step();
+  ASSERT_EQ(world.step_faults().size(), 1u);
+  EXPECT_EQ(world.step_faults()[0].object, runaway);
+  EXPECT_EQ(world.step_faults()[0].what, BodyFaultKind::kNonFinite);
+  EXPECT_TRUE(same_bits(world.bodies()[runaway].X_GO, bad.bodies[runaway].X_GO));
+  EXPECT_EQ(world.bodies()[runaway].v_G, Eigen::Vector3d::Zero());
+  for (int i = 0; i < 500; ++i) {
+    world.step();
+    ASSERT_TRUE(all_finite(world)) << "step " << i;
+    ASSERT_TRUE(world.step_faults().empty());
+  }
+  ASSERT_EQ(world.body_faults().size(), 1u);
+  EXPECT_EQ(world.body_faults()[0].count, 1u);
+
+  // broken again later: counted, not reported again
+  bad = world.state();
+  bad.bodies[runaway].w_G.z() = std::numeric_limits<double>::infinity();
+  world.restore(bad);
+  world.step();
+  EXPECT_TRUE(world.step_faults().empty());
+  ASSERT_EQ(world.body_faults().size(), 1u);
+  EXPECT_EQ(world.body_faults()[0].count, 2u);
+  EXPECT_EQ(world.body_faults()[0].what, BodyFaultKind::kNonFinite) << "the first fault's kind";
+  EXPECT_TRUE(all_finite(world));
+}
+
+TEST(BodyCheck, BrokenStartFallsBackToTheInitialPose) {
+  const Scene scene = two_boxes();
+  const int runaway = scene.find_object("runaway");
+  World world(scene);
+  WorldState bad = world.state();
+  bad.bodies[runaway].X_GO.translation().x() = std::numeric_limits<double>::quiet_NaN();
+  world.restore(bad);
+  world.step();
+  ASSERT_EQ(world.step_faults().size(), 1u);
+  EXPECT_TRUE(same_bits(world.bodies()[runaway].X_GO, scene.objects[runaway].X_GO));
+}
+
+TEST(BodyCheck, LimitsOnSpeedSpinAndDistance) {
+  const SanityLimits limits;  // 100 m/s, 1000 rad/s, 1 km
+  BodyState b;
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kNone);
+  b.v_G = {99.0, 0.0, 0.0};
+  b.w_G = {0.0, 999.0, 0.0};
+  b.X_GO.translation() = Eigen::Vector3d(0.0, 0.0, 999.0);
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kNone);
+  b.v_G.x() = 101.0;
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kTooFast);
+  b.v_G.x() = 1e200;  // |v|^2 overflows: still too fast, not missed
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kTooFast);
+  b.v_G.x() = 0.0;
+  b.w_G.y() = 1001.0;
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kSpinning);
+  b.w_G.y() = 0.0;
+  b.X_GO.translation().z() = 1001.0;
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kTooFar);
+  b.X_GO.linear()(1, 1) = -std::numeric_limits<double>::infinity();
+  EXPECT_EQ(check_body(b, limits), BodyFaultKind::kNonFinite);
+}
+
+TEST(WorldStep, AllocatesNothingOnceWarm) {
+  // round bodies resting on a box floor take the face test, never FCL (whose narrowphase
+  // allocates): so the rest of the step, stages, state and checks included, is counted
+  Scene scene;
+  scene.objects.push_back(test::floor_box(test::material(1e5)));
+  scene.objects.push_back(test::dynamic_object("cup", Shape::cylinder(0.035, 0.1), 0.2,
+                                               test::at(0.0, 0.0, 0.05), test::material(3e4)));
+  scene.objects.push_back(test::dynamic_object("pen", Shape::capsule(0.005, 0.12), 0.02,
+                                               test::at(0.3, 0.0, 0.005, 0, 90, 0),
+                                               test::material(3e4)));
+  World world(scene);
+  for (int i = 0; i < 300; ++i)
+    world.step();
+  ASSERT_FALSE(world.contacts().empty());
+  test::g_allocations = 0;
+  test::g_count_allocations = true;
+  static void* volatile sink = nullptr;  // control: the counter sees an allocation
+  sink = ::operator new(16);
+  test::g_count_allocations = false;
+  ::operator delete(sink);
+  ASSERT_EQ(test::g_allocations.load(), 1);
+  test::g_allocations = 0;
+  test::g_count_allocations = true;
+  for (int i = 0; i < 100; ++i)
+    world.step();
+  test::g_count_allocations = false;
+  EXPECT_EQ(test::g_allocations.load(), 0);
+  EXPECT_TRUE(world.body_faults().empty());
+}
+
+}  // namespace
+}  // namespace vcockpit::physics
