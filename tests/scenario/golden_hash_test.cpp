@@ -1,0 +1,69 @@
+// Determinism pinned across builds (Box2D's and Jolt's golden state hash): the bundled grasping
+// log replayed offline on the default cockpit, and the hash of the final world state compared
+// with a number written here. It holds at -O0, -O2 and under the sanitizers because the build
+// forbids FMA contraction (-ffp-contract=off) and the step has no clock or unordered iteration.
+//
+// A change that alters results fails here on purpose: check that the new behaviour is wanted,
+// then update the pin (the failure prints the new value) and say so in the commit.
+
+#include <gtest/gtest.h>
+
+#include <cinttypes>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "hand/glove_log.hpp"
+#include "physics_node/config/scene_config.hpp"
+#include "physics_node/io/replay_driver.hpp"
+#include "physics_node/physics/world_state_hash.hpp"
+
+namespace vcockpit {
+namespace {
+
+std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
+
+struct Replayed {
+  uint64_t final_hash = 0;
+  uint64_t hash_at_grasp = 0;  // the state right after the GRASP step
+  uint64_t steps = 0;
+};
+
+Replayed replay(const std::string& scene_file, const std::string& log_file) {
+  physics::World world(load_scene(source_dir() + scene_file));
+  const hand::HandModel& hand = *world.scene().hand;
+  const auto log = hand::read_glove_log(source_dir() + log_file, hand);
+  Replayed out;
+  physics_io::ReplayDriver driver(world, hand);
+  auto step = [&] {
+    world.step();
+    for (const auto& e : world.step_events())
+      if (e.grasp && out.hash_at_grasp == 0) out.hash_at_grasp = physics::hash_world_state(world.state());
+  };
+  for (const auto& sample : log.samples) driver.feed(sample, step);
+  out.final_hash = physics::hash_world_state(world.state());
+  out.steps = world.step_count();
+  return out;
+}
+
+std::string hex(uint64_t h) {
+  char text[24];
+  std::snprintf(text, sizeof text, "0x%016" PRIx64, h);
+  return text;
+}
+
+TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
+  const Replayed run =
+      replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
+  EXPECT_EQ(run.steps, 8500u);
+  EXPECT_EQ(hex(run.hash_at_grasp), "0x1c8aba7e5573358d") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x9e1fe8f810c990e3") << "final state";
+}
+
+TEST(GoldenHash, BundledOpenHandSweep) {
+  const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
+  EXPECT_EQ(hex(run.final_hash), "0x8fe3657718aaf346") << "final state";
+}
+
+}  // namespace
+}  // namespace vcockpit
