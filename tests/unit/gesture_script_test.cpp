@@ -1,4 +1,4 @@
-// Replay timing, sample validation and synthetic gestures.
+// GestureScript: keyframes, minimum-jerk motion, the tracker mounting, bad scripts.
 
 #include <gtest/gtest.h>
 
@@ -6,98 +6,14 @@
 
 #include "common/yaml_config.hpp"
 #include "glove_driver/glove/gesture_script.hpp"
-#include "glove_driver/glove/replay_cursor.hpp"
-#include "hand/sample_validator.hpp"
-#include "hand/tracker.hpp"
 #include "hand/hand_yaml.hpp"
+#include "hand/tracker.hpp"
 
 namespace vcockpit::glove {
 namespace {
 
 hand::HandModel default_hand() {
   return load_hand_model(std::string(std::getenv("VCOCKPIT_SOURCE_DIR")) + "/config/hand.yaml");
-}
-
-std::vector<hand::GloveSample> samples_every_10ms(int n, int64_t t0_ns = 5'000'000'000) {
-  std::vector<hand::GloveSample> out(n);
-  for (int i = 0; i < n; ++i) out[i].t_ns = t0_ns + 10'000'000LL * i;
-  return out;
-}
-
-TEST(ReplayCursor, KeepsRelativeTimingScaledByRate) {
-  const auto samples = samples_every_10ms(5);
-  ReplayCursor cursor(samples, {/*rate=*/2.0, /*loop=*/false, /*start_offset_s=*/0.0});
-  hand::GloveSample s;
-  int64_t due = -1;
-  std::vector<int64_t> dues, times;
-  while (cursor.next(s, due)) {
-    dues.push_back(due);
-    times.push_back(s.t_ns);
-  }
-  EXPECT_EQ(dues, (std::vector<int64_t>{0, 5'000'000, 10'000'000, 15'000'000, 20'000'000}));
-  EXPECT_EQ(times.front(), samples.front().t_ns);  // source stamps are the log's own
-}
-
-TEST(ReplayCursor, StartOffsetSkipsTheBeginning) {
-  const auto samples = samples_every_10ms(10);
-  ReplayCursor cursor(samples, {1.0, false, 0.035});
-  hand::GloveSample s;
-  int64_t due = -1;
-  ASSERT_TRUE(cursor.next(s, due));
-  EXPECT_EQ(s.t_ns, samples[4].t_ns);
-  EXPECT_EQ(due, 0);
-  EXPECT_THROW(ReplayCursor(samples, {1.0, false, 10.0}), std::invalid_argument);
-  EXPECT_THROW(ReplayCursor(samples, {-1.0, false, 0.0}), std::invalid_argument);
-}
-
-TEST(ReplayCursor, LoopingKeepsTimeIncreasingWithTheSameSpacing) {
-  const auto samples = samples_every_10ms(3);
-  ReplayCursor cursor(samples, {0.0, true, 0.0});
-  hand::GloveSample s;
-  int64_t due = -1;
-  std::vector<int64_t> times;
-  for (int i = 0; i < 7 && cursor.next(s, due); ++i) times.push_back(s.t_ns - samples[0].t_ns);
-  EXPECT_EQ(times, (std::vector<int64_t>{0, 10'000'000, 20'000'000, 30'000'000, 40'000'000,
-                                         50'000'000, 60'000'000}));
-  EXPECT_EQ(due, 0);  // rate 0: nothing waits
-}
-
-TEST(SampleValidator, RejectsNonFiniteBadQuaternionAndStaleAndClampsJoints) {
-  const auto hand = default_hand();
-  hand::SampleValidator validator(hand);
-  hand::GloveSample ok;
-  ok.t_ns = 100;
-  ok.joints_rad = hand.rest_pose();
-  EXPECT_TRUE(validator.accept(ok));
-
-  hand::GloveSample nan = ok;
-  nan.t_ns = 200;
-  nan.joints_rad[3] = std::nan("");
-  EXPECT_FALSE(validator.accept(nan));
-
-  hand::GloveSample bad_q = ok;
-  bad_q.t_ns = 200;
-  bad_q.q_MT = Eigen::Quaterniond(2, 0, 0, 0);
-  EXPECT_FALSE(validator.accept(bad_q));
-
-  hand::GloveSample stale = ok;
-  stale.t_ns = 100;
-  EXPECT_FALSE(validator.accept(stale));
-
-  hand::GloveSample beyond = ok;
-  beyond.t_ns = 300;
-  beyond.joints_rad[static_cast<int>(hand::Joint::kIndexPip)] = 10.0;
-  EXPECT_TRUE(validator.accept(beyond));
-  EXPECT_EQ(beyond.joints_rad[static_cast<int>(hand::Joint::kIndexPip)],
-            hand.joints[static_cast<int>(hand::Joint::kIndexPip)].max_rad);
-
-  const auto& c = validator.counts();
-  EXPECT_EQ(c.accepted, 2u);
-  EXPECT_EQ(c.rejected_nonfinite, 1u);
-  EXPECT_EQ(c.rejected_out_of_range, 1u);
-  EXPECT_EQ(c.rejected_stale, 1u);
-  EXPECT_EQ(c.clamped, 1u);
-  EXPECT_EQ(c.rejected(), 3u);
 }
 
 constexpr const char* kScript = R"(rate_hz: 500
@@ -177,6 +93,5 @@ TEST(GestureScript, BadScriptsNameFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(error_of("rate_hz: 0\nkeyframes: []\n").find("rate_hz: must be in"), std::string::npos);
 }
-
 }  // namespace
 }  // namespace vcockpit::glove
