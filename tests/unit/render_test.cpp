@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -679,30 +678,13 @@ TEST_F(RenderTest, NoHeapAllocationOnceWarmedUp) {
   EXPECT_EQ(renderer().pixels(), pixels) << "same buffer every frame";
 }
 
-// Mean ms per stereo frame, the head turning slowly.
-double frame_ms(StereoRenderer& renderer, const std::vector<Instance>& scene) {
-  for (int i = 0; i < 5; ++i)
-    renderer.render(scene, head_pose());  // shader variants, caches
-  constexpr int kFrames = 60;
-  const auto start = std::chrono::steady_clock::now();
-  for (int i = 0; i < kFrames; ++i) {
-    renderer.render(scene, head_pose() * Eigen::AngleAxisd(0.002 * i, Eigen::Vector3d::UnitZ()));
-  }
-  const std::chrono::duration<double, std::milli> elapsed =
-      std::chrono::steady_clock::now() - start;
-  return elapsed.count() / kFrames;
-}
-
-// Printed, not asserted: the machine is shared.
-TEST_F(RenderTest, FrameTime) {
+// The cockpit frame over a slowly turning head raises no GL error. (What a frame costs is
+// measured by scripts/bench through image_generator --stats-out, not here.)
+TEST_F(RenderTest, CockpitFramesRaiseNoGlError) {
   const std::vector<Instance> scene = cockpit_scene();
-  const double empty_ms = frame_ms(renderer(), {});
-  const double scene_ms = frame_ms(renderer(), scene);
-  std::printf(
-      "[ timing ] 1280x720 per eye, stereo, LP_NUM_THREADS=%s: empty %.2f ms, "
-      "%zu instances %.2f ms/frame (%.0f fps, %d draws)\n",
-      std::getenv("LP_NUM_THREADS"), empty_ms, scene.size(), scene_ms, 1000.0 / scene_ms,
-      renderer().last_draw_calls());
+  for (int i = 0; i < 10; ++i)
+    renderer().render(scene, head_pose() * Eigen::AngleAxisd(0.002 * i, Eigen::Vector3d::UnitZ()));
+  EXPECT_GT(renderer().last_draw_calls(), 0);
   EXPECT_EQ(renderer().gl_error_count(), 0u);
 }
 
@@ -756,11 +738,7 @@ TEST_F(RenderTest, PngRoundTripOfARenderedFrame) {
   const int width = 2 * renderer().width_px(), height = renderer().height_px();
   const std::string path = (test_dir() / "stereo.png").string();
   std::filesystem::remove(path);
-  const auto start = std::chrono::steady_clock::now();
   write_png(path, renderer().pixels(), width, height);
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  std::printf("[ timing ] PNG level 1, 2560x720 side by side: %.1f ms\n", ms);
   EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
   int read_width = 0, read_height = 0;
   const std::vector<uint8_t> back = read_png(path, read_width, read_height);
