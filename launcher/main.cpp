@@ -5,6 +5,7 @@
 // scripts/rig builds it and runs it.
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <poll.h>
 #include <signal.h>
 #include <spdlog/spdlog.h>
@@ -15,9 +16,8 @@
 #include <memory>
 #include <thread>
 
-#include "common/atomic_file.hpp"
 #include "common/clock.hpp"
-#include "common/json.hpp"
+#include "common/json_file.hpp"
 #include "common/logging.hpp"
 #include "common/signals.hpp"
 #include "launcher/node_process.hpp"
@@ -204,57 +204,53 @@ void Launcher::write_summary(double elapsed_s) {
   const auto frames =
       count("image_generator", [](const cockpit::NodeStatus& s) { return s.published(); });
 
-  AtomicFile file(options_.out_dir + "/summary.json");
-  std::FILE* f = file.get();
-  std::fprintf(f, "{\n  \"rig\": %s,\n  \"log\": %s,\n  \"domain\": %d,\n",
-               json_string(rig_.path).c_str(), json_string(rig_.log_path).c_str(), rig_.domain_id);
-  std::fprintf(f, "  \"ended\": %s,\n  \"ok\": %s,\n  \"wall_s\": %.3f,\n",
-               json_string(end_reason_).c_str(), failed_ ? "false" : "true", elapsed_s);
-  std::fprintf(f, "  \"samples_replayed\": %llu,\n  \"grasps\": %d,\n  \"releases\": %d,\n", samples,
-               grasps, releases);
-  std::fprintf(f, "  \"events\": [");
-  for (std::size_t i = 0; i < monitor_->events().size(); ++i) {
-    const auto& e = monitor_->events()[i];
-    std::fprintf(f, "%s\n    {\"t_s\": %.3f, \"event\": \"%s\", \"object\": %s, \"reason\": %s}",
-                 i ? "," : "", e.t_s, e.grasp ? "grasp" : "release", json_string(e.object).c_str(),
-                 json_string(e.reason).c_str());
-  }
-  std::fprintf(f, "\n  ],\n  \"frames_rendered\": %llu,\n  \"snapshots_written\": %d,\n", frames, snapshots);
-  std::fprintf(f, "  \"physics_step_rate_hz\": %.2f,\n  \"late_steps\": %llu,\n",
-               monitor_->mean_step_rate_hz(), static_cast<unsigned long long>(monitor_->late_steps()));
-  std::fprintf(f,
-               "  \"glove_to_frame_latency_ms\": {\"p50\": %.3f, \"p99\": %.3f, \"max\": %.3f, "
-               "\"samples\": %zu},\n",
-               percentile(lat, 0.5), percentile(lat, 0.99), lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end()),
-               lat.size());
   const auto& age = monitor_->age_at_render_ms();
   const auto& render = monitor_->render_ms();
-  std::fprintf(f,
-               "  \"latency_parts_ms\": {\"age_at_render_start_p50\": %.3f, "
-               "\"age_at_render_start_p99\": %.3f, \"render_p50\": %.3f, \"render_p99\": %.3f},\n",
-               percentile(age, 0.5), percentile(age, 0.99), percentile(render, 0.5),
-               percentile(render, 0.99));
-  std::fprintf(f, "  \"final\": {");
-  bool first = true;
+  nlohmann::ordered_json j;
+  j["rig"] = rig_.path;
+  j["log"] = rig_.log_path;
+  j["domain"] = rig_.domain_id;
+  j["ended"] = end_reason_;
+  j["ok"] = !failed_;
+  j["wall_s"] = elapsed_s;
+  j["samples_replayed"] = samples;
+  j["grasps"] = grasps;
+  j["releases"] = releases;
+  auto& events = j["events"] = nlohmann::ordered_json::array();
+  for (const auto& e : monitor_->events()) {
+    events.push_back({{"t_s", e.t_s},
+                      {"event", e.grasp ? "grasp" : "release"},
+                      {"object", e.object},
+                      {"reason", e.reason}});
+  }
+  j["frames_rendered"] = frames;
+  j["snapshots_written"] = snapshots;
+  j["physics_step_rate_hz"] = monitor_->mean_step_rate_hz();
+  j["late_steps"] = monitor_->late_steps();
+  j["glove_to_frame_latency_ms"] = {
+      {"p50", percentile(lat, 0.5)},
+      {"p99", percentile(lat, 0.99)},
+      {"max", lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end())},
+      {"samples", lat.size()}};
+  j["latency_parts_ms"] = {{"age_at_render_start_p50", percentile(age, 0.5)},
+                           {"age_at_render_start_p99", percentile(age, 0.99)},
+                           {"render_p50", percentile(render, 0.5)},
+                           {"render_p99", percentile(render, 0.99)}};
+  auto& final_states = j["final"] = nlohmann::ordered_json::object();
   for (const auto& [name, st] : monitor_->final_states()) {
     const auto& p = st.X_GO().position_m();
     const auto& q = st.X_GO().orientation();
-    std::fprintf(f,
-                 "%s\n    %s: {\"sim_time_s\": %.3f, \"position\": [%.9f, %.9f, %.9f], "
-                 "\"quaternion_wxyz\": [%.9f, %.9f, %.9f, %.9f], \"held_by\": %d}",
-                 first ? "" : ",", json_string(name).c_str(), static_cast<double>(st.sim_time_ns()) * 1e-9,
-                 p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), st.held_by_hand_id());
-    first = false;
+    final_states[name] = {{"sim_time_s", static_cast<double>(st.sim_time_ns()) / 1e9},
+                          {"position", {p.x(), p.y(), p.z()}},
+                          {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}},
+                          {"held_by", st.held_by_hand_id()}};
   }
-  std::fprintf(f, "\n  },\n");
-  std::fprintf(f, "  \"nodes\": {");
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    std::fprintf(f, "%s\n    %s: {\"exit_status\": %d, \"restarts\": %d}", i ? "," : "",
-                 json_string(nodes_[i]->spec().name).c_str(), nodes_[i]->exit_status(),
-                 nodes_[i]->restarts());
+  auto& nodes = j["nodes"] = nlohmann::ordered_json::object();
+  for (const auto& node : nodes_) {
+    nodes[node->spec().name] = {{"exit_status", node->exit_status()},
+                                {"restarts", node->restarts()}};
   }
-  std::fprintf(f, "\n  }\n}\n");
-  file.commit();
+  write_json_file(options_.out_dir + "/summary.json", j);
 
   std::printf("\nvcockpit rig: %s after %.1f s (%s)\n", failed_ ? "FAILED" : "done", elapsed_s,
               end_reason_.c_str());
