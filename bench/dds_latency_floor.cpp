@@ -16,6 +16,7 @@
 // Run it on a domain of its own (--domain or VCOCKPIT_DOMAIN) so no rig node joins in.
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -28,6 +29,7 @@
 #include "common/cli_finite.hpp"
 #include "common/clock.hpp"
 #include "common/dds_participant.hpp"
+#include "common/json_file.hpp"
 #include "common/latency_histogram.hpp"
 #include "common/logging.hpp"
 #include "common/signals.hpp"
@@ -134,12 +136,13 @@ struct ReaderResult {
 };
 
 void write_reader_json(AtomicFile& file, const ReaderResult& r) {
-  std::fprintf(file.get(),
-               "{\n  \"samples\": %llu,\n  \"lost\": %llu,\n  \"duration_s\": %.6f,\n"
-               "  \"dds_transit_us\": %s,\n  \"take_latency_us\": %s\n}\n",
-               static_cast<unsigned long long>(r.samples),
-               static_cast<unsigned long long>(r.lost()), r.duration_s,
-               latency_json_us(r.dds_transit).c_str(), latency_json_us(r.take_latency).c_str());
+  nlohmann::ordered_json j;
+  j["samples"] = r.samples;
+  j["lost"] = r.lost();
+  j["duration_s"] = r.duration_s;
+  j["dds_transit_us"] = latency_json_us(r.dds_transit);
+  j["take_latency_us"] = latency_json_us(r.take_latency);
+  write_json(file, j);
   file.commit();  // throws FileError naming the path
 }
 

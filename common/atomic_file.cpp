@@ -26,6 +26,11 @@ AtomicFile::~AtomicFile() {
   }
 }
 
+void AtomicFile::write(std::string_view text) {
+  if (!file_) throw FileError(path_ + ": already committed");
+  std::fwrite(text.data(), 1, text.size(), file_);
+}
+
 void AtomicFile::commit() {
   if (!file_) throw FileError(path_ + ": already committed");
   const bool ok = std::fflush(file_) == 0 && fsync(fileno(file_)) == 0 && !std::ferror(file_);

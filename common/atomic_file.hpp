@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace vcockpit {
 
@@ -22,6 +23,8 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   std::FILE* get() const { return file_; }
+  // appends `text`; a failed write shows at commit()
+  void write(std::string_view text);
   const std::string& path() const { return path_; }
   // flush, fsync, rename into place; throws FileError naming the path on failure
   void commit();

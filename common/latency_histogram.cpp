@@ -1,5 +1,7 @@
 #include "common/latency_histogram.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -69,13 +71,12 @@ int64_t LatencyHistogram::percentile_ns(double q) const {
   return max_ns_;  // the ranked value is in the overflow
 }
 
-std::string latency_json_us(const LatencyHistogram& h) {
-  char text[160];
-  std::snprintf(text, sizeof text, "{\"p50\": %.3f, \"p99\": %.3f, \"max\": %.3f, \"count\": %llu}",
-                static_cast<double>(h.percentile_ns(0.5)) * 1e-3,
-                static_cast<double>(h.percentile_ns(0.99)) * 1e-3,
-                static_cast<double>(h.max_ns()) * 1e-3, static_cast<unsigned long long>(h.count()));
-  return text;
+nlohmann::ordered_json latency_json_us(const LatencyHistogram& h) {
+  const auto us = [](int64_t ns) { return static_cast<double>(ns) / 1e3; };
+  return {{"p50", us(h.percentile_ns(0.5))},
+          {"p99", us(h.percentile_ns(0.99))},
+          {"max", us(h.max_ns())},
+          {"count", h.count()}};
 }
 
 std::string latency_text_us(const LatencyHistogram& h) {

@@ -7,6 +7,8 @@
 // Default: 1 us bins up to 100 ms (100,000 bins, 400 KB): latencies of tens of microseconds read
 // to the microsecond, and anything slower than 100 ms is a stall that shows in the max.
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -52,8 +54,9 @@ class LatencyHistogram {
   double sum_ns_ = 0.0;
 };
 
-// {"p50": 61.000, "p99": 230.000, "max": 1312.417, "count": 5000} in microseconds.
-std::string latency_json_us(const LatencyHistogram& h);
+// {"p50": 61.0, "p99": 230.0, "max": 1312.417, "count": 5000} in microseconds (ns / 1000: the
+// printed number is the exact microseconds, to the nanosecond).
+nlohmann::ordered_json latency_json_us(const LatencyHistogram& h);
 // "p50 61.0 us, p99 230.0 us, max 1312.4 us (5000)" for log lines.
 std::string latency_text_us(const LatencyHistogram& h);
 

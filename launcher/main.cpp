@@ -3,52 +3,33 @@
 // line, restarts or stops on a node's death per its policy, stops everything cleanly on Ctrl-C or
 // when the replay ends, removes the /dev/shm files its run left, and writes OUT/summary.json.
 // scripts/rig builds it and runs it.
+//
+// This file reads the flags and wires the parts: supervisor (the node processes), rig_monitor
+// (the rig seen over DDS), run_summary (summary.json), console_report (the printed end report)
+// and shm_cleanup.
 
 #include <CLI/CLI.hpp>
-#include <poll.h>
-#include <signal.h>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
-#include <algorithm>
+#include <chrono>
 #include <filesystem>
-#include <memory>
+#include <stdexcept>
 #include <thread>
 
-#include "common/atomic_file.hpp"
 #include "common/clock.hpp"
-#include "common/json.hpp"
 #include "common/logging.hpp"
 #include "common/signals.hpp"
-#include "launcher/node_process.hpp"
+#include "launcher/console_report.hpp"
 #include "launcher/rig_monitor.hpp"
+#include "launcher/run_summary.hpp"
+#include "launcher/shm_cleanup.hpp"
+#include "launcher/supervisor.hpp"
 
 namespace vcockpit::rig {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::vector<std::string> dev_shm_entries() {
-  std::vector<std::string> out;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator("/dev/shm", ec)) out.push_back(e.path().filename());
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-// Fast DDS's shared-memory files that appeared during the run (a killed node leaves its own).
-int remove_new_dds_shm(const std::vector<std::string>& before) {
-  int removed = 0;
-  for (const auto& name : dev_shm_entries()) {
-    if (std::binary_search(before.begin(), before.end(), name)) continue;
-    const bool dds = name.rfind("fastrtps_", 0) == 0 || name.rfind("sem.fastrtps_", 0) == 0 ||
-                     name.rfind("fast_datasharing_", 0) == 0 ||
-                     name.rfind("sem.fast_datasharing_", 0) == 0;
-    std::error_code ec;
-    if (dds && fs::remove(fs::path("/dev/shm") / name, ec)) ++removed;
-  }
-  return removed;
-}
 
 struct Options {
   std::string rig_path;
@@ -58,267 +39,46 @@ struct Options {
   bool quiet = false;
 };
 
-class Launcher {
- public:
-  Launcher(RigConfig rig, Options options) : rig_(std::move(rig)), options_(std::move(options)) {}
-  int run();
-
- private:
-  void start_nodes();
-  void supervise();
-  void stop_nodes();
-  void pump_all(int timeout_ms);
-  void write_summary(double elapsed_s);
-
-  RigConfig rig_;
-  Options options_;
-  std::map<std::string, std::string> env_;
-  std::vector<std::unique_ptr<NodeProcess>> nodes_;
-  std::map<NodeProcess*, int64_t> restart_at_ns_;
-  std::FILE* combined_ = nullptr;
-  std::unique_ptr<DdsParticipant> participant_;
-  std::unique_ptr<RigMonitor> monitor_;
-  bool failed_ = false;
-  std::string end_reason_ = "stopped";
-};
-
-void Launcher::start_nodes() {
-  for (const NodeSpec& spec : rig_.nodes) {
-    std::vector<std::string> argv = expand_command(spec, rig_, options_.out_dir);
-    argv[0] = options_.bin_dir + "/" + argv[0];
-    if (access(argv[0].c_str(), X_OK) != 0) {
-      throw std::runtime_error(rig_.path + ": node " + spec.name + ": no executable " + argv[0] +
-                               " (build first: scripts/rig builds it)");
-    }
-    auto node = std::make_unique<NodeProcess>(spec, argv, options_.out_dir + "/logs/" + spec.name + ".log");
-    node->start(env_);
-    spdlog::info("started {} (pid {})", spec.name, node->pid());
-    nodes_.push_back(std::move(node));
-    const int64_t until = monotonic_now_ns() + seconds_to_ns(spec.start_delay_s);
-    while (monotonic_now_ns() < until) pump_all(20);
+int run(RigConfig rig, const Options& options) {
+  if (!options.log_path.empty()) rig.log_path = fs::absolute(options.log_path).string();
+  if (!rig.log_path.empty() && !fs::exists(rig.log_path)) {
+    throw std::runtime_error("glove log " + rig.log_path + " does not exist");
   }
-}
-
-void Launcher::pump_all(int timeout_ms) {
-  std::vector<pollfd> fds;
-  for (auto& n : nodes_) {
-    if (n->fd() >= 0) fds.push_back({n->fd(), POLLIN, 0});
-  }
-  if (fds.empty()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(timeout_ms));
-  } else {
-    poll(fds.data(), fds.size(), timeout_ms);
-  }
-  for (auto& n : nodes_) n->pump(combined_);
-}
-
-void Launcher::supervise() {
-  const bool terminal = isatty(STDERR_FILENO) == 1 && !options_.quiet;
-  const int64_t start_ns = monotonic_now_ns();
-  int64_t last_line_ns = 0;
-  int64_t drain_until_ns = -1;
-  while (true) {
-    pump_all(20);
-    monitor_->poll();
-    const int64_t now_ns = monotonic_now_ns();
-    if (shutdown_requested()) {
-      end_reason_ = "interrupted (Ctrl-C)";
-      break;
-    }
-    if (drain_until_ns >= 0 && now_ns >= drain_until_ns) break;
-    for (auto& node : nodes_) {
-      if (!node->reap()) continue;
-      const NodeSpec& spec = node->spec();
-      const int status = node->exit_status();
-      if (spec.ends_run && status == 0) {
-        spdlog::info("{} finished: the run is over", spec.name);
-        end_reason_ = spec.name + " finished";
-        drain_until_ns = now_ns + 1'500'000'000;  // let the others show the end
-      } else if (spec.restart_delay_s) {
-        spdlog::warn("{} ended with status {}: restarting in {} s", spec.name, status,
-                     *spec.restart_delay_s);
-        restart_at_ns_[node.get()] = now_ns + seconds_to_ns(*spec.restart_delay_s);
-      } else if (spec.required) {
-        spdlog::error("{} (required) ended with status {}: stopping the rig", spec.name, status);
-        end_reason_ = spec.name + " died";
-        failed_ = true;
-        drain_until_ns = now_ns;
-      } else {
-        spdlog::warn("{} ended with status {}", spec.name, status);
-      }
-    }
-    for (auto it = restart_at_ns_.begin(); it != restart_at_ns_.end();) {
-      if (now_ns < it->second) {
-        ++it;
-        continue;
-      }
-      it->first->start(env_);
-      spdlog::info("restarted {} (pid {})", it->first->spec().name, it->first->pid());
-      it = restart_at_ns_.erase(it);
-    }
-    if (terminal && now_ns - last_line_ns > 250'000'000) {
-      std::fprintf(stderr, "\r%s ", monitor_->status_line(ns_to_seconds(now_ns - start_ns)).c_str());
-      std::fflush(stderr);
-      last_line_ns = now_ns;
-    }
-  }
-  if (terminal) std::fputc('\n', stderr);
-}
-
-void Launcher::stop_nodes() {
-  for (auto it = nodes_.rbegin(); it != nodes_.rend(); ++it) (*it)->signal(SIGINT);
-  const int64_t deadline = monotonic_now_ns() + 3'000'000'000;
-  auto all_ended = [&] {
-    bool ended = true;
-    for (auto& n : nodes_) {
-      n->reap();
-      ended = ended && !n->running();
-    }
-    return ended;
-  };
-  while (!all_ended() && monotonic_now_ns() < deadline) pump_all(20);
-  for (auto& n : nodes_) {
-    if (!n->running()) continue;
-    spdlog::warn("{} did not stop within 3 s: killing it", n->spec().name);
-    n->signal(SIGKILL);
-  }
-  while (!all_ended()) pump_all(20);
-  for (int i = 0; i < 5; ++i) pump_all(1);  // the last lines
-}
-
-void Launcher::write_summary(double elapsed_s) {
-  const auto& statuses = monitor_->statuses();
-  auto count = [&](const char* node, auto field) -> unsigned long long {
-    auto it = statuses.find(node);
-    return it == statuses.end() ? 0ULL : static_cast<unsigned long long>(field(it->second));
-  };
-  int snapshots = 0;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(options_.out_dir + "/frames", ec)) {
-    snapshots += e.path().extension() == ".png" ? 1 : 0;
-  }
-  const auto& lat = monitor_->latencies_ms();
-  int grasps = 0, releases = 0;
-  for (const auto& e : monitor_->events()) (e.grasp ? grasps : releases)++;
-  const auto samples = count("glove_driver", [](const cockpit::NodeStatus& s) { return s.published(); });
-  const auto frames =
-      count("image_generator", [](const cockpit::NodeStatus& s) { return s.published(); });
-
-  AtomicFile file(options_.out_dir + "/summary.json");
-  std::FILE* f = file.get();
-  std::fprintf(f, "{\n  \"rig\": %s,\n  \"log\": %s,\n  \"domain\": %d,\n",
-               json_string(rig_.path).c_str(), json_string(rig_.log_path).c_str(), rig_.domain_id);
-  std::fprintf(f, "  \"ended\": %s,\n  \"ok\": %s,\n  \"wall_s\": %.3f,\n",
-               json_string(end_reason_).c_str(), failed_ ? "false" : "true", elapsed_s);
-  std::fprintf(f, "  \"samples_replayed\": %llu,\n  \"grasps\": %d,\n  \"releases\": %d,\n", samples,
-               grasps, releases);
-  std::fprintf(f, "  \"events\": [");
-  for (std::size_t i = 0; i < monitor_->events().size(); ++i) {
-    const auto& e = monitor_->events()[i];
-    std::fprintf(f, "%s\n    {\"t_s\": %.3f, \"event\": \"%s\", \"object\": %s, \"reason\": %s}",
-                 i ? "," : "", e.t_s, e.grasp ? "grasp" : "release", json_string(e.object).c_str(),
-                 json_string(e.reason).c_str());
-  }
-  std::fprintf(f, "\n  ],\n  \"frames_rendered\": %llu,\n  \"snapshots_written\": %d,\n", frames, snapshots);
-  std::fprintf(f, "  \"physics_step_rate_hz\": %.2f,\n  \"late_steps\": %llu,\n",
-               monitor_->mean_step_rate_hz(), static_cast<unsigned long long>(monitor_->late_steps()));
-  std::fprintf(f,
-               "  \"glove_to_frame_latency_ms\": {\"p50\": %.3f, \"p99\": %.3f, \"max\": %.3f, "
-               "\"samples\": %zu},\n",
-               percentile(lat, 0.5), percentile(lat, 0.99), lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end()),
-               lat.size());
-  const auto& age = monitor_->age_at_render_ms();
-  const auto& render = monitor_->render_ms();
-  std::fprintf(f,
-               "  \"latency_parts_ms\": {\"age_at_render_start_p50\": %.3f, "
-               "\"age_at_render_start_p99\": %.3f, \"render_p50\": %.3f, \"render_p99\": %.3f},\n",
-               percentile(age, 0.5), percentile(age, 0.99), percentile(render, 0.5),
-               percentile(render, 0.99));
-  std::fprintf(f, "  \"final\": {");
-  bool first = true;
-  for (const auto& [name, st] : monitor_->final_states()) {
-    const auto& p = st.X_GO().position_m();
-    const auto& q = st.X_GO().orientation();
-    std::fprintf(f,
-                 "%s\n    %s: {\"sim_time_s\": %.3f, \"position\": [%.9f, %.9f, %.9f], "
-                 "\"quaternion_wxyz\": [%.9f, %.9f, %.9f, %.9f], \"held_by\": %d}",
-                 first ? "" : ",", json_string(name).c_str(), static_cast<double>(st.sim_time_ns()) * 1e-9,
-                 p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), st.held_by_hand_id());
-    first = false;
-  }
-  std::fprintf(f, "\n  },\n");
-  std::fprintf(f, "  \"nodes\": {");
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    std::fprintf(f, "%s\n    %s: {\"exit_status\": %d, \"restarts\": %d}", i ? "," : "",
-                 json_string(nodes_[i]->spec().name).c_str(), nodes_[i]->exit_status(),
-                 nodes_[i]->restarts());
-  }
-  std::fprintf(f, "\n  }\n}\n");
-  file.commit();
-
-  std::printf("\nvcockpit rig: %s after %.1f s (%s)\n", failed_ ? "FAILED" : "done", elapsed_s,
-              end_reason_.c_str());
-  std::printf("  samples replayed     %llu\n", samples);
-  for (const auto& e : monitor_->events()) {
-    std::printf("  %-7s %-10s at %.3f s: %s\n", e.grasp ? "GRASP" : "RELEASE", e.object.c_str(),
-                e.t_s, e.reason.c_str());
-  }
-  std::printf("  frames rendered      %llu, snapshots written %d (%s/frames)\n", frames, snapshots,
-              options_.out_dir.c_str());
-  std::printf("  physics step rate    %.1f Hz, late steps %llu\n", monitor_->mean_step_rate_hz(),
-              static_cast<unsigned long long>(monitor_->late_steps()));
-  std::printf("  glove->frame latency p50 %.1f ms, p99 %.1f ms, max %.1f ms (%zu samples)\n",
-              percentile(lat, 0.5), percentile(lat, 0.99),
-              lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end()), lat.size());
-  std::printf("    of which: sample age at render start p50 %.1f ms, render p50 %.1f ms\n",
-              percentile(monitor_->age_at_render_ms(), 0.5), percentile(monitor_->render_ms(), 0.5));
-  std::printf("  summary              %s/summary.json, logs %s/logs/\n", options_.out_dir.c_str(),
-              options_.out_dir.c_str());
-}
-
-int Launcher::run() {
-  if (!options_.log_path.empty()) rig_.log_path = fs::absolute(options_.log_path).string();
-  if (!rig_.log_path.empty() && !fs::exists(rig_.log_path)) {
-    throw std::runtime_error("glove log " + rig_.log_path + " does not exist");
-  }
-  options_.out_dir = fs::absolute(options_.out_dir).lexically_normal().string();
-  fs::create_directories(options_.out_dir + "/logs");
-  fs::remove_all(options_.out_dir + "/frames");  // this run's snapshots only
-  fs::remove(options_.out_dir + "/summary.json");
-  combined_ = std::fopen((options_.out_dir + "/logs/rig.log").c_str(), "w");
-  env_ = {{"VCOCKPIT_DOMAIN", std::to_string(rig_.domain_id)},
-          {"VCOCKPIT_QOS_FILE", rig_.qos_file},
-          {"VCOCKPIT_PARTICIPANT", rig_.participant_profile}};
+  const std::string out_dir = fs::absolute(options.out_dir).lexically_normal().string();
+  fs::create_directories(out_dir + "/logs");
+  fs::remove_all(out_dir + "/frames");  // this run's snapshots only
+  fs::remove(out_dir + "/summary.json");
+  Supervisor supervisor(rig, out_dir, options.bin_dir);
   const auto shm_before = dev_shm_entries();
   const int64_t start_ns = monotonic_now_ns();
   {
     DdsOptions dds;
-    dds.domain_id = rig_.domain_id;
-    dds.qos_file = rig_.qos_file;
-    dds.participant_profile = rig_.participant_profile;
-    participant_ = std::make_unique<DdsParticipant>(dds, "rig_launcher");
-    monitor_ = std::make_unique<RigMonitor>(*participant_);
-    spdlog::info("rig {} on domain {}; logs in {}/logs", rig_.path, rig_.domain_id, options_.out_dir);
+    dds.domain_id = rig.domain_id;
+    dds.qos_file = rig.qos_file;
+    dds.participant_profile = rig.participant_profile;
+    DdsParticipant participant(dds, "rig_launcher");
+    RigMonitor monitor(participant);
+    spdlog::info("rig {} on domain {}; logs in {}/logs", rig.path, rig.domain_id, out_dir);
     try {
-      start_nodes();
-      supervise();
+      supervisor.start_nodes();
+      supervisor.supervise(monitor, isatty(STDERR_FILENO) == 1 && !options.quiet);
     } catch (...) {
-      stop_nodes();
+      supervisor.stop_nodes();
       throw;
     }
-    stop_nodes();
+    supervisor.stop_nodes();
     for (int i = 0; i < 10; ++i) {  // statuses the nodes sent as they stopped
-      monitor_->poll();
+      monitor.poll();
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
-    write_summary(ns_to_seconds(monotonic_now_ns() - start_ns));
-    monitor_.reset();
-    participant_.reset();
+    const RunSummary summary = collect_run_summary(rig, out_dir, supervisor, monitor,
+                                                   ns_to_seconds(monotonic_now_ns() - start_ns));
+    write_run_summary(out_dir + "/summary.json", summary);
+    print_console_report(summary);
   }
   const int removed = remove_new_dds_shm(shm_before);
   if (removed > 0) spdlog::info("removed {} /dev/shm file(s) left by killed nodes", removed);
-  if (combined_) std::fclose(combined_);
-  return failed_ ? 1 : 0;
+  return supervisor.failed() ? 1 : 0;
 }
 
 }  // namespace
@@ -340,7 +100,7 @@ int main(int argc, char** argv) {
   try {
     setup_logging("rig");
     install_shutdown_handlers();
-    return rig::Launcher(rig::load_rig_config(options.rig_path), options).run();
+    return rig::run(rig::load_rig_config(options.rig_path), options);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

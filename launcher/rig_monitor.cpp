@@ -48,7 +48,7 @@ void RigMonitor::poll() {
   cockpit::GraspEvent e;
   while (event_reader_.take(e)) {
     SeenEvent seen;
-    seen.t_s = static_cast<double>(e.sim_time_ns()) * 1e-9;
+    seen.t_s = static_cast<double>(e.sim_time_ns()) / 1e9;  // prints as its exact decimal
     seen.grasp = e.kind() == cockpit::GRASP;
     seen.object = object_name(e.object_id());
     seen.reason = e.reason().to_string();

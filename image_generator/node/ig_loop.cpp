@@ -1,13 +1,15 @@
 #include "image_generator/node/ig_loop.hpp"
 
+#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 
-#include "common/atomic_file.hpp"
 #include "common/clock.hpp"
+#include "common/json_file.hpp"
 #include "idl/topics/pose_convert.hpp"
 #include "common/latency_histogram.hpp"
 #include "common/signals.hpp"
@@ -80,18 +82,20 @@ class ImageGenerator {
 // percentiles: what the benchmark reads.
 void ImageGenerator::write_stats() const {
   if (options_.stats_out.empty()) return;
-  const auto ms = [](int64_t ns) { return static_cast<double>(ns) * 1e-6; };
-  const double wall_s = static_cast<double>(last_frame_end_ns_ - first_frame_start_ns_) * 1e-9;
-  AtomicFile file(options_.stats_out);
-  std::fprintf(file.get(),
-               "{\n  \"frames\": %llu,\n  \"width_px\": %d,\n  \"height_px\": %d,\n"
-               "  \"paced_fps\": %.3f,\n  \"wall_s\": %.6f,\n  \"fps\": %.3f,\n"
-               "  \"render_ms\": {\"p50\": %.3f, \"p99\": %.3f, \"max\": %.3f}\n}\n",
-               static_cast<unsigned long long>(frames_), hmd_.width_px, hmd_.height_px, options_.fps,
-               wall_s, wall_s > 0 ? static_cast<double>(frames_) / wall_s : 0.0,
-               ms(render_ns_.percentile_ns(0.5)), ms(render_ns_.percentile_ns(0.99)),
-               ms(render_ns_.max_ns()));
-  file.commit();
+  // divided, not multiplied by 1e-6: a whole number of ns prints as its exact decimal
+  const auto ms = [](int64_t ns) { return static_cast<double>(ns) / 1e6; };
+  const double wall_s = static_cast<double>(last_frame_end_ns_ - first_frame_start_ns_) / 1e9;
+  nlohmann::ordered_json j;
+  j["frames"] = frames_;
+  j["width_px"] = hmd_.width_px;
+  j["height_px"] = hmd_.height_px;
+  j["paced_fps"] = options_.fps;
+  j["wall_s"] = wall_s;
+  j["fps"] = wall_s > 0 ? static_cast<double>(frames_) / wall_s : 0.0;
+  j["render_ms"] = {{"p50", ms(render_ns_.percentile_ns(0.5))},
+                    {"p99", ms(render_ns_.percentile_ns(0.99))},
+                    {"max", ms(render_ns_.max_ns())}};
+  write_json_file(options_.stats_out, j);
 }
 
 // snapshots.csv: which world state each snapshot shows (the held object and where it was).

@@ -9,12 +9,14 @@
 // Histograms are allocated once here; recording in the loop never allocates.
 // Header-only: the node's sources are listed in physics_node/CMakeLists.txt.
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <optional>
 #include <string>
 
-#include "common/atomic_file.hpp"
 #include "common/dds_participant.hpp"
+#include "common/json_file.hpp"
 #include "common/latency_histogram.hpp"
 
 namespace vcockpit::physics_node {
@@ -45,22 +47,19 @@ struct StatsReport {
 
 // Written under a temporary name and renamed into place; throws FileError naming the path.
 inline void write_stats_json(const std::string& path, const StatsReport& r, const LoopStats& s) {
-  AtomicFile file(path);
-  std::FILE* f = file.get();
-  std::fprintf(f, "{\n  \"mode\": \"%s\",\n  \"duration_s\": %.6f,\n  \"steps\": %llu,\n",
-               r.mode.c_str(), r.duration_s, static_cast<unsigned long long>(r.steps));
-  if (r.rate_hz) std::fprintf(f, "  \"rate_hz\": %.3f,\n", *r.rate_hz);
-  if (r.late_steps) {
-    std::fprintf(f, "  \"late_steps\": %llu,\n", static_cast<unsigned long long>(*r.late_steps));
-  }
-  if (r.simulated_s) std::fprintf(f, "  \"simulated_s\": %.6f,\n", *r.simulated_s);
-  std::fprintf(f, "  \"samples\": %llu,\n  \"rejected\": %llu,\n",
-               static_cast<unsigned long long>(r.samples),
-               static_cast<unsigned long long>(r.rejected));
-  std::fprintf(f, "  \"dds_transit_us\": %s,\n", latency_json_us(s.dds_transit).c_str());
-  std::fprintf(f, "  \"age_at_step_us\": %s,\n", latency_json_us(s.age_at_step).c_str());
-  std::fprintf(f, "  \"step_compute_us\": %s\n}\n", latency_json_us(s.step_compute).c_str());
-  file.commit();
+  nlohmann::ordered_json j;
+  j["mode"] = r.mode;
+  j["duration_s"] = r.duration_s;
+  j["steps"] = r.steps;
+  if (r.rate_hz) j["rate_hz"] = *r.rate_hz;
+  if (r.late_steps) j["late_steps"] = *r.late_steps;
+  if (r.simulated_s) j["simulated_s"] = *r.simulated_s;
+  j["samples"] = r.samples;
+  j["rejected"] = r.rejected;
+  j["dds_transit_us"] = latency_json_us(s.dds_transit);
+  j["age_at_step_us"] = latency_json_us(s.age_at_step);
+  j["step_compute_us"] = latency_json_us(s.step_compute);
+  write_json_file(path, j);
 }
 
 }  // namespace vcockpit::physics_node

@@ -57,7 +57,7 @@ TEST_F(PhysicsNodeTest, LockstepReplayGivesTheOfflineRunnersResult) {
     EXPECT_EQ(seen.events[i].t_ns, offline_events.events[i].t_ns);
     EXPECT_EQ(seen.events[i].reason, offline_events.events[i].reason);
   }
-  // final poses: the offline summary prints 9 decimals
+  // final poses: the offline summary's doubles, to within 2e-9
   const auto final_offline = read_final_poses(offline.out_dir + "/summary.json");
   physics::Scene scene = load_scene(offline.scene_path);
   ASSERT_FALSE(final_offline.empty());

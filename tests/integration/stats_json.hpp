@@ -1,41 +1,47 @@
 #pragma once
 // Reading the statistics files of physics_node --stats-out and dds_latency_floor --out in tests:
-// top-level numbers and the p50/p99/max/count objects. Just enough JSON for the flat files those
-// tools write (no escapes, no arrays); a missing key or a value that is not a number is NaN, so a
-// check on it fails and names the key.
+// top-level numbers and strings, and the p50/p99/max/count objects, parsed with nlohmann::json
+// (spacing and number format do not matter). A file that does not parse, a missing key or a value
+// that is not a number is NaN, so a check on it fails and names the key.
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
-#include <cstdlib>
 #include <string>
 
 namespace vcockpit::test {
 
-// The number after "key": in `text` (NaN if absent or not a number).
-inline double json_number_at(const std::string& text, const std::string& key,
-                             std::size_t from = 0) {
-  const std::string tag = "\"" + key + "\": ";
-  const auto at = text.find(tag, from);
-  if (at == std::string::npos) return std::nan("");
-  const char* start = text.c_str() + at + tag.size();
-  char* end = nullptr;
-  const double value = std::strtod(start, &end);
-  return end == start ? std::nan("") : value;
+// The parsed text; a discarded value (no keys) if it is not JSON.
+inline nlohmann::json parse_json(const std::string& text) {
+  return nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
 }
 
-// True if "key": appears at all (for keys a mode leaves out).
+// The number under `key` in a JSON object (NaN if absent or not a number).
+inline double json_number_in(const nlohmann::json& object, const std::string& key) {
+  if (!object.is_object()) return std::nan("");
+  const auto it = object.find(key);
+  return it != object.end() && it->is_number() ? it->get<double>() : std::nan("");
+}
+
+// The top-level number "key" of `text` (NaN if absent or not a number).
+inline double json_number_at(const std::string& text, const std::string& key) {
+  return json_number_in(parse_json(text), key);
+}
+
+// True if the top-level "key" appears at all (for keys a mode leaves out).
 inline bool json_has(const std::string& text, const std::string& key) {
-  return text.find("\"" + key + "\": ") != std::string::npos;
+  const auto j = parse_json(text);
+  return j.is_object() && j.contains(key);
 }
 
-// The string after "key": (empty if absent).
+// The top-level string "key" (empty if absent or not a string).
 inline std::string json_text(const std::string& text, const std::string& key) {
-  const std::string tag = "\"" + key + "\": \"";
-  const auto at = text.find(tag);
-  if (at == std::string::npos) return "";
-  const auto from = at + tag.size();
-  return text.substr(from, text.find('"', from) - from);
+  const auto j = parse_json(text);
+  if (!j.is_object()) return "";
+  const auto it = j.find(key);
+  return it != j.end() && it->is_string() ? it->get<std::string>() : "";
 }
 
 struct LatencyFigures {
@@ -44,15 +50,10 @@ struct LatencyFigures {
 
 // The {"p50":..,"p99":..,"max":..,"count":..} object named `key`.
 inline LatencyFigures json_latency(const std::string& text, const std::string& key) {
-  const auto at = text.find("\"" + key + "\": {");
-  if (at == std::string::npos) {
-    const double nan = std::nan("");
-    return {nan, nan, nan, nan};
-  }
-  const auto end = text.find('}', at);
-  const std::string object = text.substr(at, end == std::string::npos ? end : end - at + 1);
-  return {json_number_at(object, "p50"), json_number_at(object, "p99"),
-          json_number_at(object, "max"), json_number_at(object, "count")};
+  const auto j = parse_json(text);
+  const nlohmann::json object = j.is_object() && j.contains(key) ? j.at(key) : nlohmann::json();
+  return {json_number_in(object, "p50"), json_number_in(object, "p99"),
+          json_number_in(object, "max"), json_number_in(object, "count")};
 }
 
 // p50 <= p99 <= max, all finite and positive: a distribution that was actually measured.

@@ -1,8 +1,10 @@
 #include "tests/support/monitor_log.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
+#include <cmath>
 #include <fstream>
-#include <sstream>
 #include <thread>
 
 namespace vcockpit::test {
@@ -36,21 +38,6 @@ int64_t integer(const std::map<std::string, std::string>& f, const std::string& 
 
 Eigen::Vector3d position(const std::map<std::string, std::string>& f) {
   return {num(f, "x"), num(f, "y"), num(f, "z")};
-}
-
-// The string value of "key": "value" in a JSON line (no escapes needed by the tests).
-std::string json_string(const std::string& line, const std::string& key) {
-  const std::string tag = "\"" + key + "\": \"";
-  const auto start = line.find(tag);
-  if (start == std::string::npos) return "";
-  const auto from = start + tag.size();
-  return line.substr(from, line.find('"', from) - from);
-}
-
-double json_number(const std::string& line, const std::string& key) {
-  const std::string tag = "\"" + key + "\": ";
-  const auto start = line.find(tag);
-  return start == std::string::npos ? 0.0 : std::stod(line.substr(start + tag.size()));
 }
 
 }  // namespace
@@ -115,10 +102,12 @@ MonitorLog MonitorLog::from_events_jsonl(const std::string& path) {
   std::ifstream in(path);
   std::string line;
   while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const auto record = nlohmann::json::parse(line);  // throws on a line that is not JSON
     SeenEvent e;
-    e.t_ns = std::llround(json_number(line, "t_s") * 1e9);
-    e.kind = json_string(line, "event");
-    e.reason = json_string(line, "reason");
+    e.t_ns = std::llround(record.value("t_s", 0.0) * 1e9);
+    e.kind = record.value("event", "");
+    e.reason = record.value("reason", "");
     log.events.push_back(e);
   }
   return log;
@@ -126,19 +115,13 @@ MonitorLog MonitorLog::from_events_jsonl(const std::string& path) {
 
 std::map<std::string, Eigen::Vector3d> read_final_poses(const std::string& summary_path) {
   std::map<std::string, Eigen::Vector3d> out;
-  const std::string text = read_text(summary_path);
-  const auto final_block = text.find("\"final\"");
-  if (final_block == std::string::npos) return out;
-  std::istringstream in(text.substr(final_block));
-  std::string line;
-  while (std::getline(in, line)) {
-    const auto name_start = line.find('"');
-    const auto pos = line.find("\"position\": [");
-    if (pos == std::string::npos || name_start == std::string::npos) continue;
-    const std::string name = line.substr(name_start + 1, line.find('"', name_start + 1) - name_start - 1);
-    double x = 0, y = 0, z = 0;
-    std::sscanf(line.c_str() + pos + 13, "%lf, %lf, %lf", &x, &y, &z);
-    out[name] = {x, y, z};
+  const auto summary = nlohmann::json::parse(read_text(summary_path), nullptr, false);
+  if (!summary.is_object() || !summary.contains("final")) return out;
+  for (const auto& [name, object] : summary.at("final").items()) {
+    if (!object.is_object() || !object.contains("position")) continue;
+    const auto& p = object.at("position");
+    if (!p.is_array() || p.size() != 3) continue;
+    out[name] = {p[0].get<double>(), p[1].get<double>(), p[2].get<double>()};
   }
   return out;
 }

@@ -58,11 +58,13 @@ struct MonitorLog {
   std::vector<SeenFrame> frames;
 
   static MonitorLog read(const std::string& path);
-  // events.jsonl of the offline runner, as events (object ids are not in it: -1)
+  // events.jsonl of the offline runner, as events (object ids are not in it: -1); each line
+  // parsed with nlohmann::json, which throws on a line that is not JSON
   static MonitorLog from_events_jsonl(const std::string& path);
 };
 
-// "final" block of the offline runner's summary.json: object name -> position.
+// "final" block of a summary.json (the offline runner's or rig_launcher's): object name ->
+// position. Empty if the file is missing or not JSON.
 std::map<std::string, Eigen::Vector3d> read_final_poses(const std::string& summary_path);
 
 // Polls a growing text file until a line containing `needle` appears (after the first line

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -21,7 +23,8 @@ TEST(LatencyHistogram, EmptyReportsZeros) {
   EXPECT_EQ(h.percentile_ns(0.5), 0);
   EXPECT_EQ(h.max_ns(), 0);
   EXPECT_EQ(h.min_ns(), 0);
-  EXPECT_EQ(latency_json_us(h), "{\"p50\": 0.000, \"p99\": 0.000, \"max\": 0.000, \"count\": 0}");
+  EXPECT_EQ(latency_json_us(h), nlohmann::ordered_json::parse(
+                                    R"({"p50": 0.000, "p99": 0.000, "max": 0.000, "count": 0})"));
 }
 
 TEST(LatencyHistogram, PercentilesOfOneToHundredMicroseconds) {
@@ -112,7 +115,8 @@ TEST(LatencyHistogram, JsonAndTextInMicroseconds) {
   h.record_ns(61'200);
   h.record_ns(1'312'417);
   EXPECT_EQ(latency_json_us(h),
-            "{\"p50\": 62.000, \"p99\": 1312.417, \"max\": 1312.417, \"count\": 2}");
+            nlohmann::ordered_json::parse(
+                R"({"p50": 62.000, "p99": 1312.417, "max": 1312.417, "count": 2})"));
   EXPECT_EQ(latency_text_us(h), "p50 62.0 us, p99 1312.4 us, max 1312.4 us (2)");
 }
 

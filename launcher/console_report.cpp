@@ -1,0 +1,28 @@
+#include "launcher/console_report.hpp"
+
+#include <cstdio>
+
+namespace vcockpit::rig {
+
+void print_console_report(const RunSummary& s) {
+  std::printf("\nvcockpit rig: %s after %.1f s (%s)\n", s.ok ? "done" : "FAILED", s.wall_s,
+              s.ended.c_str());
+  std::printf("  samples replayed     %llu\n", static_cast<unsigned long long>(s.samples_replayed));
+  for (const auto& e : s.events) {
+    std::printf("  %-7s %-10s at %.3f s: %s\n", e.grasp ? "GRASP" : "RELEASE", e.object.c_str(),
+                e.t_s, e.reason.c_str());
+  }
+  std::printf("  frames rendered      %llu, snapshots written %d (%s/frames)\n",
+              static_cast<unsigned long long>(s.frames_rendered), s.snapshots_written,
+              s.out_dir.c_str());
+  std::printf("  physics step rate    %.1f Hz, late steps %llu\n", s.physics_step_rate_hz,
+              static_cast<unsigned long long>(s.late_steps));
+  std::printf("  glove->frame latency p50 %.1f ms, p99 %.1f ms, max %.1f ms (%zu samples)\n",
+              s.latency_p50_ms, s.latency_p99_ms, s.latency_max_ms, s.latency_samples);
+  std::printf("    of which: sample age at render start p50 %.1f ms, render p50 %.1f ms\n",
+              s.age_at_render_start_p50_ms, s.render_p50_ms);
+  std::printf("  summary              %s/summary.json, logs %s/logs/\n", s.out_dir.c_str(),
+              s.out_dir.c_str());
+}
+
+}  // namespace vcockpit::rig

@@ -1,0 +1,111 @@
+#include "launcher/run_summary.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+
+#include "common/json_file.hpp"
+#include "launcher/supervisor.hpp"
+
+namespace vcockpit::rig {
+
+RunSummary collect_run_summary(const RigConfig& rig, const std::string& out_dir,
+                               const Supervisor& supervisor, const RigMonitor& monitor,
+                               double wall_s) {
+  RunSummary s;
+  s.rig_path = rig.path;
+  s.log_path = rig.log_path;
+  s.domain_id = rig.domain_id;
+  s.out_dir = out_dir;
+  s.ended = supervisor.end_reason();
+  s.ok = !supervisor.failed();
+  s.wall_s = wall_s;
+
+  const auto& statuses = monitor.statuses();
+  auto published = [&](const char* node) -> uint64_t {
+    auto it = statuses.find(node);
+    return it == statuses.end() ? 0 : it->second.published();
+  };
+  s.samples_replayed = published("glove_driver");
+  s.frames_rendered = published("image_generator");
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(out_dir + "/frames", ec)) {
+    s.snapshots_written += e.path().extension() == ".png" ? 1 : 0;
+  }
+  s.events = monitor.events();
+  for (const auto& e : s.events) (e.grasp ? s.grasps : s.releases)++;
+  s.physics_step_rate_hz = monitor.mean_step_rate_hz();
+  s.late_steps = monitor.late_steps();
+
+  const auto& lat = monitor.latencies_ms();
+  s.latency_p50_ms = percentile(lat, 0.5);
+  s.latency_p99_ms = percentile(lat, 0.99);
+  s.latency_max_ms = lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end());
+  s.latency_samples = lat.size();
+  s.age_at_render_start_p50_ms = percentile(monitor.age_at_render_ms(), 0.5);
+  s.age_at_render_start_p99_ms = percentile(monitor.age_at_render_ms(), 0.99);
+  s.render_p50_ms = percentile(monitor.render_ms(), 0.5);
+  s.render_p99_ms = percentile(monitor.render_ms(), 0.99);
+
+  for (const auto& [name, st] : monitor.final_states()) {
+    const auto& p = st.X_GO().position_m();
+    const auto& q = st.X_GO().orientation();
+    s.final_objects.push_back({name,
+                               static_cast<double>(st.sim_time_ns()) / 1e9,
+                               {p.x(), p.y(), p.z()},
+                               {q.w(), q.x(), q.y(), q.z()},
+                               st.held_by_hand_id()});
+  }
+  for (const auto& node : supervisor.nodes()) {
+    s.nodes.push_back({node->spec().name, node->exit_status(), node->restarts()});
+  }
+  return s;
+}
+
+void write_run_summary(const std::string& path, const RunSummary& s) {
+  nlohmann::ordered_json j;
+  j["rig"] = s.rig_path;
+  j["log"] = s.log_path;
+  j["domain"] = s.domain_id;
+  j["ended"] = s.ended;
+  j["ok"] = s.ok;
+  j["wall_s"] = s.wall_s;
+  j["samples_replayed"] = s.samples_replayed;
+  j["grasps"] = s.grasps;
+  j["releases"] = s.releases;
+  auto& events = j["events"] = nlohmann::ordered_json::array();
+  for (const auto& e : s.events) {
+    events.push_back({{"t_s", e.t_s},
+                      {"event", e.grasp ? "grasp" : "release"},
+                      {"object", e.object},
+                      {"reason", e.reason}});
+  }
+  j["frames_rendered"] = s.frames_rendered;
+  j["snapshots_written"] = s.snapshots_written;
+  j["physics_step_rate_hz"] = s.physics_step_rate_hz;
+  j["late_steps"] = s.late_steps;
+  j["glove_to_frame_latency_ms"] = {{"p50", s.latency_p50_ms},
+                                    {"p99", s.latency_p99_ms},
+                                    {"max", s.latency_max_ms},
+                                    {"samples", s.latency_samples}};
+  j["latency_parts_ms"] = {{"age_at_render_start_p50", s.age_at_render_start_p50_ms},
+                           {"age_at_render_start_p99", s.age_at_render_start_p99_ms},
+                           {"render_p50", s.render_p50_ms},
+                           {"render_p99", s.render_p99_ms}};
+  auto& final_objects = j["final"] = nlohmann::ordered_json::object();
+  for (const auto& o : s.final_objects) {
+    final_objects[o.name] = {{"sim_time_s", o.sim_time_s},
+                             {"position", o.position},
+                             {"quaternion_wxyz", o.quaternion_wxyz},
+                             {"held_by", o.held_by}};
+  }
+  auto& nodes = j["nodes"] = nlohmann::ordered_json::object();
+  for (const auto& n : s.nodes) {
+    nodes[n.name] = {{"exit_status", n.exit_status}, {"restarts", n.restarts}};
+  }
+  write_json_file(path, j);
+}
+
+}  // namespace vcockpit::rig

@@ -1,0 +1,133 @@
+#include "launcher/supervisor.hpp"
+
+#include <poll.h>
+#include <signal.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+
+#include "common/clock.hpp"
+#include "common/signals.hpp"
+#include "launcher/rig_monitor.hpp"
+
+namespace vcockpit::rig {
+
+Supervisor::Supervisor(RigConfig rig, std::string out_dir, std::string bin_dir)
+    : rig_(std::move(rig)), out_dir_(std::move(out_dir)), bin_dir_(std::move(bin_dir)) {
+  combined_ = std::fopen((out_dir_ + "/logs/rig.log").c_str(), "w");
+  env_ = {{"VCOCKPIT_DOMAIN", std::to_string(rig_.domain_id)},
+          {"VCOCKPIT_QOS_FILE", rig_.qos_file},
+          {"VCOCKPIT_PARTICIPANT", rig_.participant_profile}};
+}
+
+Supervisor::~Supervisor() {
+  if (combined_) std::fclose(combined_);
+}
+
+void Supervisor::start_nodes() {
+  for (const NodeSpec& spec : rig_.nodes) {
+    std::vector<std::string> argv = expand_command(spec, rig_, out_dir_);
+    argv[0] = bin_dir_ + "/" + argv[0];
+    if (access(argv[0].c_str(), X_OK) != 0) {
+      throw std::runtime_error(rig_.path + ": node " + spec.name + ": no executable " + argv[0] +
+                               " (build first: scripts/rig builds it)");
+    }
+    auto node = std::make_unique<NodeProcess>(spec, argv, out_dir_ + "/logs/" + spec.name + ".log");
+    node->start(env_);
+    spdlog::info("started {} (pid {})", spec.name, node->pid());
+    nodes_.push_back(std::move(node));
+    const int64_t until = monotonic_now_ns() + seconds_to_ns(spec.start_delay_s);
+    while (monotonic_now_ns() < until) pump_all(20);
+  }
+}
+
+void Supervisor::pump_all(int timeout_ms) {
+  std::vector<pollfd> fds;
+  for (auto& n : nodes_) {
+    if (n->fd() >= 0) fds.push_back({n->fd(), POLLIN, 0});
+  }
+  if (fds.empty()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(timeout_ms));
+  } else {
+    poll(fds.data(), fds.size(), timeout_ms);
+  }
+  for (auto& n : nodes_) n->pump(combined_);
+}
+
+void Supervisor::supervise(RigMonitor& monitor, bool status_line) {
+  const int64_t start_ns = monotonic_now_ns();
+  int64_t last_line_ns = 0;
+  int64_t drain_until_ns = -1;
+  while (true) {
+    pump_all(20);
+    monitor.poll();
+    const int64_t now_ns = monotonic_now_ns();
+    if (shutdown_requested()) {
+      end_reason_ = "interrupted (Ctrl-C)";
+      break;
+    }
+    if (drain_until_ns >= 0 && now_ns >= drain_until_ns) break;
+    for (auto& node : nodes_) {
+      if (!node->reap()) continue;
+      const NodeSpec& spec = node->spec();
+      const int status = node->exit_status();
+      if (spec.ends_run && status == 0) {
+        spdlog::info("{} finished: the run is over", spec.name);
+        end_reason_ = spec.name + " finished";
+        drain_until_ns = now_ns + 1'500'000'000;  // let the others show the end
+      } else if (spec.restart_delay_s) {
+        spdlog::warn("{} ended with status {}: restarting in {} s", spec.name, status,
+                     *spec.restart_delay_s);
+        restart_at_ns_[node.get()] = now_ns + seconds_to_ns(*spec.restart_delay_s);
+      } else if (spec.required) {
+        spdlog::error("{} (required) ended with status {}: stopping the rig", spec.name, status);
+        end_reason_ = spec.name + " died";
+        failed_ = true;
+        drain_until_ns = now_ns;
+      } else {
+        spdlog::warn("{} ended with status {}", spec.name, status);
+      }
+    }
+    for (auto it = restart_at_ns_.begin(); it != restart_at_ns_.end();) {
+      if (now_ns < it->second) {
+        ++it;
+        continue;
+      }
+      it->first->start(env_);
+      spdlog::info("restarted {} (pid {})", it->first->spec().name, it->first->pid());
+      it = restart_at_ns_.erase(it);
+    }
+    if (status_line && now_ns - last_line_ns > 250'000'000) {
+      std::fprintf(stderr, "\r%s ", monitor.status_line(ns_to_seconds(now_ns - start_ns)).c_str());
+      std::fflush(stderr);
+      last_line_ns = now_ns;
+    }
+  }
+  if (status_line) std::fputc('\n', stderr);
+}
+
+void Supervisor::stop_nodes() {
+  for (auto it = nodes_.rbegin(); it != nodes_.rend(); ++it) (*it)->signal(SIGINT);
+  const int64_t deadline = monotonic_now_ns() + 3'000'000'000;
+  auto all_ended = [&] {
+    bool ended = true;
+    for (auto& n : nodes_) {
+      n->reap();
+      ended = ended && !n->running();
+    }
+    return ended;
+  };
+  while (!all_ended() && monotonic_now_ns() < deadline) pump_all(20);
+  for (auto& n : nodes_) {
+    if (!n->running()) continue;
+    spdlog::warn("{} did not stop within 3 s: killing it", n->spec().name);
+    n->signal(SIGKILL);
+  }
+  while (!all_ended()) pump_all(20);
+  for (int i = 0; i < 5; ++i) pump_all(1);  // the last lines
+}
+
+}  // namespace vcockpit::rig
