@@ -1,6 +1,6 @@
 // image_generator: renders the virtual cockpit off-screen in stereo for the head-mounted display
 // (OSMesa, no window, no X server), publishes cockpit/frame_info per frame and writes PNG
-// snapshots.
+// snapshots. The hand's geometry comes from the physics node (cockpit/hand_info), not a file.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -8,7 +8,6 @@
 #include "common/logging.hpp"
 #include "common/signals.hpp"
 #include "image_generator/node/ig_loop.hpp"
-#include "hand/hand_yaml.hpp"
 
 int main(int argc, char** argv) {
   using namespace vcockpit;
@@ -16,13 +15,9 @@ int main(int argc, char** argv) {
   DdsFlags dds_flags;
   image_generator::IgOptions options;
   std::string hmd_path = std::string(VCOCKPIT_CONFIG_DIR) + "/hmd.yaml";
-  std::string hand_path = std::string(VCOCKPIT_CONFIG_DIR) + "/hand.yaml";
   std::string layout = "side";
   std::string log_level = "info";
   app.add_option("--hmd", hmd_path, "HMD config YAML (IPD, per-eye FOV, resolution, eye point)")
-      ->check(CLI::ExistingFile)
-      ->capture_default_str();
-  app.add_option("--hand-config", hand_path, "hand model YAML (capsule and palm sizes)")
       ->check(CLI::ExistingFile)
       ->capture_default_str();
   app.add_option("--out", options.out_dir, "directory for PNG snapshots (none if not given)");
@@ -55,9 +50,8 @@ int main(int argc, char** argv) {
     setup_logging("image_generator", log_level);
     install_shutdown_handlers();
     const HmdSetup hmd = load_hmd_config(hmd_path);
-    const hand::HandModel hand = load_hand_model(hand_path);
     DdsParticipant participant(resolve_dds_options(dds_flags), options.node_name);
-    return image_generator::run_image_generator(participant, hmd, hand, options);
+    return image_generator::run_image_generator(participant, hmd, options);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

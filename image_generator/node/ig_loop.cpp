@@ -20,12 +20,11 @@ namespace {
 
 class ImageGenerator {
  public:
-  ImageGenerator(DdsParticipant& participant, const HmdSetup& hmd, const hand::HandModel& hand,
-                 const IgOptions& options)
+  ImageGenerator(DdsParticipant& participant, const HmdSetup& hmd, const IgOptions& options)
       : options_(options),
         X_GHead_(hmd.X_GHead),
-        cache_(hand),
         info_reader_(participant.make_reader<cockpit::ObjectInfo>("state")),
+        hand_info_reader_(participant.make_reader<cockpit::HandInfo>("state")),
         state_reader_(participant.make_reader<cockpit::ObjectState>("state")),
         hand_reader_(participant.make_reader<cockpit::HandState>("stream")),
         head_reader_(participant.make_reader<cockpit::HeadPose>("stream")),
@@ -40,9 +39,11 @@ class ImageGenerator {
   void drain() {
     while (info_reader_.take(info_)) cache_.on_info(info_);
     while (state_reader_.take(state_)) cache_.on_state(state_);
+    while (hand_info_reader_.take(hand_info_)) on_hand_info();
     while (hand_reader_.take(hand_)) cache_.on_hand(hand_);
     while (head_reader_.take(head_)) X_GHead_ = to_eigen(head_.X_GHead());
   }
+  void on_hand_info();
   bool wait_for_scene();
   void note_snapshot();
   void publish_status(int64_t now_ns);
@@ -51,6 +52,7 @@ class ImageGenerator {
   Eigen::Isometry3d X_GHead_;
   SceneCache cache_;
   Reader<cockpit::ObjectInfo> info_reader_;
+  Reader<cockpit::HandInfo> hand_info_reader_;
   Reader<cockpit::ObjectState> state_reader_;
   Reader<cockpit::HandState> hand_reader_;
   Reader<cockpit::HeadPose> head_reader_;
@@ -59,6 +61,7 @@ class ImageGenerator {
   int domain_id_;
   render::HmdConfig hmd_;
   cockpit::ObjectInfo info_;
+  cockpit::HandInfo hand_info_;
   cockpit::ObjectState state_;
   cockpit::HandState hand_;
   cockpit::HeadPose head_;
@@ -113,6 +116,22 @@ void ImageGenerator::note_snapshot() {
   std::fflush(snapshot_index_);
 }
 
+// A hand's geometry (at start, or again from a restarted physics node): its hand is drawn from now.
+void ImageGenerator::on_hand_info() {
+  const uint32_t id = hand_info_.hand_id();
+  if (!cache_.on_hand_info(hand_info_)) {
+    spdlog::warn("{} for hand {} refused (hand id beyond 1, or sizes negative or not finite)",
+                 TopicTraits<cockpit::HandInfo>::kName, id);
+    return;
+  }
+  const auto& index = hand_info_.capsules()[cockpit::INDEX_PROXIMAL];
+  spdlog::info("hand {} ({}) from {}: palm {:.3f} x {:.3f} x {:.3f} m, index proximal radius "
+               "{:.4f} m",
+               id, hand_info_.left() ? "left" : "right", TopicTraits<cockpit::HandInfo>::kName,
+               hand_info_.palm_size_m().x(), hand_info_.palm_size_m().y(),
+               hand_info_.palm_size_m().z(), index.radius_m());
+}
+
 bool ImageGenerator::wait_for_scene() {
   const int64_t deadline = monotonic_now_ns() + seconds_to_ns(options_.wait_timeout_s);
   while (!shutdown_requested() && monotonic_now_ns() < deadline) {
@@ -146,10 +165,13 @@ void ImageGenerator::publish_status(int64_t now_ns) {
   status.stage_time_us()[cockpit::STAGE_TOTAL] =
       frames > 0 ? static_cast<double>(render_ns_in_period_) * 1e-3 / static_cast<double>(frames) : 0.0;
   char detail[128];
-  std::snprintf(detail, sizeof detail, "%d objects, snapshots %llu written %llu skipped",
+  std::snprintf(detail, sizeof detail,
+                "%d objects, snapshots %llu written %llu skipped, hand states without hand_info "
+                "%llu",
                 static_cast<int>(cache_.object_count()),
                 static_cast<unsigned long long>(snapshots_ ? snapshots_->written() : 0),
-                static_cast<unsigned long long>(snapshots_ ? snapshots_->skipped() : 0));
+                static_cast<unsigned long long>(snapshots_ ? snapshots_->skipped() : 0),
+                static_cast<unsigned long long>(cache_.hand_states_without_info()));
   status.detail(detail);
   status_writer_.write(status);
   frames_at_last_status_ = frames_;
@@ -223,6 +245,11 @@ int ImageGenerator::run() {
   snapshots_.reset();  // finishes the queued PNGs
   if (snapshot_index_) std::fclose(snapshot_index_);
   spdlog::info("rendered {} frames; snapshots written {}", frames_, written);
+  if (cache_.hand_states_without_info() > 0 || cache_.hand_messages_refused() > 0) {
+    spdlog::warn("hand states not drawn: {} without {}, {} hand messages refused",
+                 cache_.hand_states_without_info(), TopicTraits<cockpit::HandInfo>::kName,
+                 cache_.hand_messages_refused());
+  }
   write_stats();
   return 0;
 }
@@ -230,8 +257,8 @@ int ImageGenerator::run() {
 }  // namespace
 
 int run_image_generator(DdsParticipant& participant, const HmdSetup& hmd,
-                        const hand::HandModel& hand, const IgOptions& options) {
-  ImageGenerator ig(participant, hmd, hand, options);
+                        const IgOptions& options) {
+  ImageGenerator ig(participant, hmd, options);
   return ig.run();
 }
 

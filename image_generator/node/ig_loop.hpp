@@ -1,6 +1,7 @@
 #pragma once
-// image_generator over DDS: the scene from cockpit/object_info + object_state + hand_state (a
-// late starter gets it from the transient-local topics), the head from cockpit/head_pose or the
+// image_generator over DDS: the scene from cockpit/object_info + object_state + hand_info +
+// hand_state (a late starter gets it from the transient-local topics; the hand's geometry comes
+// from the physics node's hand_info, no hand.yaml here), the head from cockpit/head_pose or the
 // design eye point, stereo frames rendered off-screen, cockpit/frame_info for every frame, PNG
 // snapshots every N frames, node_status once a second.
 
@@ -10,7 +11,6 @@
 #include "common/dds_participant.hpp"
 #include "image_generator/node/hmd_yaml.hpp"
 #include "image_generator/node/snapshot_writer.hpp"
-#include "hand/hand_model.hpp"
 
 namespace vcockpit::image_generator {
 
@@ -27,6 +27,6 @@ struct IgOptions {
 
 // Exit codes: 0 done, 3 no scene arrived in time, 4 rendering failed.
 int run_image_generator(DdsParticipant& participant, const HmdSetup& hmd,
-                        const hand::HandModel& hand, const IgOptions& options);
+                        const IgOptions& options);
 
 }  // namespace vcockpit::image_generator

@@ -1,5 +1,6 @@
 #include "image_generator/node/scene_cache.hpp"
 
+#include "idl/topics/hand_info_convert.hpp"
 #include "idl/topics/pose_convert.hpp"
 
 namespace vcockpit::image_generator {
@@ -39,9 +40,34 @@ void SceneCache::on_state(const cockpit::ObjectState& state) {
   newest_sim_time_ns_ = std::max(newest_sim_time_ns_, state.sim_time_ns());
 }
 
+bool SceneCache::on_hand_info(const cockpit::HandInfo& info) {
+  if (info.hand_id() >= kHandSlots || !hand_info_sizes_valid(info)) {
+    ++hand_messages_refused_;
+    return false;
+  }
+  Hand& h = hands_[info.hand_id()];
+  h.geometry = from_hand_info(info);
+  h.have_info = true;
+  if (h.have_state) {  // its state came first: drawn from now on
+    if (shown_ < 0) shown_ = static_cast<int>(info.hand_id());
+    newest_sim_time_ns_ = std::max(newest_sim_time_ns_, h.state.sim_time_ns());
+  }
+  return true;
+}
+
 void SceneCache::on_hand(const cockpit::HandState& hand) {
-  hand_state_ = hand;
-  have_hand_ = true;
+  if (hand.hand_id() >= kHandSlots) {
+    ++hand_messages_refused_;
+    return;
+  }
+  Hand& h = hands_[hand.hand_id()];
+  h.state = hand;
+  h.have_state = true;
+  if (!h.have_info) {
+    ++hand_states_without_info_;
+    return;
+  }
+  shown_ = static_cast<int>(hand.hand_id());
   newest_sim_time_ns_ = std::max(newest_sim_time_ns_, hand.sim_time_ns());
 }
 
@@ -56,21 +82,27 @@ void SceneCache::build(std::vector<render::Instance>& out) const {
   for (const auto& [id, o] : objects_) {
     if (o.have_info && o.have_pose) out.push_back(o.instance);
   }
-  if (!have_hand_) return;
-  const auto& colour = hand_state_.tracking() ? kSkin : kGlove;  // grey while the glove is lost
+  for (const Hand& h : hands_) {
+    if (h.have_info && h.have_state) append_hand(h, out);
+  }
+}
+
+void SceneCache::append_hand(const Hand& hand, std::vector<render::Instance>& out) {
+  const cockpit::HandState& state = hand.state;
+  const auto& colour = state.tracking() ? kSkin : kGlove;  // grey while the glove is lost
   render::Instance palm;
   palm.primitive = render::Primitive::kBox;
-  palm.X_GO = to_eigen(hand_state_.X_GL()[0]);
-  palm.size_m = hand_.palm_size_m;
+  palm.X_GO = to_eigen(state.X_GL()[0]);  // the palm link frame is the palm box centre (X_HP)
+  palm.size_m = hand.geometry.palm_size_m;
   palm.rgba = colour;
   out.push_back(palm);
   // a phalanx frame has its capsule along +x from its origin; the primitive's axis is z
   const Eigen::Isometry3d z_to_x(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
   for (int l = 1; l < hand::kLinkCount; ++l) {
-    const hand::Capsule& c = hand_.capsules[l];
+    const hand::Capsule& c = hand.geometry.capsules[l];
     render::Instance phalanx;
     phalanx.primitive = render::Primitive::kCapsule;
-    phalanx.X_GO = to_eigen(hand_state_.X_GL()[l]) *
+    phalanx.X_GO = to_eigen(state.X_GL()[l]) *
                    Eigen::Translation3d(0.5 * c.length_m, 0, 0) * z_to_x;
     phalanx.size_m = Eigen::Vector3d(c.radius_m, c.length_m, 0);
     phalanx.rgba = colour;

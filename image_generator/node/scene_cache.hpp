@@ -1,35 +1,52 @@
 #pragma once
 // What the image generator knows of the world: object geometry and colour from
-// cockpit/object_info, their poses from cockpit/object_state, the hand from cockpit/hand_state
-// (geometry from the hand model). Turned into render instances each frame without allocating
-// once the vectors have grown.
+// cockpit/object_info, their poses from cockpit/object_state, each hand's geometry from
+// cockpit/hand_info and its link poses from cockpit/hand_state. Turned into render instances each
+// frame without allocating once the vectors have grown.
+//
+// A hand is drawn only once the hand_info of its hand_id has arrived: the geometry is the one the
+// physics node simulates, never guessed. Hand states of a hand without info are kept (drawn as
+// soon as the info comes) and counted.
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <vector>
 
 #include "cockpit.h"
-#include "image_generator/render/stereo_renderer.hpp"
 #include "hand/hand_model.hpp"
+#include "image_generator/render/stereo_renderer.hpp"
 
 namespace vcockpit::image_generator {
 
 class SceneCache {
  public:
-  explicit SceneCache(const hand::HandModel& hand) : hand_(hand) {}
+  static constexpr int kHandSlots = 2;  // hand_id 0 right, 1 left
 
   void on_info(const cockpit::ObjectInfo& info);
   void on_state(const cockpit::ObjectState& state);
+  // False (and counted) when the info is unusable: hand_id beyond 1, sizes negative, zero palm or
+  // not finite. A later info for the same hand replaces the geometry.
+  bool on_hand_info(const cockpit::HandInfo& info);
   void on_hand(const cockpit::HandState& hand);
 
   bool has_objects() const { return !objects_.empty(); }
   std::size_t object_count() const { return objects_.size(); }
-  bool has_hand() const { return have_hand_; }
-  const cockpit::HandState& hand() const { return hand_state_; }
+  // A hand that is drawn (info and state), and the state of the one updated last.
+  bool has_hand() const { return shown_ >= 0; }
+  const cockpit::HandState& hand() const { return hands_[shown_ < 0 ? 0 : shown_].state; }
+  bool has_hand_info(uint32_t hand_id) const {
+    return hand_id < kHandSlots && hands_[hand_id].have_info;
+  }
+  // Hand states received for a hand without info (not drawn), and hand states or infos refused
+  // (hand_id beyond 1, bad sizes).
+  uint64_t hand_states_without_info() const { return hand_states_without_info_; }
+  uint64_t hand_messages_refused() const { return hand_messages_refused_; }
   int64_t newest_sim_time_ns() const { return newest_sim_time_ns_; }
   Eigen::Vector3d object_position(uint32_t id) const;
 
-  // Objects with both info and a pose, then the hand's palm box and 15 phalanx capsules.
+  // Objects with both info and a pose, then for each drawn hand its palm box and 15 phalanx
+  // capsules.
   void build(std::vector<render::Instance>& out) const;
 
  private:
@@ -38,11 +55,20 @@ class SceneCache {
     bool have_pose = false;
     render::Instance instance;
   };
+  struct Hand {
+    bool have_info = false;
+    bool have_state = false;
+    hand::HandModel geometry;  // capsules and palm box only (from_hand_info)
+    cockpit::HandState state;
+  };
 
-  const hand::HandModel& hand_;
+  static void append_hand(const Hand& hand, std::vector<render::Instance>& out);
+
   std::map<uint32_t, Object> objects_;  // by object id: drawn in id order
-  cockpit::HandState hand_state_;
-  bool have_hand_ = false;
+  std::array<Hand, kHandSlots> hands_;  // by hand_id
+  int shown_ = -1;                      // hand_id of the drawn hand updated last; -1 none
+  uint64_t hand_states_without_info_ = 0;
+  uint64_t hand_messages_refused_ = 0;
   int64_t newest_sim_time_ns_ = 0;
 };
 

@@ -30,6 +30,7 @@ class Node {
                                                                               : "stream")),
         publisher_(participant, world_) {
     publisher_.publish_object_info(world_);
+    publisher_.publish_hand_info(world_);
     last_status_ns_ = monotonic_now_ns();
     last_sample_wall_ns_ = last_status_ns_;
   }

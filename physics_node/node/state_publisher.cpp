@@ -1,6 +1,7 @@
 #include "physics_node/node/state_publisher.hpp"
 
 #include "common/clock.hpp"
+#include "idl/topics/hand_info_convert.hpp"
 #include "idl/topics/pose_convert.hpp"
 #include "physics_node/io/grasp_event_text.hpp"
 
@@ -21,6 +22,7 @@ cockpit::ShapeKind shape_to_idl(physics::ShapeKind kind) {
 
 StatePublisher::StatePublisher(DdsParticipant& participant, const physics::World& world)
     : info_writer_(participant.make_writer<cockpit::ObjectInfo>("state")),
+      hand_info_writer_(participant.make_writer<cockpit::HandInfo>("state")),
       hand_writer_(participant.make_writer<cockpit::HandState>("stream")),
       object_writer_(participant.make_writer<cockpit::ObjectState>("state")),
       event_writer_(participant.make_writer<cockpit::GraspEvent>("event")),
@@ -56,6 +58,12 @@ void StatePublisher::publish_object_info(const physics::World& world) {
       object_writer_.write(object_msg_);
     }
   }
+}
+
+void StatePublisher::publish_hand_info(const physics::World& world) {
+  if (!world.scene().hand) return;
+  const auto hand_id = static_cast<uint32_t>(world.hand_id());
+  hand_info_writer_.write(to_hand_info(*world.scene().hand, hand_id));
 }
 
 void StatePublisher::publish_state(const physics::World& world, const InputStamps& stamps,
@@ -106,7 +114,8 @@ void StatePublisher::flush(int64_t timeout_ns) {
   const int64_t deadline_ns = monotonic_now_ns() + timeout_ns;
   for (const UntypedWriter* writer :
        {static_cast<const UntypedWriter*>(&event_writer_), static_cast<const UntypedWriter*>(&object_writer_),
-        static_cast<const UntypedWriter*>(&status_writer_), static_cast<const UntypedWriter*>(&info_writer_)}) {
+        static_cast<const UntypedWriter*>(&status_writer_), static_cast<const UntypedWriter*>(&info_writer_),
+        static_cast<const UntypedWriter*>(&hand_info_writer_)}) {
     const int64_t left_ns = deadline_ns - monotonic_now_ns();
     if (left_ns <= 0) break;
     writer->wait_for_acknowledgments(left_ns);

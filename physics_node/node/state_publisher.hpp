@@ -2,6 +2,8 @@
 // The physics node's DDS outputs: the world as topics. Messages are preallocated and fixed-size,
 // so publishing in the loop neither allocates nor throws.
 //   cockpit/object_info   every object's geometry and colour, once (state: transient local)
+//   cockpit/hand_info     the simulated hand's capsules and palm box, once (state), so the image
+//                         generator draws this hand and not one from its own hand.yaml
 //   cockpit/hand_state    the hand's 16 link poses and the sample they came from (stream)
 //   cockpit/object_state  every dynamic object's pose and velocities (state)
 //   cockpit/grasp_event   every GRASP and RELEASE with its reason (event)
@@ -26,6 +28,8 @@ class StatePublisher {
   StatePublisher(DdsParticipant& participant, const physics::World& world);
 
   void publish_object_info(const physics::World& world);
+  // The hand's geometry (nothing when the scene has no hand).
+  void publish_hand_info(const physics::World& world);
   void publish_state(const physics::World& world, const InputStamps& stamps, bool tracking);
   void publish_events(const physics::World& world);
   void publish_status(const cockpit::NodeStatus& status) { status_writer_.write(status); }
@@ -34,6 +38,7 @@ class StatePublisher {
 
  private:
   Writer<cockpit::ObjectInfo> info_writer_;
+  Writer<cockpit::HandInfo> hand_info_writer_;
   Writer<cockpit::HandState> hand_writer_;
   Writer<cockpit::ObjectState> object_writer_;
   Writer<cockpit::GraspEvent> event_writer_;

@@ -1,8 +1,10 @@
 // Test scene publisher: a few coloured boxes on cockpit/object_info + object_state (transient
-// local, as the physics node publishes them) and a hand_state carrying a known source stamp,
-// repeated at 100 Hz until a signal or --duration.
+// local, as the physics node publishes them), the hand's geometry on cockpit/hand_info (state,
+// as the physics node publishes it) and a hand_state carrying a known source stamp, repeated at
+// 100 Hz until a signal or --duration.
 //   --box "r,g,b,x,y,z,size"   (repeatable) a cube of `size` m at (x, y, z) in world
 //   --hand-stamp NS            source_stamp_ns of the hand_state (its links sit far below the floor)
+//   --hand-config FILE         hand.yaml of the hand_info (default: config/hand.yaml)
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -13,6 +15,8 @@
 
 #include "common/clock.hpp"
 #include "common/dds_participant.hpp"
+#include "hand/hand_yaml.hpp"
+#include "idl/topics/hand_info_convert.hpp"
 #include "idl/topics/pose_convert.hpp"
 #include "common/logging.hpp"
 #include "common/signals.hpp"
@@ -25,9 +29,11 @@ int main(int argc, char** argv) {
   std::vector<std::string> boxes;
   int64_t hand_stamp_ns = 0;
   double duration_s = 0;
+  std::string hand_config = std::string(VCOCKPIT_CONFIG_DIR) + "/hand.yaml";
   app.add_option("--box", boxes, "r,g,b,x,y,z,size")->required();
   app.add_option("--hand-stamp", hand_stamp_ns);
   app.add_option("--duration", duration_s);
+  app.add_option("--hand-config", hand_config)->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
   setup_logging("scene_pub");
   install_shutdown_handlers();
@@ -36,6 +42,8 @@ int main(int argc, char** argv) {
     auto info_writer = participant.make_writer<cockpit::ObjectInfo>("state");
     auto state_writer = participant.make_writer<cockpit::ObjectState>("state");
     auto hand_writer = participant.make_writer<cockpit::HandState>("stream");
+    auto hand_info_writer = participant.make_writer<cockpit::HandInfo>("state");
+    hand_info_writer.write(to_hand_info(load_hand_model(hand_config), 0));  // hand_state's hand_id
     std::vector<cockpit::ObjectState> states;
     for (std::size_t i = 0; i < boxes.size(); ++i) {
       std::vector<double> v;
@@ -60,6 +68,7 @@ int main(int argc, char** argv) {
       states.push_back(state);
     }
     cockpit::HandState hand;
+    hand.hand_id(0);
     hand.source_stamp_ns(hand_stamp_ns);
     hand.sample_time_ns(hand_stamp_ns);
     hand.tracking(true);
