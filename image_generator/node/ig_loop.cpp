@@ -71,6 +71,7 @@ class ImageGenerator {
   uint64_t frames_at_last_status_ = 0;
   int64_t render_ns_in_period_ = 0;
   int64_t last_status_ns_ = 0;
+  bool warned_hand_without_info_ = false;
   std::unique_ptr<SnapshotWriter> snapshots_;
   std::FILE* snapshot_index_ = nullptr;
   // for --stats-out: every frame's render time
@@ -174,6 +175,11 @@ void ImageGenerator::publish_status(int64_t now_ns) {
                 static_cast<unsigned long long>(cache_.hand_states_without_info()));
   status.detail(detail);
   status_writer_.write(status);
+  if (const int id = cache_.hand_without_info(); id >= 0 && !warned_hand_without_info_) {
+    spdlog::warn("hand {} on {} but no {} for it: not drawn (is the physics node an older one?)",
+                 id, TopicTraits<cockpit::HandState>::kName, TopicTraits<cockpit::HandInfo>::kName);
+    warned_hand_without_info_ = true;
+  }
   frames_at_last_status_ = frames_;
   render_ns_in_period_ = 0;
   last_status_ns_ = now_ns;
@@ -245,10 +251,8 @@ int ImageGenerator::run() {
   snapshots_.reset();  // finishes the queued PNGs
   if (snapshot_index_) std::fclose(snapshot_index_);
   spdlog::info("rendered {} frames; snapshots written {}", frames_, written);
-  if (cache_.hand_states_without_info() > 0 || cache_.hand_messages_refused() > 0) {
-    spdlog::warn("hand states not drawn: {} without {}, {} hand messages refused",
-                 cache_.hand_states_without_info(), TopicTraits<cockpit::HandInfo>::kName,
-                 cache_.hand_messages_refused());
+  if (cache_.hand_messages_refused() > 0) {
+    spdlog::warn("{} hand_state/hand_info messages refused", cache_.hand_messages_refused());
   }
   write_stats();
   return 0;

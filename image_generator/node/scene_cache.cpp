@@ -71,6 +71,13 @@ void SceneCache::on_hand(const cockpit::HandState& hand) {
   newest_sim_time_ns_ = std::max(newest_sim_time_ns_, hand.sim_time_ns());
 }
 
+int SceneCache::hand_without_info() const {
+  for (int id = 0; id < kHandSlots; ++id) {
+    if (hands_[id].have_state && !hands_[id].have_info) return id;
+  }
+  return -1;
+}
+
 Eigen::Vector3d SceneCache::object_position(uint32_t id) const {
   auto it = objects_.find(id);
   if (it == objects_.end()) return Eigen::Vector3d::Zero();

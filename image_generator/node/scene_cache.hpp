@@ -38,8 +38,11 @@ class SceneCache {
   bool has_hand_info(uint32_t hand_id) const {
     return hand_id < kHandSlots && hands_[hand_id].have_info;
   }
-  // Hand states received for a hand without info (not drawn), and hand states or infos refused
-  // (hand_id beyond 1, bad sizes).
+  // The hand_id of a hand whose state arrived but whose info has not (not drawn); -1 none.
+  int hand_without_info() const;
+  // Hand states received for a hand without info (not drawn; a few are normal at start, before
+  // the transient-local info arrives), and hand states or infos refused (hand_id beyond 1, bad
+  // sizes).
   uint64_t hand_states_without_info() const { return hand_states_without_info_; }
   uint64_t hand_messages_refused() const { return hand_messages_refused_; }
   int64_t newest_sim_time_ns() const { return newest_sim_time_ns_; }

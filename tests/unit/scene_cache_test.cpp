@@ -59,12 +59,14 @@ TEST(SceneCache, NoHandIsDrawnBeforeItsHandInfo) {
   EXPECT_FALSE(cache.has_hand());
   EXPECT_FALSE(cache.has_hand_info(0));
   EXPECT_EQ(cache.hand_states_without_info(), 1u);
+  EXPECT_EQ(cache.hand_without_info(), 0);
   EXPECT_EQ(cache.newest_sim_time_ns(), 0) << "an undrawn hand is not part of the drawn world";
 
   // the info arrives: the hand kept from before is drawn with the info's sizes
   ASSERT_TRUE(cache.on_hand_info(to_hand_info(shipped_hand(), 0)));
   EXPECT_TRUE(cache.has_hand_info(0));
   EXPECT_TRUE(cache.has_hand());
+  EXPECT_EQ(cache.hand_without_info(), -1);
   EXPECT_EQ(cache.hand().hand_id(), 0u);
   EXPECT_EQ(cache.newest_sim_time_ns(), 5'000'000);
   cache.build(out);
@@ -94,6 +96,7 @@ TEST(SceneCache, EachHandUsesTheInfoOfItsOwnHandId) {
   ASSERT_EQ(out.size(), kHandInstances) << "only the right hand";
   EXPECT_EQ(out[4].size_m.x(), 2.0 * shipped_hand().capsules[4].radius_m);
   EXPECT_EQ(cache.hand_states_without_info(), 1u);
+  EXPECT_EQ(cache.hand_without_info(), 1);
   EXPECT_EQ(cache.hand().hand_id(), 0u);
 
   // the left hand's info: both hands drawn, each with its own sizes
