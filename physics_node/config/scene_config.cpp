@@ -297,10 +297,34 @@ physics::ContactParams parse_contact(const ConfigNode& node) {
   return c;
 }
 
+physics::ProxyParams parse_proxy(const ConfigNode& node) {
+  node.expect_keys({"enabled", "max_speed_mps", "max_spin_radps", "push_speed_mps",
+                    "grip_force_N", "static_depth_m"});
+  physics::ProxyParams p;
+  auto pos = [](const ConfigNode& n) { return positive(n); };
+  if (auto e = node.find("enabled")) p.enabled = e->as_bool();
+  read_optional(node, "max_speed_mps", p.max_speed_mps, pos);
+  read_optional(node, "max_spin_radps", p.max_spin_radps, pos);
+  read_optional(node, "push_speed_mps", p.push_speed_mps, pos);
+  read_optional(node, "grip_force_N", p.grip_force_N, pos);
+  // the promise is "never more than 1 mm inside a static object"
+  read_optional(node, "static_depth_m", p.static_depth_m,
+                [](const ConfigNode& n) { return in_open_closed(n, 0.0, 1.0e-3); });
+  if (p.push_speed_mps > p.max_speed_mps) {
+    const ConfigNode at =
+        node.has("push_speed_mps") ? node["push_speed_mps"] : node["max_speed_mps"];
+    at.fail("push_speed_mps " + format_number(p.push_speed_mps) +
+                                " must not exceed max_speed_mps " +
+                                format_number(p.max_speed_mps));
+  }
+  return p;
+}
+
 }  // namespace
 
 physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) {
-  root.expect_keys({"gravity", "step_s", "hand", "hand_material", "objects", "grasp", "contact"});
+  root.expect_keys({"gravity", "step_s", "hand", "hand_material", "objects", "grasp", "contact",
+                   "proxy"});
   Scene scene;
   scene.gravity_mps2 = vector3(root["gravity"].as_doubles<3>());
   scene.step_s = in_open_closed(root["step_s"], 0.0, kMaxStep_s);
@@ -310,6 +334,7 @@ physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) 
   parse_objects(root["objects"], scene);
   read_optional(root, "grasp", scene.grasp, parse_grasp);
   read_optional(root, "contact", scene.contact, parse_contact);
+  read_optional(root, "proxy", scene.proxy, parse_proxy);
   return scene;
 }
 

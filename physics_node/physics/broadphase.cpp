@@ -39,9 +39,11 @@ SweepAndPrune::SweepAndPrune(std::vector<BroadphaseBody> kinds)
 bool SweepAndPrune::can_act(int a, int b) const {
   const BroadphaseBody ka = kinds_[static_cast<std::size_t>(a)];
   const BroadphaseBody kb = kinds_[static_cast<std::size_t>(b)];
-  if (ka != BroadphaseBody::kDynamic && kb != BroadphaseBody::kDynamic) return false;
   const bool hand = ka == BroadphaseBody::kHand || kb == BroadphaseBody::kHand;
-  return !hand || hand_enabled_;
+  if (hand && !hand_enabled_) return false;
+  if (ka == BroadphaseBody::kDynamic || kb == BroadphaseBody::kDynamic) return true;
+  // neither is dynamic: static-static and hand-hand never act; hand-static when asked for
+  return report_hand_static_ && hand && (ka == BroadphaseBody::kStatic || kb == BroadphaseBody::kStatic);
 }
 
 void SweepAndPrune::find_pairs(std::vector<BodyPair>& out) {

@@ -4,8 +4,9 @@
 // their sorted order from substep to substep, so re-sorting after a small motion is an insertion
 // sort of a nearly sorted list: O(n) plus the few swaps.
 //
-// Pairs that cannot act are never reported: static-static, hand-static, hand-hand, and the hand
-// while it is disabled. The output is sorted by (lo, hi), whatever the sweep order.
+// Pairs that cannot act are never reported: static-static, hand-hand, the hand while it is
+// disabled, and hand-static unless asked for (the proxy hand needs them to stay out of panels;
+// no force acts on such a pair). The output is sorted by (lo, hi), whatever the sweep order.
 
 #include <Eigen/Geometry>
 
@@ -49,6 +50,7 @@ class SweepAndPrune {
   void set_box(int body, const Aabb& box) { boxes_[static_cast<std::size_t>(body)] = box; }
   const Aabb& box(int body) const { return boxes_[static_cast<std::size_t>(body)]; }
   void set_hand_enabled(bool enabled) { hand_enabled_ = enabled; }
+  void set_report_hand_static(bool report) { report_hand_static_ = report; }
 
   // The overlapping pairs that can act, into `out` (cleared first). No allocation once `out`
   // has grown to the largest pair count.
@@ -62,6 +64,7 @@ class SweepAndPrune {
   std::vector<int> order_;  // bodies by the lower end of their box on the sweep axis
   int axis_ = -1;           // chosen on the first sweep: where the boxes are spread the most
   bool hand_enabled_ = false;
+  bool report_hand_static_ = false;
 };
 
 }  // namespace vcockpit::physics

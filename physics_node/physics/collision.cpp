@@ -385,6 +385,8 @@ CollisionWorld::CollisionWorld(const Scene& scene) : impl_(std::make_unique<Impl
   std::vector<BodyKind> kinds;
   for (const Body& b : m.bodies) kinds.push_back(b.kind);
   m.broadphase = std::make_unique<SweepAndPrune>(std::move(kinds));
+  report_hand_static_ = has_hand_ && scene.proxy.enabled;
+  m.broadphase->set_report_hand_static(report_hand_static_);
   for (std::size_t i = 0; i < m.objects.size(); ++i)
     m.place(static_cast<int>(i), m.objects[i]->getTransform());
 
@@ -421,13 +423,22 @@ void CollisionWorld::find_candidate_pairs() {
   m.broadphase->find_pairs(m.pairs);
 }
 
-void CollisionWorld::compute_contacts(std::vector<ContactPoint>& out) {
+void CollisionWorld::compute_contacts(std::vector<ContactPoint>& out,
+                                      std::vector<ContactPoint>* hand_static) {
   Impl& m = *impl_;
   out.clear();
   if (out.capacity() < m.contact_capacity) out.reserve(m.contact_capacity);
+  if (hand_static != nullptr) {
+    hand_static->clear();
+    if (hand_static->capacity() < 64) hand_static->reserve(64);
+  }
   for (const BodyPair& pair : m.pairs) {
-    if (m.skip_hand != nullptr && pair.lo < object_count_ && pair.hi >= object_count_ &&
-        (*m.skip_hand)[static_cast<std::size_t>(pair.lo)] != 0)
+    const bool hand_pair = pair.lo < object_count_ && pair.hi >= object_count_;
+    if (hand_pair && m.bodies[static_cast<std::size_t>(pair.lo)].kind == BodyKind::kStatic) {
+      if (hand_static != nullptr) m.narrowphase(pair, *hand_static);
+      continue;
+    }
+    if (hand_pair && m.skip_hand != nullptr && (*m.skip_hand)[static_cast<std::size_t>(pair.lo)] != 0)
       continue;
     m.narrowphase(pair, out);
   }

@@ -5,7 +5,8 @@
 // contact (a cylinder's cap or side, or a capsule, lying on a face), a manifold of up to
 // max_points_per_pair points is built on the face, so such bodies rest without rocking.
 //
-// Pairs that cannot act are never reported: static-static, hand-static and link-link. The output
+// Pairs that cannot act are never reported: static-static and link-link. Hand-static pairs, on
+// which no force acts, are reported apart, and only to a world whose proxy hand asks for them. The output
 // is ordered (by body_a, body_b, then the pair's own order: FCL's, or the manifold's deepest
 // first), so the same poses always give the same contacts in the same order.
 
@@ -43,7 +44,12 @@ class CollisionWorld {
   void find_candidate_pairs();
   // Narrowphase over the candidates: contact points appended to `out` after clearing it
   // (stage "narrowphase"). Allocation-free once `out` and the internals have warmed up.
-  void compute_contacts(std::vector<ContactPoint>& out);
+  // Hand-static contacts (body_a the static object, body_b the link) go to `hand_static` (also
+  // cleared first) when it is given and the world was built to report them.
+  void compute_contacts(std::vector<ContactPoint>& out,
+                        std::vector<ContactPoint>* hand_static = nullptr);
+  // Whether the broadphase reports hand-static pairs (the proxy hand's), from construction.
+  bool reports_hand_static() const { return report_hand_static_; }
 
   // Pairs of a hand link and an object flagged in `objects` are left out of the narrowphase
   // until called again (null: none). The world does this for held objects on all but the last
@@ -65,6 +71,7 @@ class CollisionWorld {
   std::unique_ptr<Impl> impl_;
   int object_count_ = 0;
   bool has_hand_ = false;
+  bool report_hand_static_ = false;
 };
 
 }  // namespace vcockpit::physics

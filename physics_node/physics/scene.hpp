@@ -83,6 +83,18 @@ struct ContactParams {
   int max_points_per_pair = 4;
 };
 
+// The proxy hand (proxy_hand.hpp): the hand that touches the world follows the tracked hand
+// through bounded coupling, a god-object per link in the spirit of Borst & Indugula (2005) and
+// Jacobs & Froehlich (2011): it goes where the tracked hand goes as far as the world lets it.
+struct ProxyParams {
+  bool enabled = true;             // false: the links are where the tracked hand is (the paper's)
+  double max_speed_mps = 3.0;      // the wrist's catch-up speed toward the tracked hand
+  double max_spin_radps = 30.0;    // the wrist's catch-up rotation rate
+  double push_speed_mps = 0.3;     // how fast the hand moves while it pushes a free object
+  double grip_force_N = 8.0;       // a link goes into an object only as deep as this force needs
+  double static_depth_m = 2.0e-4;  // how deep a link may rest in a static object
+};
+
 // Beyond these a body's state is taken as broken (nothing in a cockpit gets there; a blown-up
 // contact or a bad state does): after each step such a body is put back where it was at the
 // step's start, at rest, and counted (MuJoCo's mj_checkPos / mj_checkVel warn and reset).
@@ -100,6 +112,7 @@ struct Scene {
   Material hand_material{2.0e4, 0.7, 1.0, 0.8};  // skin on a glove: grippy and soft
   GraspParams grasp;
   ContactParams contact;
+  ProxyParams proxy;
   SanityLimits limits;
 
   // -1 when no object has that name.

@@ -58,6 +58,7 @@ World::World(Scene scene)
   if (scene_.contact.max_substeps < 1 || !(scene_.step_s > 0.0))
     throw std::invalid_argument("World: the step and max_substeps must be positive");
   hand_id_ = grasp_tracker_.hand_id();
+  if (scene_.hand && scene_.proxy.enabled) proxy_.emplace(scene_);
   state_.bodies.resize(object_count_);
   X_GO_.resize(object_count_);
   X_GO_before_.resize(object_count_);
@@ -77,6 +78,7 @@ World::World(Scene scene)
   }
   state_.X_GL.fill(Eigen::Isometry3d::Identity());
   X_GL_before_ = state_.X_GL;
+  tracked_X_GL_ = state_.X_GL;
   state_.substeps = choose_substeps();  // for the initial state: the count the first step will use
   const int body_count = object_count_ + (scene_.hand ? kLinkCount : 0);
   contact_bodies_.resize(body_count);
@@ -92,8 +94,14 @@ World::World(Scene scene)
 World::~World() = default;
 
 // Substeps for the coming step (substep_choice.hpp): the hand sweeps from its links now to the
-// latest input.
+// latest input, or the proxy to where it heads (never farther than its speeds allow).
 int World::choose_substeps() {
+  if (proxy_ && state_.hand_active) {
+    proxy_goal_ = proxy_->step_goal({state_.X_GH, state_.q_rad}, state_.hand_to, state_.pushing,
+                                    scene_.step_s);
+    return substep_choice_.choose(state_.bodies, &state_.X_GL, proxy_goal_.X_GH,
+                                  proxy_goal_.q_rad);
+  }
   return substep_choice_.choose(state_.bodies, state_.hand_active ? &state_.X_GL : nullptr,
                                 state_.hand_to.X_GH, state_.hand_to.q_rad);
 }
@@ -107,6 +115,8 @@ void World::restore(const WorldState& state) {
                     "a world state of another scene (grasp velocity window)");
   VCOCKPIT_ASSERT(!state.hand_active || scene_.hand.has_value(), "a hand state without a hand");
   state_ = state;
+  proxy_prev_links_valid_ = false;
+  tracked_observed_ = false;
   // the last step's observations belong to the world the state came from
   applied_.clear();
   events_.clear();
@@ -121,8 +131,10 @@ void World::set_hand_input(const HandInput& input) {
   if (!state_.hand_active) {
     state_.hand_from = input;  // first sample: no sweep from nowhere
     state_.hand_active = true;
-    move_hand(1.0);
+    place_hand(input.X_GH, input.q_rad);
     X_GL_before_ = state_.X_GL;
+    proxy_prev_links_valid_ = false;
+    tracked_observed_ = false;
   }
 }
 
@@ -139,15 +151,20 @@ void World::step() {
                   "substeps in [1, max_substeps]");
   // a held object and the hand move together: their contacts matter to the grasp test only,
   // which reads the last substep's, so the substeps before it leave them out (their friction
-  // anchors carry over)
+  // anchors carry over) -- but for a proxy hand, whose fingers stop at the held object's surface
   bool any_held = false;
   for (int i = 0; i < object_count_; ++i) {
     held_mask_[i] = state_.bodies[i].held_by != kNotHeld ? 1 : 0;
     any_held = any_held || held_mask_[i] != 0;
   }
+  if (proxy_ && state_.hand_active && !proxy_prev_links_valid_) {
+    forward_kinematics(*scene_.hand, state_.q_rad, proxy_prev_links_);
+    proxy_prev_links_valid_ = true;
+  }
   const double dt_s = scene_.step_s / state_.substeps;
   for (int s = 1; s <= state_.substeps; ++s)
-    substep(dt_s, static_cast<double>(s) / state_.substeps, any_held && s < state_.substeps);
+    substep(dt_s, static_cast<double>(s) / state_.substeps, state_.substeps - s + 1,
+            any_held && s < state_.substeps);
   state_.time_ns += step_ns_;
   ++state_.steps;
   {
@@ -155,13 +172,15 @@ void World::step() {
     body_check_.check(state_.bodies, start_bodies_, state_.time_ns);
   }
   grasp_stage();
+  tracked_observed_ = false;
   state_.hand_from = state_.hand_to;
 }
 
-void World::substep(double dt_s, double alpha, bool skip_held_hand_pairs) {
+void World::substep(double dt_s, double alpha, int remaining, bool skip_held_hand_pairs) {
+  held_pairs_skipped_ = skip_held_hand_pairs;
   {
     StageTimer timer(stage_times_, Stage::kHandKinematics);
-    if (state_.hand_active) move_hand(alpha);
+    if (state_.hand_active) move_hand(alpha, remaining);
     move_held_objects(dt_s);
   }
   {
@@ -173,7 +192,11 @@ void World::substep(double dt_s, double alpha, bool skip_held_hand_pairs) {
   {
     StageTimer timer(stage_times_, Stage::kNarrowphase);
     collision_.skip_hand_pairs_with(skip_held_hand_pairs ? &held_mask_ : nullptr);
-    collision_.compute_contacts(contacts_);
+    collision_.compute_contacts(contacts_, proxy_ ? &hand_static_ : nullptr);
+  }
+  if (proxy_ && state_.hand_active) {
+    StageTimer timer(stage_times_, Stage::kHandKinematics);
+    constrain_proxy(dt_s);
   }
   {
     StageTimer timer(stage_times_, Stage::kForces);
@@ -192,16 +215,67 @@ void World::substep(double dt_s, double alpha, bool skip_held_hand_pairs) {
   }
 }
 
-void World::move_hand(double alpha) {
-  const HandModel& hand = *scene_.hand;
-  state_.X_GH = interpolate(state_.hand_from.X_GH, state_.hand_to.X_GH, alpha);
+void World::move_hand(double alpha, int remaining) {
+  X_GL_before_ = state_.X_GL;
+  if (proxy_) {
+    // the proxy's tentative pose; constrain_proxy holds it back after the narrowphase
+    proxy_prev_ = {state_.X_GH, state_.q_rad};
+    ProxyPose next = ProxyHand::advance(proxy_prev_, proxy_goal_, remaining);
+    // a finger on a held object waits for the last substep, where their contacts are known
+    if (remaining > 1 && held_pairs_skipped_) proxy_->keep_fingers(state_.fingers_on_held, proxy_prev_, next);
+    place_hand(next.X_GH, next.q_rad);
+    return;
+  }
   JointAngles q;
   for (int j = 0; j < kJointCount; ++j) {
     q[j] = state_.hand_from.q_rad[j] + alpha * (state_.hand_to.q_rad[j] - state_.hand_from.q_rad[j]);
   }
-  forward_kinematics(hand, q, link_poses_);
-  X_GL_before_ = state_.X_GL;
+  place_hand(interpolate(state_.hand_from.X_GH, state_.hand_to.X_GH, alpha), q);
+}
+
+void World::place_hand(const Eigen::Isometry3d& X_GH, const JointAngles& q_rad) {
+  state_.X_GH = X_GH;
+  state_.q_rad = q_rad;
+  forward_kinematics(*scene_.hand, q_rad, link_poses_);
   for (int l = 0; l < kLinkCount; ++l) state_.X_GL[l] = state_.X_GH * link_poses_.X_HL[l];
+}
+
+void World::constrain_proxy(double dt_s) {
+  ProxyPose pose{state_.X_GH, state_.q_rad};
+  const ProxyConstraint r =
+      proxy_->constrain(proxy_prev_, proxy_prev_links_, pose, link_poses_, state_.X_GL,
+                        held_mask_, contacts_, hand_static_, dt_s);
+  state_.X_GH = pose.X_GH;
+  state_.q_rad = pose.q_rad;
+  state_.pushing = r.pushing;
+  if (!held_pairs_skipped_) state_.fingers_on_held = proxy_->fingers_touching(contacts_, held_mask_);
+  proxy_prev_links_ = link_poses_;
+  if (r.shift_G.squaredNorm() == 0.0) return;
+  // the held objects move with the proxy (eq. 29)
+  for (int i = 0; i < object_count_; ++i) {
+    BodyState& body = state_.bodies[i];
+    if (body.held_by == kNotHeld) continue;
+    body.X_GO.translation() += r.shift_G;
+    finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
+  }
+}
+
+void World::observe_tracked_hand() const {
+  if (tracked_observed_) return;
+  tracked_observed_ = true;
+  tracked_offset_m_ = 0.0;
+  if (!proxy_ || !state_.hand_active) return;
+  HandLinkPoses tracked;
+  forward_kinematics(*scene_.hand, state_.hand_to.q_rad, tracked);
+  const Eigen::Isometry3d& X_GT = state_.hand_to.X_GH;
+  double offset_m = 0.0;
+  for (int l = 0; l < kLinkCount; ++l) {
+    tracked_X_GL_[l] = X_GT * tracked.X_HL[l];
+    offset_m = std::max(offset_m, (tracked_X_GL_[l].translation() - state_.X_GL[l].translation()).norm());
+  }
+  for (int f = 0; f < kFingerCount; ++f)
+    offset_m = std::max(offset_m, (X_GT * tracked.p_H_tip[f] - state_.X_GH * link_poses_.p_H_tip[f]).norm());
+  tracked_offset_m_ = offset_m;
 }
 
 void World::move_held_objects(double dt_s) {
@@ -296,6 +370,8 @@ void World::grasp_stage() {
     next_object = object + 1;
   }
   grasp_untouched_up_to(object_count_);
+  for (const ContactPoint& c : hand_static_)
+    penetration_.static_max_m = std::max(penetration_.static_max_m, c.depth_m);
   // held poses for the release velocity
   for (int o = 0; o < object_count_; ++o)
     if (state_.bodies[o].held_by != kNotHeld)

@@ -20,6 +20,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "physics_node/physics/body.hpp"
@@ -29,6 +30,7 @@
 #include "physics_node/physics/contact_forces.hpp"
 #include "physics_node/physics/grasp.hpp"
 #include "physics_node/physics/grasp_tracker.hpp"
+#include "physics_node/physics/proxy_hand.hpp"
 #include "physics_node/physics/scene.hpp"
 #include "physics_node/physics/substep_choice.hpp"
 #include "physics_node/physics/world_state.hpp"
@@ -45,11 +47,12 @@ struct StageTimes {
   std::array<int64_t, kStageCount> ns{};  // wall time per stage over the last step
 };
 
-// Hand-object penetration over the last step (m).
+// Hand-object penetration over the last step (m), and the deepest link in a static object.
 struct PenetrationStats {
   double max_m = 0.0;
   double sum_m = 0.0;
   int points = 0;
+  double static_max_m = 0.0;
 };
 
 class World {
@@ -75,8 +78,20 @@ class World {
   bool hand_active() const { return state_.hand_active; }
 
   const std::vector<BodyState>& bodies() const { return state_.bodies; }
+  // The hand that touches the world (the proxy's, when the scene has one): what is drawn.
   const Eigen::Isometry3d& X_GH() const { return state_.X_GH; }
   const std::array<Eigen::Isometry3d, kLinkCount>& X_GL() const { return state_.X_GL; }
+  // The tracked hand's links at the end of the last step, and how far the farthest link origin
+  // or fingertip of the proxy is from them (m; 0 without a proxy).
+  bool has_proxy() const { return proxy_.has_value(); }
+  const std::array<Eigen::Isometry3d, kLinkCount>& tracked_X_GL() const {
+    observe_tracked_hand();
+    return proxy_ ? tracked_X_GL_ : state_.X_GL;
+  }
+  double tracked_offset_m() const {
+    observe_tracked_hand();
+    return tracked_offset_m_;
+  }
   // Pose of the held object in the hand frame (eq. 28), valid while held.
   const Eigen::Isometry3d& X_HO(int object) const { return state_.grasp[object].X_HO; }
 
@@ -94,8 +109,11 @@ class World {
 
  private:
   int choose_substeps();
-  void substep(double dt_s, double alpha, bool skip_held_hand_pairs);
-  void move_hand(double alpha);
+  void substep(double dt_s, double alpha, int remaining, bool skip_held_hand_pairs);
+  void move_hand(double alpha, int remaining);
+  void place_hand(const Eigen::Isometry3d& X_GH, const JointAngles& q_rad);
+  void constrain_proxy(double dt_s);
+  void observe_tracked_hand() const;  // on demand: one forward kinematics a step
   void move_held_objects(double dt_s);
   void build_contact_bodies();
   void integrate(double dt_s);
@@ -109,6 +127,7 @@ class World {
   ContactForceModel forces_;
   GraspTracker grasp_tracker_;
   BodyCheck body_check_;
+  std::optional<ProxyHand> proxy_;  // a scene with a hand and proxy.enabled
   int object_count_;
   int hand_id_ = 0;
   int64_t step_ns_;
@@ -123,7 +142,13 @@ class World {
   std::vector<BodyState> start_bodies_;         // the bodies at the start of this step
   std::array<Eigen::Isometry3d, kLinkCount> X_GL_before_;  // the links one substep ago
   HandLinkPoses link_poses_;
+  HandLinkPoses proxy_prev_links_;  // the proxy's links one substep ago, in H
+  ProxyPose proxy_prev_;            // the proxy one substep ago
+  ProxyPose proxy_goal_;            // where the proxy heads over this step
+  bool proxy_prev_links_valid_ = false;  // false after a restore: recomputed from the state
+  bool held_pairs_skipped_ = false;      // in this substep
   std::vector<ContactPoint> contacts_;
+  std::vector<ContactPoint> hand_static_;  // the proxy's links against static objects
   std::vector<ContactBody> contact_bodies_;
   std::vector<Eigen::Vector3d> F_G_;
   std::vector<Eigen::Vector3d> M_G_;
@@ -133,6 +158,9 @@ class World {
   std::vector<GraspEvent> events_;
   StageTimes stage_times_;
   PenetrationStats penetration_;
+  mutable std::array<Eigen::Isometry3d, kLinkCount> tracked_X_GL_;
+  mutable double tracked_offset_m_ = 0.0;
+  mutable bool tracked_observed_ = false;
 };
 
 }  // namespace vcockpit::physics

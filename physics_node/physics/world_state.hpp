@@ -34,9 +34,15 @@ struct WorldState {
   bool hand_active = false;  // a hand input has arrived (and the scene has a hand)
   HandInput hand_from;       // the hand at the start of the coming step
   HandInput hand_to;         // at its end: the latest input
-  // the hand now (after the last substep): the coming step's link velocities and reach start here
+  // the hand now (after the last substep), the proxy's when the scene has one (proxy_hand.hpp):
+  // the coming step's link velocities and reach start here
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
+  JointAngles q_rad{};
   std::array<Eigen::Isometry3d, kLinkCount> X_GL;
+  bool pushing = false;  // a proxy link or held object touched a free object in the last substep
+  // bit f: finger f touched a held object in the last substep. Such a finger stays put on the
+  // substeps that leave held pairs out, and its step is limited on the last one.
+  uint8_t fingers_on_held = 0;
 
   std::vector<StickAnchor> anchors;  // friction stick anchors of the last substep, by pair
 };

@@ -73,9 +73,14 @@ uint64_t hash_world_state(const WorldState& s) {
   hash_hand(h, s.hand_from);
   hash_hand(h, s.hand_to);
   h.pose(s.X_GH);
+  h.size(s.q_rad.size());
+  for (double q : s.q_rad)
+    h.f64(q);
   h.size(s.X_GL.size());
   for (const Eigen::Isometry3d& X : s.X_GL)
     h.pose(X);
+  h.flag(s.pushing);
+  h.u64(s.fingers_on_held);
   h.size(s.grasp.size());
   for (const GraspHold& g : s.grasp)
     hash_hold(h, g);

@@ -1,0 +1,249 @@
+#include "physics_node/physics/proxy_hand.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/assert.hpp"
+#include "physics_node/physics/world_state.hpp"
+
+namespace vcockpit::physics {
+namespace {
+
+// The hand's reach from the wrist (m): a wrist turn of w rad/s moves a fingertip about w times
+// this, so a pushing hand turns no faster than push_speed_mps / kHandReach_m.
+constexpr double kHandReach_m = 0.2;
+
+constexpr int kShiftPasses = 16;           // Gauss-Seidel passes over the contact planes
+constexpr double kShiftTolerance_m = 1e-7;  // a pass that corrects less than this ends them
+constexpr double kTinyDepth_m = 1e-12;
+
+double series_stiffness(const Material& a, const Material& b) {
+  return a.stiffness_Npm * b.stiffness_Npm / (a.stiffness_Npm + b.stiffness_Npm);
+}
+
+// Removes the contacts that no longer overlap, keeping the order of the rest.
+void drop_separated(std::vector<ContactPoint>& contacts) {
+  contacts.erase(std::remove_if(contacts.begin(), contacts.end(),
+                                [](const ContactPoint& c) { return !(c.depth_m > 0.0); }),
+                 contacts.end());
+}
+
+}  // namespace
+
+ProxyHand::ProxyHand(const Scene& scene)
+    : scene_(scene),
+      hand_(*scene.hand),
+      params_(scene.proxy),
+      object_count_(static_cast<int>(scene.objects.size())) {
+  VCOCKPIT_ASSERT(scene.hand.has_value(), "a proxy hand needs a hand");
+  depth_limit_m_.resize(scene.objects.size());
+  dynamic_.resize(scene.objects.size());
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const ObjectSpec& o = scene.objects[i];
+    dynamic_[i] = o.dynamic ? 1 : 0;
+    depth_limit_m_[i] =
+        o.dynamic ? params_.grip_force_N / series_stiffness(scene.hand_material, o.material)
+                  : params_.static_depth_m;
+  }
+  for (int f = 0; f < kFingerCount; ++f)
+    for (const hand::DhRow& row : hand_.fingers[static_cast<std::size_t>(f)].rows)
+      if (row.joint >= 0 && row.joint < kJointCount)
+        finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(row.joint)] = true;
+  planes_.reserve(64);
+}
+
+ProxyPose ProxyHand::step_goal(const ProxyPose& now, const HandInput& tracked, bool pushing,
+                               double step_s) const {
+  const double v_max = pushing ? params_.push_speed_mps : params_.max_speed_mps;
+  const double w_max =
+      pushing ? std::min(params_.max_spin_radps, params_.push_speed_mps / kHandReach_m)
+              : params_.max_spin_radps;
+  ProxyPose goal;
+  goal.q_rad = tracked.q_rad;
+  const Eigen::Vector3d dp = tracked.X_GH.translation() - now.X_GH.translation();
+  const double reach_m = v_max * step_s;
+  const double dp_m = dp.norm();
+  goal.X_GH.translation() =
+      now.X_GH.translation() + (dp_m > reach_m ? (reach_m / dp_m) * dp : dp);
+  const Eigen::Quaterniond q_now(now.X_GH.linear());
+  const Eigen::Quaterniond q_to(tracked.X_GH.linear());
+  const double turn_rad = q_now.angularDistance(q_to);
+  const double turn_max_rad = w_max * step_s;
+  const double share = turn_rad > turn_max_rad ? turn_max_rad / turn_rad : 1.0;
+  goal.X_GH.linear() = q_now.slerp(share, q_to).normalized().toRotationMatrix();
+  return goal;
+}
+
+ProxyPose ProxyHand::advance(const ProxyPose& prev, const ProxyPose& goal, int remaining) {
+  VCOCKPIT_ASSERT(remaining >= 1, "at least this substep remains");
+  const double share = 1.0 / remaining;
+  ProxyPose next;
+  next.X_GH.translation() =
+      prev.X_GH.translation() + share * (goal.X_GH.translation() - prev.X_GH.translation());
+  next.X_GH.linear() = Eigen::Quaterniond(prev.X_GH.linear())
+                           .slerp(share, Eigen::Quaterniond(goal.X_GH.linear()))
+                           .normalized()
+                           .toRotationMatrix();
+  for (int j = 0; j < kJointCount; ++j)
+    next.q_rad[j] = prev.q_rad[j] + share * (goal.q_rad[j] - prev.q_rad[j]);
+  return next;
+}
+
+void ProxyHand::keep_fingers(uint8_t fingers, const ProxyPose& prev, ProxyPose& pose) const {
+  if (fingers == 0) return;
+  for (int f = 0; f < kFingerCount; ++f) {
+    if ((fingers & (1u << f)) == 0) continue;
+    for (int j = 0; j < kJointCount; ++j)
+      if (finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(j)])
+        pose.q_rad[j] = prev.q_rad[j];
+  }
+}
+
+uint8_t ProxyHand::fingers_touching(const std::vector<ContactPoint>& contacts,
+                                    const std::vector<uint8_t>& objects) const {
+  uint8_t fingers = 0;
+  for (const ContactPoint& c : contacts) {
+    if (!is_link(c.body_b) || is_link(c.body_a) ||
+        objects[static_cast<std::size_t>(c.body_a)] == 0)
+      continue;
+    Finger finger;
+    if (finger_of(link_of(c.body_b), finger)) fingers |= static_cast<uint8_t>(1u << static_cast<int>(finger));
+  }
+  return fingers;
+}
+
+ProxyConstraint ProxyHand::constrain(const ProxyPose& prev, const HandLinkPoses& prev_links,
+                                     ProxyPose& pose, HandLinkPoses& links,
+                                     std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                                     const std::vector<uint8_t>& held,
+                                     std::vector<ContactPoint>& contacts,
+                                     std::vector<ContactPoint>& hand_static, double dt_s) {
+  ProxyConstraint result;
+  hold_back_fingers(prev, prev_links, pose, links, X_GL, held, contacts, hand_static, dt_s, result);
+  shift_out(X_GL, pose, held, contacts, hand_static, result);
+  return result;
+}
+
+void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& prev_links,
+                                  ProxyPose& pose, HandLinkPoses& links,
+                                  std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                                  const std::vector<uint8_t>& held,
+                                  std::vector<ContactPoint>& contacts,
+                                  std::vector<ContactPoint>& hand_static, double dt_s,
+                                  ProxyConstraint& result) {
+  std::array<double, kFingerCount> share;
+  share.fill(1.0);
+  // Each contact of a phalanx: the depth its finger's own joints added over this substep (the
+  // contact point carried from the previous joint angles, the wrist as it is now), and the share
+  // of that motion the limits allow, to first order.
+  const auto limit_finger = [&](const ContactPoint& c) {
+    if (!is_link(c.body_b)) return;  // an object pair
+    const Link link = link_of(c.body_b);
+    Finger finger;
+    if (!finger_of(link, finger)) return;  // the palm moves with the wrist alone
+    const auto l = static_cast<std::size_t>(link);
+    const Eigen::Vector3d p_L = X_GL[l].inverse() * c.p_G;
+    const Eigen::Vector3d p_before_G = pose.X_GH * (prev_links.X_HL[l] * p_L);
+    // the link is body_b and n points into it: moving it by u deepens the contact by -n.u
+    const double deepened_m = c.n_G.dot(p_before_G - c.p_G);
+    if (deepened_m <= kTinyDepth_m) return;
+    const int other = c.body_a;
+    const double depth_before_m = c.depth_m - deepened_m;
+    double allowed_m = depth_limit_m(other) - depth_before_m;
+    const auto o = static_cast<std::size_t>(other);
+    if (dynamic_[o] != 0 && held[o] == 0) {
+      // into a free object no faster than the pushing speed (from where it first touches)
+      allowed_m = std::min(allowed_m, params_.push_speed_mps * dt_s + std::max(0.0, -depth_before_m));
+    }
+    const auto f = static_cast<std::size_t>(finger);
+    share[f] = std::min(share[f], std::clamp(allowed_m / deepened_m, 0.0, 1.0));
+  };
+  for (const ContactPoint& c : hand_static) limit_finger(c);
+  for (const ContactPoint& c : contacts) limit_finger(c);
+  if (std::all_of(share.begin(), share.end(), [](double s) { return s >= 1.0; })) return;
+
+  // a joint moving several fingers takes the least of their shares
+  for (int j = 0; j < kJointCount; ++j) {
+    double s = 1.0;
+    for (int f = 0; f < kFingerCount; ++f)
+      if (finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(j)])
+        s = std::min(s, share[static_cast<std::size_t>(f)]);
+    pose.q_rad[j] = prev.q_rad[j] + s * (pose.q_rad[j] - prev.q_rad[j]);
+  }
+  result.fingers_held = true;
+  const std::array<Eigen::Isometry3d, kLinkCount> X_GL_tentative = X_GL;
+  forward_kinematics(hand_, pose.q_rad, links);
+  for (int l = 0; l < kLinkCount; ++l) X_GL[l] = pose.X_GH * links.X_HL[l];
+  // the contacts follow their links (to first order: the overlap's midpoint moves half as far)
+  const auto follow = [&](std::vector<ContactPoint>& list) {
+    for (ContactPoint& c : list) {
+      if (!is_link(c.body_b)) continue;
+      const auto l = static_cast<std::size_t>(link_of(c.body_b));
+      const Eigen::Vector3d u = X_GL[l] * (X_GL_tentative[l].inverse() * c.p_G) - c.p_G;
+      c.depth_m -= c.n_G.dot(u);
+      c.p_G += 0.5 * u;
+    }
+    drop_separated(list);
+  };
+  follow(hand_static);
+  follow(contacts);
+}
+
+void ProxyHand::shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, ProxyPose& pose,
+                          const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
+                          std::vector<ContactPoint>& hand_static, ProxyConstraint& result) {
+  // which side of a contact moves with the proxy: its links and the objects it holds
+  const auto moves = [&](int body) {
+    return is_link(body) || held[static_cast<std::size_t>(body)] != 0;
+  };
+  planes_.clear();
+  const auto collect = [&](const std::vector<ContactPoint>& list) {
+    for (const ContactPoint& c : list) {
+      const bool a = moves(c.body_a);
+      const bool b = moves(c.body_b);
+      if (a == b) continue;
+      const int other = a ? c.body_b : c.body_a;  // static or free: never a link
+      planes_.push_back({b ? c.n_G : Eigen::Vector3d(-c.n_G), c.depth_m, depth_limit_m(other)});
+    }
+  };
+  collect(hand_static);
+  collect(contacts);
+
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+  for (int pass = 0; pass < kShiftPasses; ++pass) {
+    double largest_m = 0.0;
+    for (const Plane& p : planes_) {
+      const double excess_m = p.depth_m - p.out_G.dot(shift) - p.limit_m;
+      if (excess_m > 0.0) {
+        shift += excess_m * p.out_G;
+        largest_m = std::max(largest_m, excess_m);
+      }
+    }
+    if (largest_m < kShiftTolerance_m) break;
+  }
+  result.shift_G = shift;
+
+  const bool shifted = shift.squaredNorm() > 0.0;
+  if (shifted) {
+    pose.X_GH.translation() += shift;
+    for (auto& X : X_GL) X.translation() += shift;
+  }
+  const auto follow = [&](std::vector<ContactPoint>& list) {
+    for (ContactPoint& c : list) {
+      const bool a = moves(c.body_a);
+      const bool b = moves(c.body_b);
+      if (a == b) continue;
+      if (shifted) {
+        c.depth_m -= (b ? 1.0 : -1.0) * c.n_G.dot(shift);
+        c.p_G += 0.5 * shift;
+      }
+      const int other = a ? c.body_b : c.body_a;
+      if (c.depth_m > 0.0 && dynamic_[static_cast<std::size_t>(other)] != 0) result.pushing = true;
+    }
+    if (shifted) drop_separated(list);
+  };
+  follow(hand_static);
+  follow(contacts);
+}
+
+}  // namespace vcockpit::physics

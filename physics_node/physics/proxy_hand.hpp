@@ -1,0 +1,121 @@
+#pragma once
+// The proxy hand: the hand that touches the world follows the tracked hand through bounded
+// coupling, so a real glove's hand that closes into an object or sinks into a panel does not
+// drive the simulated one there. A god-object per link (Zilles & Salisbury 1995, carried to whole
+// hands by Borst & Indugula 2005 and Jacobs & Froehlich 2011): the proxy goes where the tracked
+// hand goes as far as the world lets it, and each substep
+//
+//   1. heads for the tracked pose at bounded speed (step_goal, advance): the wrist at
+//      max_speed_mps / max_spin_radps, or push_speed_mps while a link pushes a free object, so
+//      no hand motion imparts more than about push_speed_mps to an object it pushes;
+//   2. after the narrowphase at that tentative pose, holds each finger back (constrain) where
+//      its own joints would take a link deeper than
+//        static_depth_m into a static object, or
+//        d_grip = grip_force_N / k_pair into any object (k_pair the hand-object series
+//        stiffness, so the penalty force of eq. 11 a finger can apply is bounded), or
+//        push_speed_mps * dt deeper in one substep into a free object;
+//      a finger's joints move by the largest fraction s in [0, 1] of their step that keeps those
+//      limits, to first order in s (the depth change of each contact point along its normal);
+//   3. then translates the whole proxy (wrist, links and the objects it holds) by the least
+//      shift that brings every contact of theirs with a static object within static_depth_m and
+//      with a free object within d_grip (Gauss-Seidel projection over the contact planes, which
+//      is exact for one plane and converges for the corners of boxes).
+//
+// So a link never ends more than static_depth_m inside a static object, a held object's fingers
+// stop at d_grip instead of closing into it (its grasp residual stays bounded), and an object
+// squeezed between the hand and a panel feels at most grip_force_N per contact. The contact
+// lists are updated to the pose the proxy ends at, so the forces and the grasp test (eqs. 30-31)
+// act on the proxy's contacts.
+
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "physics_node/physics/contact.hpp"
+#include "physics_node/physics/hand_names.hpp"
+#include "physics_node/physics/scene.hpp"
+
+namespace vcockpit::physics {
+
+struct HandInput;
+
+struct ProxyPose {
+  Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
+  JointAngles q_rad{};
+};
+
+// What constrain() did in one substep.
+struct ProxyConstraint {
+  Eigen::Vector3d shift_G = Eigen::Vector3d::Zero();  // the proxy's translation out of contact
+  bool pushing = false;         // a hand link or held object touches a free object
+  bool fingers_held = false;    // some finger moved less than its step
+};
+
+class ProxyHand {
+ public:
+  // `scene` must have a hand and outlive this.
+  explicit ProxyHand(const Scene& scene);
+
+  // The pose the proxy heads for over the coming step of `step_s`: the tracked hand, approached
+  // at the free speeds, or the pushing speed when `pushing`.
+  ProxyPose step_goal(const ProxyPose& now, const HandInput& tracked, bool pushing,
+                      double step_s) const;
+
+  // The tentative pose one substep on: the share 1 / remaining of what is left to `goal`.
+  static ProxyPose advance(const ProxyPose& prev, const ProxyPose& goal, int remaining);
+
+  // Puts the joints of the fingers flagged in `fingers` (bit f: finger f) back where `prev` has
+  // them.
+  void keep_fingers(uint8_t fingers, const ProxyPose& prev, ProxyPose& pose) const;
+  // The fingers (bits) with a contact against an object flagged in `objects`.
+  uint8_t fingers_touching(const std::vector<ContactPoint>& contacts,
+                           const std::vector<uint8_t>& objects) const;
+
+  // Holds the tentative `pose` (links X_HL in `links`, in the world X_GL) back from the contacts
+  // the narrowphase found there (`contacts`: with dynamic objects; `hand_static`: with static
+  // ones), as the header says. `prev` and `prev_links` are the proxy one substep ago; `held`
+  // flags the held objects (1), which move with the wrist: the caller shifts them by shift_G.
+  // Updates pose, links, X_GL and both contact lists (depths and points, dropping contacts no
+  // longer touching) to the pose the proxy ends at.
+  ProxyConstraint constrain(const ProxyPose& prev, const HandLinkPoses& prev_links,
+                            ProxyPose& pose, HandLinkPoses& links,
+                            std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                            const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
+                            std::vector<ContactPoint>& hand_static, double dt_s);
+
+  // How deep a link may go into object `object` (m): static_depth_m for a static one, d_grip
+  // for a dynamic one.
+  double depth_limit_m(int object) const { return depth_limit_m_[static_cast<std::size_t>(object)]; }
+
+ private:
+  bool is_link(int body) const { return body >= object_count_; }
+  Link link_of(int body) const { return static_cast<Link>(body - object_count_); }
+  void hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& prev_links, ProxyPose& pose,
+                         HandLinkPoses& links, std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                         const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
+                         std::vector<ContactPoint>& hand_static, double dt_s,
+                         ProxyConstraint& result);
+  void shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, ProxyPose& pose,
+                 const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
+                 std::vector<ContactPoint>& hand_static, ProxyConstraint& result);
+
+  const Scene& scene_;
+  const HandModel& hand_;
+  const ProxyParams& params_;
+  int object_count_;
+  std::vector<double> depth_limit_m_;                        // per object
+  std::vector<uint8_t> dynamic_;                             // per object
+  std::array<std::array<bool, kJointCount>, kFingerCount> finger_joints_{};  // joints moving a finger
+
+  // scratch
+  struct Plane {
+    Eigen::Vector3d out_G;  // the direction that takes the proxy out
+    double depth_m;         // at zero shift
+    double limit_m;
+  };
+  std::vector<Plane> planes_;
+};
+
+}  // namespace vcockpit::physics
