@@ -444,6 +444,23 @@ void CollisionWorld::compute_contacts(std::vector<ContactPoint>& out,
   }
 }
 
+void CollisionWorld::compute_hand_static_contacts(
+    const std::array<Eigen::Isometry3d, kLinkCount>& X_GL, std::vector<ContactPoint>& out) {
+  Impl& m = *impl_;
+  out.clear();
+  if (!has_hand_) return;
+  for (int l = 0; l < kLinkCount; ++l) {
+    const int body = hand_link_body(static_cast<Link>(l));
+    m.objects[static_cast<std::size_t>(body)]->setTransform(
+        X_GL[static_cast<std::size_t>(l)] * m.X_LC[static_cast<std::size_t>(l)]);
+  }
+  for (const BodyPair& pair : m.pairs) {
+    if (pair.lo < object_count_ && pair.hi >= object_count_ &&
+        m.bodies[static_cast<std::size_t>(pair.lo)].kind == BodyKind::kStatic)
+      m.narrowphase(pair, out);
+  }
+}
+
 void CollisionWorld::skip_hand_pairs_with(const std::vector<uint8_t>* objects) {
   impl_->skip_hand = objects;
 }

@@ -48,6 +48,11 @@ class CollisionWorld {
   // cleared first) when it is given and the world was built to report them.
   void compute_contacts(std::vector<ContactPoint>& out,
                         std::vector<ContactPoint>* hand_static = nullptr);
+  // The hand-static contacts again (into `out`, cleared first) with the links moved to X_GL,
+  // over the hand-static pairs the last broadphase found: for a proxy whose fingers moved after
+  // the narrowphase (only away from static objects, so no new pair can arise).
+  void compute_hand_static_contacts(const std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                                    std::vector<ContactPoint>& out);
   // Whether the broadphase reports hand-static pairs (the proxy hand's), from construction.
   bool reports_hand_static() const { return report_hand_static_; }
 

@@ -112,14 +112,24 @@ uint8_t ProxyHand::fingers_touching(const std::vector<ContactPoint>& contacts,
   return fingers;
 }
 
-ProxyConstraint ProxyHand::constrain(const ProxyPose& prev, const HandLinkPoses& prev_links,
-                                     ProxyPose& pose, HandLinkPoses& links,
-                                     std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
-                                     const std::vector<uint8_t>& held,
-                                     std::vector<ContactPoint>& contacts,
-                                     std::vector<ContactPoint>& hand_static, double dt_s) {
+bool ProxyHand::constrain_fingers(const ProxyPose& prev, const HandLinkPoses& prev_links,
+                                  ProxyPose& pose, HandLinkPoses& links,
+                                  std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                                  const std::vector<uint8_t>& held,
+                                  std::vector<ContactPoint>& contacts,
+                                  std::vector<ContactPoint>& hand_static, double dt_s) {
   ProxyConstraint result;
   hold_back_fingers(prev, prev_links, pose, links, X_GL, held, contacts, hand_static, dt_s, result);
+  bend_out(pose, links, X_GL, contacts, hand_static, result);
+  return result.fingers_held;
+}
+
+ProxyConstraint ProxyHand::constrain_wrist(ProxyPose& pose,
+                                           std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                                           const std::vector<uint8_t>& held,
+                                           std::vector<ContactPoint>& contacts,
+                                           std::vector<ContactPoint>& hand_static) {
+  ProxyConstraint result;
   shift_out(X_GL, pose, held, contacts, hand_static, result);
   return result;
 }
@@ -171,7 +181,14 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
     pose.q_rad[j] = prev.q_rad[j] + s * (pose.q_rad[j] - prev.q_rad[j]);
   }
   result.fingers_held = true;
-  const std::array<Eigen::Isometry3d, kLinkCount> X_GL_tentative = X_GL;
+  move_links(pose, links, X_GL, contacts, hand_static);
+}
+
+void ProxyHand::move_links(const ProxyPose& pose, HandLinkPoses& links,
+                           std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                           std::vector<ContactPoint>& contacts,
+                           std::vector<ContactPoint>& hand_static) {
+  const std::array<Eigen::Isometry3d, kLinkCount> X_GL_was = X_GL;
   forward_kinematics(hand_, pose.q_rad, links);
   for (int l = 0; l < kLinkCount; ++l) X_GL[l] = pose.X_GH * links.X_HL[l];
   // the contacts follow their links (to first order: the overlap's midpoint moves half as far)
@@ -179,7 +196,7 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
     for (ContactPoint& c : list) {
       if (!is_link(c.body_b)) continue;
       const auto l = static_cast<std::size_t>(link_of(c.body_b));
-      const Eigen::Vector3d u = X_GL[l] * (X_GL_tentative[l].inverse() * c.p_G) - c.p_G;
+      const Eigen::Vector3d u = X_GL[l] * (X_GL_was[l].inverse() * c.p_G) - c.p_G;
       c.depth_m -= c.n_G.dot(u);
       c.p_G += 0.5 * u;
     }
@@ -187,6 +204,85 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
   };
   follow(hand_static);
   follow(contacts);
+}
+
+void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
+                                   std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                                   std::vector<ContactPoint>& contacts,
+                                   std::vector<ContactPoint>& hand_static,
+                                   ProxyConstraint& result) {
+  constexpr int kRows = 3;          // the deepest contacts of a finger that steer its joints
+  constexpr int kMaxJoints = 6;     // joints of one finger
+  constexpr double kProbe_rad = 1e-4;
+  constexpr double kDamping_m2 = 1e-8;  // keeps the step finite near a singular finger
+  bool moved = false;
+  // how far a contact is beyond its limit, and the depth to bring it to
+  const auto excess_of = [&](const ContactPoint& c) { return c.depth_m - depth_limit_m(c.body_a); };
+  const auto target_of = [&](const ContactPoint& c) {
+    const double limit_m = depth_limit_m(c.body_a);
+    return dynamic_[static_cast<std::size_t>(c.body_a)] != 0 ? limit_m : 0.5 * limit_m;
+  };
+  ProxyPose bent = pose;
+  for (int f = 0; f < kFingerCount; ++f) {
+    // the finger's contacts farthest beyond their limits
+    std::array<const ContactPoint*, kRows> rows{};
+    int row_count = 0;
+    const auto consider = [&](const ContactPoint& c) {
+      if (!is_link(c.body_b) || is_link(c.body_a) || excess_of(c) <= 0.0) return;
+      Finger finger;
+      if (!finger_of(link_of(c.body_b), finger) || static_cast<int>(finger) != f) return;
+      if (row_count < kRows) {
+        rows[static_cast<std::size_t>(row_count++)] = &c;
+        return;
+      }
+      auto least = std::min_element(rows.begin(), rows.end(), [&](auto* a, auto* b) {
+        return excess_of(*a) < excess_of(*b);
+      });
+      if (excess_of(**least) < excess_of(c)) *least = &c;
+    };
+    for (const ContactPoint& c : hand_static) consider(c);
+    for (const ContactPoint& c : contacts) consider(c);
+    if (row_count == 0) continue;
+    std::array<int, kMaxJoints> joints{};
+    int joint_count = 0;
+    for (int j = 0; j < kJointCount && joint_count < kMaxJoints; ++j)
+      if (finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(j)])
+        joints[static_cast<std::size_t>(joint_count++)] = j;
+    // J(i, k): the depth gained at contact i per radian of joint k (the link is body_b, so
+    // moving its point by u deepens the contact by -n.u)
+    Eigen::Matrix<double, kRows, kMaxJoints> J = Eigen::Matrix<double, kRows, kMaxJoints>::Zero();
+    Eigen::Matrix<double, kRows, 1> excess = Eigen::Matrix<double, kRows, 1>::Zero();
+    for (int k = 0; k < joint_count; ++k) {
+      ProxyPose probe = pose;
+      probe.q_rad[joints[k]] += kProbe_rad;
+      forward_kinematics(hand_, probe.q_rad, probe_links_);
+      for (int i = 0; i < row_count; ++i) {
+        const ContactPoint& c = *rows[static_cast<std::size_t>(i)];
+        const auto l = static_cast<std::size_t>(link_of(c.body_b));
+        const Eigen::Vector3d p_H = links.X_HL[l] * (X_GL[l].inverse() * c.p_G);
+        const Eigen::Vector3d u_H = probe_links_.X_HL[l] * (links.X_HL[l].inverse() * p_H) - p_H;
+        J(i, k) = -c.n_G.dot(pose.X_GH.linear() * u_H) / kProbe_rad;
+      }
+    }
+    for (int i = 0; i < row_count; ++i) {
+      const ContactPoint& c = *rows[static_cast<std::size_t>(i)];
+      excess(i) = c.depth_m - target_of(c);
+    }
+    const auto Jr = J.topLeftCorner(row_count, joint_count);
+    const Eigen::MatrixXd JJt = Jr * Jr.transpose() +
+                                kDamping_m2 * Eigen::MatrixXd::Identity(row_count, row_count);
+    const Eigen::VectorXd dq = -Jr.transpose() * JJt.ldlt().solve(excess.head(row_count));
+    for (int k = 0; k < joint_count; ++k) {
+      const int j = joints[static_cast<std::size_t>(k)];
+      const hand::JointRange& range = hand_.joints[static_cast<std::size_t>(j)];
+      bent.q_rad[j] = std::clamp(pose.q_rad[j] + dq(k), range.min_rad, range.max_rad);
+    }
+    moved = true;
+  }
+  if (!moved) return;
+  pose.q_rad = bent.q_rad;
+  result.fingers_held = true;
+  move_links(pose, links, X_GL, contacts, hand_static);
 }
 
 void ProxyHand::shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, ProxyPose& pose,

@@ -16,7 +16,12 @@
 //        push_speed_mps * dt deeper in one substep into a free object;
 //      a finger's joints move by the largest fraction s in [0, 1] of their step that keeps those
 //      limits, to first order in s (the depth change of each contact point along its normal);
-//   3. then translates the whole proxy (wrist, links and the objects it holds) by the least
+//   3. bends each finger still beyond those depth limits back out (the first-order step of 2
+//      can overshoot after a large joint motion, and the wrist can carry a finger into a
+//      panel): a damped least-squares step of its joints along the depth gradient of its
+//      contacts farthest beyond their limits, within the joints' ranges, so fingers wrapped
+//      round a handle on a panel lie on the panel instead of lifting the whole hand;
+//   4. then translates the whole proxy (wrist, links and the objects it holds) by the least
 //      shift that brings every contact of theirs with a static object within static_depth_m and
 //      with a free object within d_grip (Gauss-Seidel projection over the contact planes, which
 //      is exact for one plane and converges for the corners of boxes).
@@ -75,15 +80,20 @@ class ProxyHand {
 
   // Holds the tentative `pose` (links X_HL in `links`, in the world X_GL) back from the contacts
   // the narrowphase found there (`contacts`: with dynamic objects; `hand_static`: with static
-  // ones), as the header says. `prev` and `prev_links` are the proxy one substep ago; `held`
-  // flags the held objects (1), which move with the wrist: the caller shifts them by shift_G.
-  // Updates pose, links, X_GL and both contact lists (depths and points, dropping contacts no
+  // ones), as the header says, in two parts: the fingers (steps 2 and 3), after which the caller
+  // recomputes `hand_static` at the new link poses when they moved (true), then the wrist
+  // (step 4). `prev` and `prev_links` are the proxy one substep ago; `held` flags the held
+  // objects (1), which move with the wrist: the caller shifts them by shift_G. Both update pose,
+  // links, X_GL and the contact lists (depths and points to first order, dropping contacts no
   // longer touching) to the pose the proxy ends at.
-  ProxyConstraint constrain(const ProxyPose& prev, const HandLinkPoses& prev_links,
-                            ProxyPose& pose, HandLinkPoses& links,
-                            std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
-                            const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
-                            std::vector<ContactPoint>& hand_static, double dt_s);
+  bool constrain_fingers(const ProxyPose& prev, const HandLinkPoses& prev_links, ProxyPose& pose,
+                         HandLinkPoses& links, std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                         const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
+                         std::vector<ContactPoint>& hand_static, double dt_s);
+  ProxyConstraint constrain_wrist(ProxyPose& pose, std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                                  const std::vector<uint8_t>& held,
+                                  std::vector<ContactPoint>& contacts,
+                                  std::vector<ContactPoint>& hand_static);
 
   // How deep a link may go into object `object` (m): static_depth_m for a static one, d_grip
   // for a dynamic one.
@@ -97,6 +107,14 @@ class ProxyHand {
                          const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
                          std::vector<ContactPoint>& hand_static, double dt_s,
                          ProxyConstraint& result);
+  void bend_out(ProxyPose& pose, HandLinkPoses& links,
+                          std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                          std::vector<ContactPoint>& contacts,
+                          std::vector<ContactPoint>& hand_static, ProxyConstraint& result);
+  // Puts the links at `pose` (forward kinematics) and carries every hand contact with its link.
+  void move_links(const ProxyPose& pose, HandLinkPoses& links,
+                  std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+                  std::vector<ContactPoint>& contacts, std::vector<ContactPoint>& hand_static);
   void shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, ProxyPose& pose,
                  const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
                  std::vector<ContactPoint>& hand_static, ProxyConstraint& result);
@@ -116,6 +134,7 @@ class ProxyHand {
     double limit_m;
   };
   std::vector<Plane> planes_;
+  HandLinkPoses probe_links_;
 };
 
 }  // namespace vcockpit::physics

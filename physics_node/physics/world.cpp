@@ -35,6 +35,17 @@ Eigen::Isometry3d interpolate(const Eigen::Isometry3d& a, const Eigen::Isometry3
   return X;
 }
 
+// Scales a link's velocity so that no point of it (within `length_m` of its origin, or of the
+// palm's half-diagonal) moves faster than `max_mps`.
+void limit_link_speed(double length_m, double max_mps, Eigen::Vector3d& v_G, Eigen::Vector3d& w_G) {
+  const double reach_m = std::max(length_m, 0.1);
+  const double fastest_mps = v_G.norm() + w_G.norm() * reach_m;
+  if (fastest_mps <= max_mps) return;
+  const double scale = max_mps / fastest_mps;
+  v_G *= scale;
+  w_G *= scale;
+}
+
 // 0 for a right hand, 1 for a left one (as the topics name them).
 int hand_id_of(const Scene& scene) { return scene.hand && scene.hand->left ? 1 : 0; }
 
@@ -242,9 +253,13 @@ void World::place_hand(const Eigen::Isometry3d& X_GH, const JointAngles& q_rad) 
 
 void World::constrain_proxy(double dt_s) {
   ProxyPose pose{state_.X_GH, state_.q_rad};
+  const bool fingers_moved =
+      proxy_->constrain_fingers(proxy_prev_, proxy_prev_links_, pose, link_poses_, state_.X_GL,
+                                held_mask_, contacts_, hand_static_, dt_s);
+  // the links' static contacts afresh: the wrist's shift must see exactly how deep they are
+  if (fingers_moved) collision_.compute_hand_static_contacts(state_.X_GL, hand_static_);
   const ProxyConstraint r =
-      proxy_->constrain(proxy_prev_, proxy_prev_links_, pose, link_poses_, state_.X_GL,
-                        held_mask_, contacts_, hand_static_, dt_s);
+      proxy_->constrain_wrist(pose, state_.X_GL, held_mask_, contacts_, hand_static_);
   state_.X_GH = pose.X_GH;
   state_.q_rad = pose.q_rad;
   state_.pushing = r.pushing;
@@ -304,14 +319,24 @@ void World::build_contact_bodies() {
   if (!scene_.hand) return;
   // a link's velocity only where it touches something (the rotation's log is not free)
   std::array<bool, kLinkCount> touching{};
-  for (const ContactPoint& c : contacts_)
-    if (c.body_b >= object_count_) touching[static_cast<std::size_t>(c.body_b - object_count_)] = true;
+  std::array<bool, kLinkCount> touching_free{};
+  for (const ContactPoint& c : contacts_) {
+    if (c.body_b < object_count_) continue;
+    const auto l = static_cast<std::size_t>(c.body_b - object_count_);
+    touching[l] = true;
+    if (c.body_a < object_count_ && contact_bodies_[c.body_a].dynamic) touching_free[l] = true;
+  }
   const double dt_s = scene_.step_s / state_.substeps;
   for (int l = 0; l < kLinkCount; ++l) {
     ContactBody& c = contact_bodies_[object_count_ + l];
     c.X_GB = state_.X_GL[l];
     if (touching[static_cast<std::size_t>(l)]) {
       finite_difference_velocity(X_GL_before_[l], state_.X_GL[l], dt_s, c.v_G, c.w_G);
+      // a proxy link pushes a free object no faster than push_speed_mps, however fast the
+      // tracked hand (or a 30 Hz glove's jump) moved it: its speed feeds the contact damping
+      if (proxy_ && touching_free[static_cast<std::size_t>(l)])
+        limit_link_speed(scene_.hand->capsules[static_cast<std::size_t>(l)].length_m,
+                         scene_.proxy.push_speed_mps, c.v_G, c.w_G);
     } else {
       c.v_G.setZero();
       c.w_G.setZero();

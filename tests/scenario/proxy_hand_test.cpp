@@ -1,0 +1,214 @@
+// The proxy hand (proxy_hand.hpp) against what a cockpit user sees:
+//   - a tracked hand pressed 4 cm into a console leaves the drawn hand resting on it, no link
+//     more than 1 mm inside, and sliding along it with the tracked hand;
+//   - a hand swept through a ball at 2 m/s pushes it at about the pushing speed, not 2 m/s (the
+//     same sweep with the proxy off throws it faster: the test tells the two apart);
+//   - a cup squeezed by the palm against the console is neither crushed into it nor set
+//     chattering (with the proxy off, it is pressed several mm into the console);
+//   - the wrist approaches a far tracked pose no faster than max_speed_mps.
+// Geometry is checked analytically: each capsule's lowest end point and the palm box's corners
+// against the console's top face.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "hand/hand_yaml.hpp"
+#include "physics_node/physics/world.hpp"
+#include "tests/support/scene_builder.hpp"
+
+namespace vcockpit::physics {
+namespace {
+
+using test::at;
+
+std::string source_dir() {
+  const char* dir = std::getenv("VCOCKPIT_SOURCE_DIR");
+  return dir ? dir : ".";
+}
+
+constexpr double kConsoleTop_m = 0.70;
+
+// A console (top at z = 0.70, x 0.1..0.7, y -0.3..0.3) on a floor, the default hand, and the
+// given objects.
+Scene console_scene(bool proxy) {
+  Scene scene;
+  scene.hand = load_hand_model(source_dir() + "/config/hand.yaml");
+  scene.hand_material = test::material(2.0e4, 1.0, 0.8);
+  scene.objects.push_back(test::floor_box(test::material(5.0e4, 0.7, 0.6, 0.9)));
+  scene.objects.push_back(test::static_box("console", {0.6, 0.6, 0.7}, at(0.4, 0.0, 0.35),
+                                           test::material(5.0e4, 0.6, 0.5, 0.9)));
+  scene.proxy.enabled = proxy;
+  return scene;
+}
+
+// How deep the hand's links are below the console's top (m; 0 when above it). Valid while the
+// hand is over the console's top face.
+double depth_below_top(const World& world) {
+  const HandModel& hand = *world.scene().hand;
+  const auto& X_GL = world.X_GL();
+  double lowest_m = 1e9;
+  const Eigen::Vector3d half = 0.5 * hand.palm_size_m;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d c((corner & 1) ? half.x() : -half.x(), (corner & 2) ? half.y() : -half.y(),
+                            (corner & 4) ? half.z() : -half.z());
+    lowest_m = std::min(lowest_m, (X_GL[0] * c).z());
+  }
+  for (int l = 1; l < kLinkCount; ++l) {
+    const Capsule& capsule = hand.capsules[static_cast<std::size_t>(l)];
+    const double a = X_GL[l].translation().z();
+    const double b = (X_GL[l] * Eigen::Vector3d(capsule.length_m, 0, 0)).z();
+    lowest_m = std::min(lowest_m, std::min(a, b) - capsule.radius_m);
+  }
+  return std::max(0.0, kConsoleTop_m - lowest_m);
+}
+
+double lowest_link_height(const World& world) { return kConsoleTop_m - depth_below_top(world); }
+
+HandInput hand_at(const HandModel& hand, const Eigen::Vector3d& p_G) {
+  HandInput in;
+  in.X_GH = Eigen::Isometry3d::Identity();  // palm down, fingers along +x
+  in.X_GH.translation() = p_G;
+  in.q_rad = hand.rest_pose();
+  return in;
+}
+
+double lerp(double a, double b, double s) { return a + std::clamp(s, 0.0, 1.0) * (b - a); }
+
+TEST(ProxyHand, PressedIntoTheConsoleTheHandRestsOnItAndSlides) {
+  World world(console_scene(true));
+  const HandModel& hand = *world.scene().hand;
+  double deepest_m = 0.0;
+  double lowest_at_rest_m = 1.0;
+  double offset_at_rest_m = 0.0;
+  for (int step = 0; step < 1200; ++step) {
+    const double t_s = step * 1e-3;
+    // down from 6 cm above the top to 4 cm into it in 0.4 s, held, then 5 cm along +x
+    const double z = lerp(kConsoleTop_m + 0.06, kConsoleTop_m - 0.04, t_s / 0.4);
+    const double x = lerp(0.25, 0.30, (t_s - 0.8) / 0.3);
+    world.set_hand_input(hand_at(hand, {x, 0.0, z}));
+    world.step();
+    deepest_m = std::max(deepest_m, depth_below_top(world));
+    if (std::getenv("DEBUG_PRESS") && depth_below_top(world) > 5e-4) std::printf("t=%.3f depth=%.2fmm stat=%.2fmm\n", t_s, depth_below_top(world)*1e3, world.hand_penetration().static_max_m*1e3);
+    if (step == 799) {
+      lowest_at_rest_m = lowest_link_height(world);
+      offset_at_rest_m = world.tracked_offset_m();
+    }
+  }
+  EXPECT_LE(deepest_m, 1.0e-3) << "a link went " << deepest_m * 1e3 << " mm into the console";
+  // it rests on the top (touching within a millimetre), while the tracked hand is 4 cm below
+  EXPECT_LT(lowest_at_rest_m - kConsoleTop_m, 1.0e-3);
+  EXPECT_GT(offset_at_rest_m, 0.03);
+  // and slides with the tracked hand along the surface
+  EXPECT_NEAR(world.X_GH().translation().x(), 0.30, 2e-3);
+  EXPECT_NEAR(world.X_GH().translation().y(), 0.0, 2e-3);
+}
+
+// A 6 cm, 60 g ball on the console, swept by the fingers of a hand moving at 2 m/s.
+double ball_speed_after_sweep(bool proxy) {
+  Scene scene = console_scene(proxy);
+  scene.objects.push_back(test::dynamic_object("ball", Shape::sphere(0.03), 0.06,
+                                               at(0.45, 0.0, kConsoleTop_m + 0.03),
+                                               test::material(2.0e4, 0.9, 0.8)));
+  World world(std::move(scene));
+  const HandModel& hand = *world.scene().hand;
+  const int ball = world.scene().find_object("ball");
+  double fastest_mps = 0.0;
+  for (int step = 0; step < 400; ++step) {
+    const double t_s = step * 1e-3;
+    // the palm 3 cm above the top, from x 0.15 to 0.55 at 2 m/s: the fingers meet the ball
+    world.set_hand_input(hand_at(hand, {lerp(0.15, 0.55, t_s / 0.2), 0.0, kConsoleTop_m + 0.045}));
+    world.step();
+    fastest_mps = std::max(fastest_mps, world.bodies()[ball].v_G.norm());
+  }
+  return fastest_mps;
+}
+
+TEST(ProxyHand, ASweptBallGetsAboutThePushSpeed) {
+  const double with_proxy_mps = ball_speed_after_sweep(true);
+  const double kinematic_mps = ball_speed_after_sweep(false);
+  const double push_mps = ProxyParams{}.push_speed_mps;
+  EXPECT_LE(with_proxy_mps, push_mps + 0.2) << "the ball was thrown at " << with_proxy_mps;
+  EXPECT_GT(with_proxy_mps, 0.5 * push_mps) << "the hand should still push the ball";
+  EXPECT_GT(kinematic_mps, 1.0) << "without the proxy the 2 m/s hand throws the ball";
+}
+
+struct Squeeze {
+  double cup_sink_m = 0.0;   // deepest the cup's base went below the console's top
+  double max_spin_radps = 0.0;
+  int reversals = 0;         // steps whose spin (> 0.05 rad/s) turned by more than 90 degrees
+  double drift_m = 0.0;
+};
+
+// A 200 g cup on the console, the palm brought down on it and on to 3 cm into it, held there.
+Squeeze squeeze_cup(bool proxy) {
+  Scene scene = console_scene(proxy);
+  const double height_m = 0.10;
+  scene.objects.push_back(test::dynamic_object("cup", Shape::cylinder(0.035, height_m), 0.2,
+                                               at(0.35, 0.0, kConsoleTop_m + 0.5 * height_m),
+                                               test::material(3.0e4, 0.5, 0.4, 0.8)));
+  World world(std::move(scene));
+  const HandModel& hand = *world.scene().hand;
+  const int cup = world.scene().find_object("cup");
+  const Eigen::Vector3d start = world.bodies()[cup].X_GO.translation();
+  // palm centre over the cup (the palm box sits ahead of the wrist)
+  const double x_wrist = 0.35 - hand.X_HP.translation().x();
+  const double palm_below_wrist_m = -hand.X_HP.translation().z() + 0.5 * hand.palm_size_m.z();
+  const double cup_top = kConsoleTop_m + height_m;
+  Squeeze s;
+  Eigen::Vector3d w_before = Eigen::Vector3d::Zero();
+  for (int step = 0; step < 1000; ++step) {
+    const double t_s = step * 1e-3;
+    const double palm_bottom = lerp(cup_top + 0.02, cup_top - 0.03, t_s / 0.3);
+    HandInput in = hand_at(hand, {x_wrist, 0.0, palm_bottom + palm_below_wrist_m});
+    in.q_rad.fill(0.0);  // a flat hand, as far as the joints' ranges allow
+    hand::clamp_to_limits(hand, in.q_rad);
+    world.set_hand_input(in);
+    world.step();
+    const BodyState& b = world.bodies()[cup];
+    s.cup_sink_m = std::max(s.cup_sink_m, kConsoleTop_m - (b.X_GO.translation().z() - 0.5 * height_m));
+    if (t_s > 0.4) {
+      s.max_spin_radps = std::max(s.max_spin_radps, b.w_G.norm());
+      if (b.w_G.norm() > 0.05 && w_before.norm() > 0.05 && b.w_G.dot(w_before) < 0.0) ++s.reversals;
+    }
+    w_before = b.w_G;
+    if (std::getenv("DEBUG_SQUEEZE") && step % 20 == 0) std::printf("t=%.3f w=%.3f v=%.4f sink=%.2fmm palmz=%.4f pen=%.2fmm sub=%d\n", t_s, b.w_G.norm(), b.v_G.norm(), (kConsoleTop_m - (b.X_GO.translation().z() - 0.5 * height_m))*1e3, world.X_GL()[0].translation().z(), world.hand_penetration().max_m*1e3, world.substeps());
+    s.drift_m = (b.X_GO.translation() - start).head<2>().norm();
+  }
+  return s;
+}
+
+TEST(ProxyHand, ACupSqueezedAgainstTheConsoleIsNotCrushed) {
+  const Squeeze proxy = squeeze_cup(true);
+  const Squeeze kinematic = squeeze_cup(false);
+  // resting, the cup sinks m g / k (0.07 mm); the palm adds at most grip_force_N / k_pair
+  EXPECT_LT(proxy.cup_sink_m, 1.5e-3) << "the cup was pressed " << proxy.cup_sink_m * 1e3 << " mm in";
+  // chatter: the spin reversing from step to step (the kinematic palm's symptom)
+  EXPECT_LT(proxy.reversals, 60) << "the squeezed cup chatters (of 600 steps; the kinematic palm: all)";
+  EXPECT_LT(proxy.max_spin_radps, 3.0);
+  EXPECT_LT(proxy.drift_m, 0.01);
+  EXPECT_GT(kinematic.cup_sink_m, 4e-3) << "without the proxy the palm crushes the cup in";
+  std::printf("squeezed cup: proxy sink %.2f mm, %d reversals, max spin %.2f rad/s; "
+              "kinematic sink %.2f mm, %d reversals, max spin %.2f rad/s\n",
+              proxy.cup_sink_m * 1e3, proxy.reversals, proxy.max_spin_radps,
+              kinematic.cup_sink_m * 1e3, kinematic.reversals, kinematic.max_spin_radps);
+}
+
+TEST(ProxyHand, TheWristApproachesAFarTrackedPoseAtItsMaximumSpeed) {
+  World world(console_scene(true));
+  const HandModel& hand = *world.scene().hand;
+  world.set_hand_input(hand_at(hand, {0.2, 0.0, 1.2}));
+  world.step();
+  world.set_hand_input(hand_at(hand, {0.2, 1.0, 1.2}));  // a 1 m jump, e.g. a tracker glitch
+  for (int step = 0; step < 100; ++step) world.step();
+  const double moved_m = world.X_GH().translation().y();
+  EXPECT_NEAR(moved_m, 100 * 1e-3 * world.scene().proxy.max_speed_mps, 1e-9);
+  EXPECT_NEAR(world.tracked_offset_m(), 1.0 - moved_m, 1e-6);
+}
+
+}  // namespace
+}  // namespace vcockpit::physics
