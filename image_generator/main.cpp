@@ -35,6 +35,11 @@ int main(int argc, char** argv) {
                  "seconds to wait for the scene (cockpit/object_info) before giving up")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--ghost-threshold", options.ghost_threshold_m,
+                 "draw the tracked hand as thin pale bones while it is farther than this (m) from "
+                 "the simulated hand")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--node-name", options.node_name, "name on cockpit/node_status")
       ->capture_default_str();
   app.add_option("--stats-out", options.stats_out,

@@ -31,7 +31,9 @@ class ImageGenerator {
         frame_writer_(participant.make_writer<cockpit::FrameInfo>("stream")),
         status_writer_(participant.make_writer<cockpit::NodeStatus>("state")),
         domain_id_(participant.domain_id()),
-        hmd_(hmd.hmd) {}
+        hmd_(hmd.hmd) {
+    cache_.set_ghost_threshold_m(options.ghost_threshold_m);
+  }
 
   int run();
 

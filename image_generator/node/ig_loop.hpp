@@ -12,6 +12,8 @@
 #include "image_generator/node/hmd_yaml.hpp"
 #include "image_generator/node/snapshot_writer.hpp"
 
+#include "image_generator/node/scene_cache.hpp"
+
 namespace vcockpit::image_generator {
 
 struct IgOptions {
@@ -23,6 +25,7 @@ struct IgOptions {
   double wait_timeout_s = 10.0;  // for the first object_info
   std::string node_name = "image_generator";
   std::string stats_out;         // JSON file of the run's frame rate and render times; empty: none
+  double ghost_threshold_m = SceneCache::kDefaultGhostThreshold_m;  // tracked-hand ghost
 };
 
 // Exit codes: 0 done, 3 no scene arrived in time, 4 rendering failed.

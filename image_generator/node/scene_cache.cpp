@@ -94,7 +94,7 @@ void SceneCache::build(std::vector<render::Instance>& out) const {
   }
 }
 
-void SceneCache::append_hand(const Hand& hand, std::vector<render::Instance>& out) {
+void SceneCache::append_hand(const Hand& hand, std::vector<render::Instance>& out) const {
   const cockpit::HandState& state = hand.state;
   const auto& colour = state.tracking() ? kSkin : kGlove;  // grey while the glove is lost
   render::Instance palm;
@@ -114,6 +114,26 @@ void SceneCache::append_hand(const Hand& hand, std::vector<render::Instance>& ou
     phalanx.size_m = Eigen::Vector3d(c.radius_m, c.length_m, 0);
     phalanx.rgba = colour;
     out.push_back(phalanx);
+  }
+  append_ghost(hand, out);
+}
+
+// The tracked hand, where it differs from the drawn one by more than the threshold: a thin pale
+// skeleton (the renderer draws opaque) that shows the pilot where the glove really is while the
+// simulated hand rests on a panel or round an object (Prachyabrued & Borst 2014).
+void SceneCache::append_ghost(const Hand& hand, std::vector<render::Instance>& out) const {
+  const cockpit::HandState& state = hand.state;
+  if (!(state.tracked_offset_m() > ghost_threshold_m_)) return;
+  const Eigen::Isometry3d z_to_x(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
+  for (int l = 1; l < hand::kLinkCount; ++l) {
+    const hand::Capsule& c = hand.geometry.capsules[l];
+    render::Instance bone;
+    bone.primitive = render::Primitive::kCapsule;
+    bone.X_GO = to_eigen(state.tracked_X_GL()[l]) *
+                Eigen::Translation3d(0.5 * c.length_m, 0, 0) * z_to_x;
+    bone.size_m = Eigen::Vector3d(kGhostRadiusScale * c.radius_m, c.length_m, 0);
+    bone.rgba = kGhost;
+    out.push_back(bone);
   }
 }
 

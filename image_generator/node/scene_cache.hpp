@@ -48,8 +48,13 @@ class SceneCache {
   int64_t newest_sim_time_ns() const { return newest_sim_time_ns_; }
   Eigen::Vector3d object_position(uint32_t id) const;
 
+  // The tracked hand is drawn as a ghost (thin pale bones) while it is farther than this from the
+  // drawn proxy hand (HandState.tracked_offset_m); infinity: never.
+  static constexpr double kDefaultGhostThreshold_m = 0.01;
+  void set_ghost_threshold_m(double threshold_m) { ghost_threshold_m_ = threshold_m; }
+
   // Objects with both info and a pose, then for each drawn hand its palm box and 15 phalanx
-  // capsules.
+  // capsules, and the tracked hand's 15 bones when it is a ghost.
   void build(std::vector<render::Instance>& out) const;
 
  private:
@@ -65,7 +70,12 @@ class SceneCache {
     cockpit::HandState state;
   };
 
-  static void append_hand(const Hand& hand, std::vector<render::Instance>& out);
+  void append_hand(const Hand& hand, std::vector<render::Instance>& out) const;
+  void append_ghost(const Hand& hand, std::vector<render::Instance>& out) const;
+
+  static constexpr double kGhostRadiusScale = 0.3;  // the ghost's bones against the drawn radii
+  static constexpr std::array<float, 4> kGhost = {0.80f, 0.86f, 0.95f, 1.0f};
+  double ghost_threshold_m_ = kDefaultGhostThreshold_m;
 
   std::map<uint32_t, Object> objects_;  // by object id: drawn in id order
   std::array<Hand, kHandSlots> hands_;  // by hand_id

@@ -89,6 +89,9 @@ void StatePublisher::publish_state(const physics::World& world, const InputStamp
   hand_msg_.sim_time_ns(world.time_ns());
   hand_msg_.X_GH(to_idl(world.X_GH()));
   for (int l = 0; l < hand::kLinkCount; ++l) hand_msg_.X_GL()[l] = to_idl(world.X_GL()[l]);
+  for (int l = 0; l < hand::kLinkCount; ++l)
+    hand_msg_.tracked_X_GL()[l] = to_idl(world.tracked_X_GL()[l]);
+  hand_msg_.tracked_offset_m(world.tracked_offset_m());
   hand_msg_.grasped_object_id(held);
   hand_msg_.tracking(tracking);
   hand_writer_.write(hand_msg_);

@@ -112,6 +112,36 @@ TEST(SceneCache, EachHandUsesTheInfoOfItsOwnHandId) {
   EXPECT_EQ(out[4].size_m.x(), shipped_hand().capsules[4].radius_m);
 }
 
+TEST(SceneCache, TheTrackedHandIsAGhostOnlyWhenItIsAwayFromTheDrawnOne) {
+  SceneCache cache;
+  ASSERT_TRUE(cache.on_hand_info(to_hand_info(shipped_hand(), 0)));
+  cockpit::HandState state = hand_state(0, 1'000'000);
+  const auto X_tracked = to_idl(Eigen::Isometry3d(Eigen::Translation3d(0.3, 0.0, 0.95)));
+  for (auto& link : state.tracked_X_GL()) link = X_tracked;
+  state.tracked_offset_m(0.5 * SceneCache::kDefaultGhostThreshold_m);
+  cache.on_hand(state);
+  std::vector<render::Instance> out;
+  cache.build(out);
+  EXPECT_EQ(out.size(), kHandInstances) << "close enough: no ghost";
+
+  state.tracked_offset_m(0.05);  // the tracked hand 5 cm into a panel
+  cache.on_hand(state);
+  cache.build(out);
+  ASSERT_EQ(out.size(), kHandInstances + 15) << "the hand, then the ghost's 15 bones";
+  for (int l = 1; l < hand::kLinkCount; ++l) {
+    const render::Instance& bone = out[kHandInstances + static_cast<std::size_t>(l) - 1];
+    EXPECT_EQ(bone.primitive, render::Primitive::kCapsule);
+    EXPECT_LT(bone.size_m.x(), shipped_hand().capsules[l].radius_m) << "thinner than the hand";
+    EXPECT_EQ(bone.size_m.y(), shipped_hand().capsules[l].length_m);
+    // at the tracked link pose: the capsule's centre half its length along the link's x
+    EXPECT_NEAR(bone.X_GO.translation().z(), 0.95, 1e-12);
+  }
+
+  cache.set_ghost_threshold_m(0.1);
+  cache.build(out);
+  EXPECT_EQ(out.size(), kHandInstances) << "a larger threshold: no ghost at 5 cm";
+}
+
 TEST(SceneCache, MalformedHandMessagesAreRefused) {
   SceneCache cache;
   cockpit::HandInfo bad_id = to_hand_info(shipped_hand(), 2);
