@@ -6,11 +6,10 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
-#include "hand/hand_joints.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/offline_runner.hpp"
+#include "tests/support/crafted_glove_log.hpp"
 #include "tests/support/process.hpp"
 
 namespace vcockpit::physics_io {
@@ -18,48 +17,15 @@ namespace {
 
 std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
 
-// 100 Hz rows over [from_ms, to_ms]; the hand 3 m above the cockpit moving at 0.2 m/s along x;
-// every joint column but palm_arch; index_mcp at 5 rad (beyond its limit) in `clamp_rows` rows.
-struct Craft {
-  std::ostringstream csv;
-  int rows = 0;
-  int clamped = 0;
-  Craft() {
-    csv << "# crafted\nt_s,x_m,y_m,z_m,qw,qx,qy,qz";
-    for (int j = 0; j < hand::kJointCount; ++j) {
-      const std::string_view name = hand::joint_name(static_cast<hand::Joint>(j));
-      if (name != "palm_arch") csv << ',' << name << "_rad";
-    }
-    csv << '\n';
-  }
-  void run(int from_ms, int to_ms, int clamp_rows = 0) {
-    for (int ms = from_ms; ms <= to_ms; ms += 10) {
-      csv << ms / 1000.0 << ',' << 0.2 * ms / 1000.0 << ",0,3,1,0,0,0";
-      for (int j = 0; j < hand::kJointCount; ++j) {
-        const std::string_view name = hand::joint_name(static_cast<hand::Joint>(j));
-        if (name == "palm_arch") continue;
-        const bool clamp = name == "index_mcp" && clamp_rows > 0;
-        csv << ',' << (clamp ? 5.0 : 0.1);
-        if (clamp) {
-          --clamp_rows;
-          ++clamped;
-        }
-      }
-      csv << '\n';
-      ++rows;
-    }
-  }
-};
-
 TEST(OfflineCounts, ACraftedLogsClampsMissingColumnGapsAndGloveLostLandInTheSummary) {
-  Craft craft;
+  test::CraftedGloveLog craft;
   craft.run(0, 100, 3);  // 3 values clamped
   craft.run(200, 300);   // after a 0.1 s gap: bridged
   craft.run(600, 700);   // after 0.3 s: not bridged (max gap 0.25 s)
   craft.run(1400, 1500);  // after 0.7 s: not bridged, the glove lost from 1.2 s
   const std::string dir = test::make_temp_dir("offline_counts");
   const std::string log = dir + "/crafted.csv";
-  std::ofstream(log) << craft.csv.str();
+  std::ofstream(log) << craft.text();
 
   OfflineOptions options;
   options.scene_path = source_dir() + "/config/cockpit.yaml";
@@ -71,12 +37,12 @@ TEST(OfflineCounts, ACraftedLogsClampsMissingColumnGapsAndGloveLostLandInTheSumm
   std::ifstream in(options.out_dir + "/summary.json");
   const auto j = nlohmann::json::parse(in);
   const auto& input = j.at("input");
-  EXPECT_EQ(input.at("accepted"), craft.rows);
+  EXPECT_EQ(input.at("accepted"), craft.rows());
   EXPECT_EQ(input.at("rejected"), 0);
   EXPECT_EQ(input.at("clamped"), 3);
-  EXPECT_EQ(craft.clamped, 3);
+  EXPECT_EQ(craft.clamped(), 3);
   EXPECT_EQ(input.at("missing_columns"), 1);
-  EXPECT_EQ(input.at("intervals"), craft.rows - 1);
+  EXPECT_EQ(input.at("intervals"), craft.rows() - 1);
   EXPECT_EQ(input.at("intervals_interpolated"), 40);
   EXPECT_EQ(input.at("gaps_bridged"), 1);
   EXPECT_EQ(input.at("gaps_not_bridged"), 2);
@@ -91,12 +57,12 @@ TEST(OfflineCounts, ACraftedLogsClampsMissingColumnGapsAndGloveLostLandInTheSumm
 }
 
 TEST(OfflineCounts, BridgingEveryGapLeavesTheRecordedSpeed) {
-  Craft craft;
+  test::CraftedGloveLog craft;
   craft.run(0, 100);
   craft.run(200, 300);
   const std::string dir = test::make_temp_dir("offline_counts_bridged");
   const std::string log = dir + "/crafted.csv";
-  std::ofstream(log) << craft.csv.str();
+  std::ofstream(log) << craft.text();
   OfflineOptions options;
   options.scene_path = source_dir() + "/config/cockpit.yaml";
   options.log_path = log;
@@ -110,11 +76,11 @@ TEST(OfflineCounts, BridgingEveryGapLeavesTheRecordedSpeed) {
 }
 
 TEST(OfflineCounts, ADurationPastTheLogHoldsTheLastSampleAndLosesTheGloveAfterTheTimeout) {
-  Craft craft;
+  test::CraftedGloveLog craft;
   craft.run(0, 100);
   const std::string dir = test::make_temp_dir("offline_counts_duration");
   const std::string log = dir + "/crafted.csv";
-  std::ofstream(log) << craft.csv.str();
+  std::ofstream(log) << craft.text();
   OfflineOptions options;
   options.scene_path = source_dir() + "/config/cockpit.yaml";
   options.log_path = log;
