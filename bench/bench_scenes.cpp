@@ -90,14 +90,16 @@ physics::HandInput step_to_hold(physics::World& world) {
   const hand::HandModel& hand = *world.scene().hand;
   const auto samples = hand::read_glove_log(source_path(kGraspLog), hand).samples;
   const int64_t hold_ns = std::llround(kHoldTime_s * 1e9);
-  physics::HandInput input;
   physics_io::ReplayDriver driver(world, hand);
   for (const auto& sample : samples) {
-    if (driver.world_time_of(sample) >= hold_ns) break;
+    if (driver.world_time_of(sample) > hold_ns) {
+      driver.push(sample);  // the interval that holds the hold time
+      break;
+    }
     driver.feed(sample, [&] { world.step(); });
-    input = physics_io::hand_input_from_glove(hand, sample);
   }
   driver.step_until(hold_ns, [&] { world.step(); });
+  const physics::HandInput input = world.state().hand_to;  // the hand the last step went to
   const int cup = world.scene().find_object("cup");
   if (cup < 0 || world.bodies()[static_cast<std::size_t>(cup)].held_by == physics::kNotHeld)
     throw std::runtime_error("step_to_hold: the cup is not held at the hold time");

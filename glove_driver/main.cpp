@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <memory>
 
 #include "common/clock.hpp"
@@ -38,6 +39,7 @@ struct Flags {
   uint64_t count = 0;
   double duration_s = 0.0;
   double idle_timeout_s = 0.0;
+  double max_gap_s = 0.25;
   std::string log_level = "info";
 };
 
@@ -78,6 +80,11 @@ void add_flags(CLI::App& app, Flags& f) {
   app.add_option("--idle-timeout", f.idle_timeout_s,
                  "record: stop this many seconds after the last sample")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--max-gap", f.max_gap_s,
+                 "count intervals between published samples longer than this as gaps a physics "
+                 "node with the same --max-gap does not bridge")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   app.add_option("--log-level", f.log_level, "trace, debug, info, warn, error")
       ->capture_default_str();
 }
@@ -85,7 +92,7 @@ void add_flags(CLI::App& app, Flags& f) {
 int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Source& source,
                   const PublisherOptions& options) {
   SamplePublisher publisher(participant, hand, options);
-  publisher.add_clamped(source.clamped_on_load());
+  publisher.add_load_counts(source.load_counts());
   if (!publisher.wait_for_subscribers()) return shutdown_requested() ? 0 : 1;
   TerminalProgress progress;
   const int64_t start_ns = monotonic_now_ns();
@@ -102,10 +109,9 @@ int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Sour
   }
   progress.finish();
   const bool ok = publisher.finish();
-  const auto& c = publisher.counts();
-  spdlog::info("published {} samples in {:.3f} s (rejected {}, clamped {}, write failures {})",
-               publisher.published(), ns_to_seconds(monotonic_now_ns() - start_ns), c.rejected(),
-               c.clamped, publisher.write_failures());
+  spdlog::info("published {} samples in {:.3f} s ({} write failures); {}", publisher.published(),
+               ns_to_seconds(monotonic_now_ns() - start_ns), publisher.write_failures(),
+               hand::input_counts_text(publisher.counts()));
   return ok ? 0 : 1;
 }
 
@@ -139,16 +145,7 @@ int run(const Flags& f) {
   if (f.source == "replay") {
     hand::GloveLog log = hand::read_glove_log(f.log_path, hand);
     left = log.left_hand;
-    if (!log.missing_joints.empty()) {
-      std::string names;
-      for (const auto& n : log.missing_joints) names += (names.empty() ? "" : ", ") + n;
-      spdlog::warn("{}: no column for {} joint(s), using the rest pose: {}", f.log_path,
-                   log.missing_joints.size(), names);
-    }
-    if (log.clamped_values > 0) {
-      spdlog::warn("{} joint value(s) beyond limits were clamped; first: {}", log.clamped_values,
-                   log.first_clamp);
-    }
+    for (const std::string& warning : hand::glove_log_warnings(log)) spdlog::warn("{}", warning);
     spdlog::info("{}: {} samples, {:.3f} s", f.log_path, log.samples.size(),
                  ns_to_seconds(log.samples.back().t_ns - log.samples.front().t_ns));
     source = std::make_unique<ReplaySource>(
@@ -163,6 +160,7 @@ int run(const Flags& f) {
   options.lockstep = f.lockstep;
   options.subscribers = f.subscribers;
   options.match_timeout_s = f.match_timeout_s;
+  options.max_gap_ns = std::llround(f.max_gap_s * 1e9);
   return run_publisher(participant, hand, *source, options);
 }
 

@@ -24,6 +24,7 @@
 #include "common/atomic_file.hpp"
 #include "hand/glove_sample.hpp"
 #include "hand/hand_model.hpp"
+#include "hand/input_counts.hpp"
 
 namespace vcockpit::hand {
 
@@ -38,12 +39,17 @@ struct GloveLog {
   std::vector<std::string> comments;  // comment lines without the leading '#' and space
   std::vector<GloveSample> samples;
   std::vector<std::string> missing_joints;  // channels that took the rest pose
-  int clamped_values = 0;                   // joint values moved into their limits
   std::string first_clamp;                  // "file:line: column ..." of the first, for the log
+  // what reading did to the values: `clamped` joint values, `missing_columns` (= missing_joints)
+  InputCounts counts;
 };
 
 // Reads and validates a whole log. Throws GloveLogError.
 GloveLog read_glove_log(const std::string& path, const hand::HandModel& hand);
+
+// The warnings a node logs once after reading a log: missing columns (named) and clamped values
+// (counted, the first one located). Empty for a clean log.
+std::vector<std::string> glove_log_warnings(const GloveLog& log);
 
 // Writes a log atomically: to "<path>.partial", then renamed over <path>. The columns are the
 // canonical ones (t_s, position, quaternion, all 22 joints in rad), full double precision, so

@@ -130,6 +130,7 @@ class Reader {
         log_.missing_joints.emplace_back(hand::joint_name(static_cast<hand::Joint>(j)));
       }
     }
+    log_.counts.missing_columns = log_.missing_joints.size();
   }
 
   Column classify(const std::string& name) const {
@@ -244,7 +245,7 @@ class Reader {
   double clamp_joint(const Column& c, double value_rad) {
     const auto& range = hand_.joints[c.joint];
     if (value_rad >= range.min_rad && value_rad <= range.max_rad) return value_rad;
-    if (log_.clamped_values++ == 0) {
+    if (log_.counts.clamped++ == 0) {
       log_.first_clamp = path_ + ":" + std::to_string(line_no_) + ": column '" + c.name +
                          "' beyond the joint limits, clamped";
     }
@@ -264,6 +265,21 @@ class Reader {
 
 GloveLog read_glove_log(const std::string& path, const hand::HandModel& hand) {
   return Reader(path, hand).read();
+}
+
+std::vector<std::string> glove_log_warnings(const GloveLog& log) {
+  std::vector<std::string> out;
+  if (!log.missing_joints.empty()) {
+    std::string names;
+    for (const auto& n : log.missing_joints) names += (names.empty() ? "" : ", ") + n;
+    out.push_back(log.path + ": no column for " + std::to_string(log.missing_joints.size()) +
+                  " joint(s), using the rest pose: " + names);
+  }
+  if (log.counts.clamped > 0) {
+    out.push_back(log.path + ": " + std::to_string(log.counts.clamped) +
+                  " joint value(s) beyond the limits were clamped; first: " + log.first_clamp);
+  }
+  return out;
 }
 
 }  // namespace vcockpit::hand

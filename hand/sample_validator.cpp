@@ -29,9 +29,10 @@ bool SampleValidator::accept(GloveSample& sample) {
     return false;
   }
   hand::JointAngles clamped = sample.joints_rad;
-  if (hand::clamp_to_limits(hand_, clamped) > 0) {
+  const int clamped_values = hand::clamp_to_limits(hand_, clamped);
+  if (clamped_values > 0) {
     sample.joints_rad = clamped;
-    ++counts_.clamped;
+    counts_.clamped += static_cast<uint64_t>(clamped_values);
   }
   last_t_ns_ = sample.t_ns;
   have_last_ = true;

@@ -91,10 +91,24 @@ int main(int argc, char** argv) {
                  "DDS: hand_state/object_state publications per second")
       ->check(CLI::Range(1.0, 10000.0) & kFinite)
       ->capture_default_str();
-  app.add_option("--glove-timeout", node_options.glove_timeout_s,
-                 "DDS: seconds without a hand sample before the glove counts as lost")
+  double glove_timeout_s = 0.5;
+  app.add_option("--glove-timeout", glove_timeout_s,
+                 "seconds without a hand sample before the glove counts as lost (real time: of "
+                 "wall time; lockstep and offline: of the samples' timeline)")
       ->check(CLI::PositiveNumber & kFinite)
       ->capture_default_str();
+  double max_gap_s = 0.25;
+  app.add_option("--max-gap", max_gap_s,
+                 "longest interval between hand samples the hand is moved across; over it the "
+                 "hand holds its last sample (0: never interpolate, each sample taken in one step)")
+      ->check(CLI::NonNegativeNumber & kFinite)
+      ->capture_default_str();
+  std::optional<double> input_delay_s;
+  app.add_option("--input-delay", input_delay_s,
+                 "DDS real time: show the hand this many seconds behind its source, interpolated "
+                 "(default: adaptive, one usual sample interval + 2 ms; 0: the newest sample at "
+                 "once, no interpolation)")
+      ->check(CLI::NonNegativeNumber & kFinite);
   app.add_option("--node-name", node_options.node_name, "name on cockpit/node_status")
       ->capture_default_str();
   std::optional<std::string> stats_out;
@@ -108,11 +122,22 @@ int main(int argc, char** argv) {
   try {
     setup_logging("physics_node", log_level);
     install_shutdown_handlers();
+    physics_io::InputTiming timing;
+    timing.max_gap_ns = std::llround(max_gap_s * 1e9);
+    timing.glove_timeout_ns = std::llround(glove_timeout_s * 1e9);
+    try {
+      physics_io::check_input_timing(timing);
+    } catch (const std::invalid_argument& e) {
+      throw CLI::ValidationError(e.what());
+    }
+    offline_options.timing = timing;
+    node_options.timing = timing;
     if (offline) {
       if (stats_out) {
         throw CLI::ValidationError("--stats-out belongs to the DDS modes (--offline writes "
                                    "DIR/summary.json)");
       }
+      if (input_delay_s) throw CLI::ValidationError("--input-delay belongs to DDS real time");
       offline_options.scene_path = scene_path;
       return run_offline_mode(offline_options);
     }
@@ -120,6 +145,11 @@ int main(int argc, char** argv) {
       throw CLI::ValidationError("--log and --out belong to --offline");
     }
     node_options.duration_s = offline_options.duration_s.value_or(0.0);
+    if (input_delay_s && node_options.lockstep) {
+      throw CLI::ValidationError("--input-delay belongs to real time (lockstep interpolates "
+                                 "between samples with no delay)");
+    }
+    node_options.input_delay_s = input_delay_s;
     if (stats_out) {
       check_stats_out(*stats_out);
       node_options.stats_out = *stats_out;

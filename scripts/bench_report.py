@@ -99,6 +99,34 @@ def physics_rows(gbench):
     return rows, fk
 
 
+FOLLOW_RATES = (33, 60, 120, 1000)
+
+
+def input_rows(out_dir):
+    """Step 7: per source rate, the real-time hand lag with the interpolation delay and with none
+    (--input-delay 0), and offline on the gesture recorded at that rate, interpolated and with
+    each sample taken in one step (--max-gap 0)."""
+    rows = []
+    for hz in FOLLOW_RATES:
+        rt = load(out_dir, f"follow_{hz}_adaptive.json")
+        rt0 = load(out_dir, f"follow_{hz}_0.json")
+        off = load(out_dir, f"offline_{hz}_gap0.25/summary.json")
+        off0 = load(out_dir, f"offline_{hz}_gap0/summary.json")
+        rows.append({"rate_hz": hz,
+                     "realtime": {k: rt.get(k) for k in ("input_delay_ms", "hand_lag_us",
+                                                         "hand_peak_wrist_speed_mps", "input")},
+                     "realtime_no_delay": {k: rt0.get(k) for k in ("hand_lag_us",
+                                                                   "hand_peak_wrist_speed_mps",
+                                                                   "input")},
+                     "offline": {k: off.get(k) for k in ("grasps", "releases",
+                                                         "hand_peak_wrist_speed_mps",
+                                                         "hand_peak_joint_speed_radps")},
+                     "offline_each_sample_in_one_step": {
+                         k: off0.get(k) for k in ("grasps", "releases", "hand_peak_wrist_speed_mps",
+                                                  "hand_peak_joint_speed_radps")}})
+    return rows
+
+
 def status(met):
     return "met" if met else "not met"
 
@@ -114,6 +142,7 @@ def main():
     rig = load(out_dir, "rig/summary.json")
     offline = load(out_dir, "offline/summary.json")
     rows, fk = physics_rows(gbench)
+    follow = input_rows(out_dir)
 
     transit = rt["dds_transit_us"]
     floor_transit = floor["dds_transit_us"]
@@ -159,6 +188,7 @@ def main():
         "offline": {k: offline.get(k) for k in ("simulated_s", "wall_s", "realtime_factor",
                                                  "substeps_per_step", "substeps_mean",
                                                  "stage_wall_s")},
+        "hand_input_in_time": follow,
         "targets": targets,
     }
     tmp = json_path + ".partial"
@@ -250,6 +280,38 @@ def main():
               f"time** ({offline.get('substeps_mean', offline['substeps_per_step']):.1f} substeps "
               f"per step on average, at most {offline['substeps_per_step']}). Wall time by stage (s): "
               + ", ".join(f"{k} {v:.3f}" for k, v in st.items()) + ".\n")
+    md.append("## Hand input in time\n")
+    md.append("The bundled gesture (`config/gestures/reach_grasp_lift_release.yaml`) played by "
+              "`glove_driver --source synthetic --rate-hz R`. **Real time**: `physics_node` at 1 "
+              "kHz; hand lag = the step's end minus the source stamp of the hand it shows "
+              "(transit + interpolation delay + any wait for a late sample), with the adaptive "
+              "delay and with `--input-delay 0` (the newest sample at once, held until the next: "
+              "the behaviour before interpolation). **Offline**: the same gesture recorded at R "
+              "and replayed with `physics_node --offline`, interpolated and with `--max-gap 0` "
+              "(each sample taken in one step). The recorded wrist never exceeds about 0.45 m/s.\n")
+    md.append("| rate | delay (ms) | hand lag p50 / p99 / max (ms) | late intervals | peak wrist "
+              "(m/s) | no delay: lag p50 / p99 / max (ms) | no delay: peak wrist (m/s) |")
+    md.append("|---|---|---|---|---|---|---|")
+    for r in follow:
+        a, b = r["realtime"], r["realtime_no_delay"]
+        la, lb = a["hand_lag_us"], b["hand_lag_us"]
+        md.append(f"| {r['rate_hz']} Hz | {a['input_delay_ms']:.1f} | {la['p50'] / 1e3:.1f} / "
+                  f"{la['p99'] / 1e3:.1f} / {la['max'] / 1e3:.1f} | "
+                  f"{a['input']['intervals_late']} of {a['input']['intervals']} | "
+                  f"{a['hand_peak_wrist_speed_mps']:.2f} | {lb['p50'] / 1e3:.1f} / "
+                  f"{lb['p99'] / 1e3:.1f} / {lb['max'] / 1e3:.1f} | "
+                  f"{b['hand_peak_wrist_speed_mps']:.2f} |")
+    md.append("")
+    md.append("| rate | offline, interpolated: peak wrist (m/s), joint (rad/s), grasps/releases | "
+              "each sample in one step: peak wrist, joint, grasps/releases |")
+    md.append("|---|---|---|")
+    for r in follow:
+        o, o0 = r["offline"], r["offline_each_sample_in_one_step"]
+        md.append(f"| {r['rate_hz']} Hz | {o['hand_peak_wrist_speed_mps']:.2f}, "
+                  f"{o['hand_peak_joint_speed_radps']:.1f}, {o['grasps']}/{o['releases']} | "
+                  f"{o0['hand_peak_wrist_speed_mps']:.2f}, {o0['hand_peak_joint_speed_radps']:.1f}, "
+                  f"{o0['grasps']}/{o0['releases']} |")
+    md.append("")
     tmp = md_path + ".partial"
     with open(tmp, "w") as f:
         f.write("\n".join(md))

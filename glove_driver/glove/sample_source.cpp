@@ -9,9 +9,6 @@ namespace vcockpit::glove {
 bool ReplaySource::next(hand::GloveSample& out, int64_t& due_ns) { return cursor_.next(out, due_ns); }
 double ReplaySource::position_s() const { return ns_to_seconds(cursor_.position_ns()); }
 double ReplaySource::total_s() const { return ns_to_seconds(cursor_.pass_duration_ns()); }
-uint64_t ReplaySource::clamped_on_load() const {
-  return static_cast<uint64_t>(log_.clamped_values);
-}
 
 bool SyntheticSource::next(hand::GloveSample& out, int64_t& due_ns) {
   const int64_t t_ns = static_cast<int64_t>(std::llround(static_cast<double>(k_) * 1e9 / rate_hz_));

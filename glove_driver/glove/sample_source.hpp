@@ -18,8 +18,8 @@ class Source {
   virtual bool next(hand::GloveSample& out, int64_t& due_ns) = 0;
   virtual double position_s() const = 0;
   virtual double total_s() const = 0;
-  // joint values the reader clamped into their limits while loading (a log), for node_status
-  virtual uint64_t clamped_on_load() const { return 0; }
+  // what loading counted (a log: clamped joint values, missing columns), for node_status
+  virtual hand::InputCounts load_counts() const { return {}; }
 };
 
 class ReplaySource : public Source {
@@ -29,7 +29,7 @@ class ReplaySource : public Source {
   bool next(hand::GloveSample& out, int64_t& due_ns) override;
   double position_s() const override;
   double total_s() const override;
-  uint64_t clamped_on_load() const override;
+  hand::InputCounts load_counts() const override { return log_.counts; }
 
  private:
   hand::GloveLog log_;

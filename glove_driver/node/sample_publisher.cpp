@@ -33,8 +33,21 @@ bool SamplePublisher::wait_for_subscribers() {
   return false;
 }
 
+hand::InputCounts SamplePublisher::counts() const {
+  hand::InputCounts c = load_counts_;
+  c += validator_.counts();
+  c += interval_counts_;
+  return c;
+}
+
 bool SamplePublisher::publish(hand::GloveSample sample) {
   if (!validator_.accept(sample)) return false;
+  if (validator_.counts().accepted > 1) {
+    const int64_t interval_ns = sample.t_ns - last_t_ns_;
+    hand::count_interval(interval_counts_, intervals_.add(interval_ns, options_.max_gap_ns),
+                         interval_ns, false);
+  }
+  last_t_ns_ = sample.t_ns;
   message_ = to_hand_sample(sample, options_.hand_id, published_, monotonic_now_ns());
   // a reliable history stays full while a reader lags; keep trying while it is still there
   while (!writer_.write(message_)) {
@@ -63,7 +76,7 @@ bool SamplePublisher::finish() {
 }
 
 void SamplePublisher::publish_status(cockpit::NodeState state, int64_t now_ns) {
-  const auto& c = validator_.counts();
+  const hand::InputCounts c = counts();
   cockpit::NodeStatus status;
   status.node_name(options_.node_name);
   status.state(state);
@@ -77,7 +90,16 @@ void SamplePublisher::publish_status(cockpit::NodeState state, int64_t now_ns) {
   status.rejected_nonfinite(c.rejected_nonfinite);
   status.rejected_out_of_range(c.rejected_out_of_range);
   status.rejected_stale(c.rejected_stale);
-  status.clamped(c.clamped + clamped_before_);
+  status.clamped(c.clamped);
+  status.missing_columns(c.missing_columns);
+  status.intervals(c.intervals);
+  status.intervals_interpolated(c.intervals_interpolated);
+  status.gaps_bridged(c.gaps_bridged);
+  status.gaps_not_bridged(c.gaps_not_bridged);
+  status.intervals_late(c.intervals_late);
+  status.longest_interval_s(static_cast<double>(c.longest_interval_ns) * 1e-9);
+  status.glove_lost(c.glove_lost);
+  status.input_delay_ms(0.0);
   status.input_alive(true);
   status.detail(std::string(options_.lockstep ? "lockstep" : "stream") + ", " +
                 std::to_string(writer_.matched_count()) + " subscriber(s)");

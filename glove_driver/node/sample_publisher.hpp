@@ -1,6 +1,8 @@
 #pragma once
 // The glove driver's DDS side: validates each sample, publishes it on cockpit/hand_sample, and
-// reports counts on cockpit/node_status about once a second.
+// reports counts on cockpit/node_status about once a second: hand::InputCounts, the same counts
+// the physics node keeps (what loading the log counted, the validator's, and the intervals
+// between the samples it publishes, classified against --max-gap as the physics node does).
 //
 // Stream mode: best effort at the source's pace (stream profile). Lockstep: reliable keep-all
 // (reliable profile); waits for its subscribers to match before the first sample and for their
@@ -10,6 +12,7 @@
 #include <string>
 
 #include "common/dds_participant.hpp"
+#include "hand/sample_intervals.hpp"
 #include "hand/sample_validator.hpp"
 
 namespace vcockpit::glove {
@@ -20,6 +23,7 @@ struct PublisherOptions {
   int subscribers = 1;           // lockstep: readers to wait for
   double match_timeout_s = 30.0;
   std::string node_name = "glove_driver";
+  int64_t max_gap_ns = hand::kDefaultMaxGap_ns;
 };
 
 class SamplePublisher {
@@ -36,10 +40,12 @@ class SamplePublisher {
   // Lockstep: waits until every subscriber acknowledged everything. Publishes a final status.
   bool finish();
 
-  // Joint values clamped before the samples reached the validator (while reading a log).
-  void add_clamped(uint64_t count) { clamped_before_ += count; }
+  // What was counted before the samples reached the validator (reading a log: clamped values,
+  // missing columns).
+  void add_load_counts(const hand::InputCounts& counts) { load_counts_ += counts; }
 
-  const hand::ValidationCounts& counts() const { return validator_.counts(); }
+  // Everything counted: loading, validation, intervals.
+  hand::InputCounts counts() const;
   uint64_t published() const { return published_; }
   uint64_t write_failures() const { return write_failures_; }
 
@@ -53,7 +59,10 @@ class SamplePublisher {
   cockpit::HandSample message_;
   uint64_t published_ = 0;
   uint64_t write_failures_ = 0;
-  uint64_t clamped_before_ = 0;
+  hand::InputCounts load_counts_;
+  hand::InputCounts interval_counts_;
+  hand::IntervalTracker intervals_;
+  int64_t last_t_ns_ = 0;
   int64_t last_status_ns_ = 0;
   uint64_t published_at_last_status_ = 0;
 };

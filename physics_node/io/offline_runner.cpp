@@ -10,6 +10,8 @@
 #include "common/clock.hpp"
 #include "common/terminal_progress.hpp"
 #include "hand/glove_log.hpp"
+#include "hand/sample_validator.hpp"
+#include "physics_node/io/hand_motion_peak.hpp"
 #include "physics_node/io/replay_driver.hpp"
 
 namespace vcockpit::physics_io {
@@ -32,13 +34,23 @@ int64_t output_interval_ns(double output_hz, const physics::Scene& scene) {
 }  // namespace
 
 RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
+  check_input_timing(options.timing);
   std::vector<hand::GloveSample> samples;
+  hand::InputCounts input_counts;
   if (!options.log_path.empty()) {
     if (!scene.hand) {
       throw std::invalid_argument(options.scene_path + ": the scene has no hand, so a glove log "
                                                        "cannot drive it");
     }
-    samples = hand::read_glove_log(options.log_path, *scene.hand).samples;
+    hand::GloveLog log = hand::read_glove_log(options.log_path, *scene.hand);
+    for (const std::string& warning : hand::glove_log_warnings(log)) spdlog::warn("{}", warning);
+    // the checks a live node makes (the reader has already refused what a file cannot hold)
+    hand::SampleValidator validator(*scene.hand);
+    for (hand::GloveSample& s : log.samples) {
+      if (validator.accept(s)) samples.push_back(s);
+    }
+    input_counts = log.counts;
+    input_counts += validator.counts();
   }
   if (!options.duration_s && samples.empty()) {
     throw std::invalid_argument("give --log GLOVE.csv or --duration S");
@@ -58,6 +70,8 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   summary.scene_path = options.scene_path;
   summary.log_path = options.log_path;
   summary.stage_total_s.assign(physics::kStageCount, 0.0);
+  summary.timing = options.timing;
+  HandMotionPeak hand_peak;
   physics::World world(std::move(scene));
   TerminalProgress progress;
   const auto wall_start = std::chrono::steady_clock::now();
@@ -79,6 +93,7 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
     }
     summary.substeps = std::max(summary.substeps, world.substeps());
     summary.substeps_total += static_cast<uint64_t>(world.substeps());
+    hand_peak.record(world);
     if (world.time_ns() % interval_ns == 0) trajectories.write(world);
     if (world.step_count() % 100 == 0) {
       const double wall_s =
@@ -90,23 +105,34 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   };
   if (samples.empty()) {
     trajectories.write(world);
+    while (world.time_ns() < end_ns) step();
   } else {
-    // the first sample sets the hand before the first row; the rest each at its own time
-    ReplayDriver driver(world, *world.scene().hand);
+    // the first sample sets the hand before the first row; the world then steps through each
+    // interval with the hand interpolated, up to the last sample or the end
+    ReplayDriver driver(world, *world.scene().hand, options.timing);
     driver.feed(samples.front(), step);
     trajectories.write(world);
     for (std::size_t i = 1; i < samples.size(); ++i) {
-      if (driver.world_time_of(samples[i]) > end_ns) break;
+      if (driver.world_time_of(samples[i]) > end_ns) {
+        driver.push(samples[i]);  // the interval that holds the end
+        break;
+      }
       driver.feed(samples[i], step);
     }
+    driver.step_until(end_ns, step);
+    input_counts += driver.counts();
+    summary.have_input = true;
+    summary.input = input_counts;
+    spdlog::info("{}: {}", options.log_path, hand::input_counts_text(input_counts));
   }
-  while (world.time_ns() < end_ns) step();
   progress.finish();
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   summary.steps = world.step_count();
   summary.simulated_s = ns_to_seconds(world.time_ns());
   summary.grasps = events.grasps();
   summary.releases = events.releases();
+  summary.hand_peak_wrist_mps = hand_peak.wrist_mps();
+  summary.hand_peak_joint_radps = hand_peak.joint_radps();
   trajectories.commit();
   events.commit();
   write_summary(options.out_dir + "/summary.json", summary, world);

@@ -3,11 +3,17 @@
 // by nothing for --duration), writing trajectories, events and a summary (run_outputs.hpp).
 //
 // Time: the ReplayDriver's rule (replay_driver.hpp), which lockstep replay over DDS shares, so
-// both give the same result. No YAML and no DDS here: the caller loads the scene.
+// both give the same result: the hand interpolated between samples, gaps beyond the max gap held,
+// the glove lost after the timeout. Without --duration the run ends at the last sample; with a
+// longer one the hand holds the last sample (and the glove is lost after the timeout, as a live
+// node would find). Every sample passes the SampleValidator a live node applies; the log's and
+// the validator's counts go to summary.json ("input") and the log. No YAML and no DDS here: the
+// caller loads the scene.
 
 #include <optional>
 #include <string>
 
+#include "physics_node/io/input_timing.hpp"
 #include "physics_node/io/run_outputs.hpp"
 #include "physics_node/physics/scene.hpp"
 
@@ -19,6 +25,7 @@ struct OfflineOptions {
   std::optional<double> duration_s;  // default: the log's span
   std::string out_dir;
   double output_hz = 100.0;
+  InputTiming timing;  // --max-gap, --glove-timeout
 };
 
 // Throws (GloveLogError, FileError, std::invalid_argument) with a message naming the file; on any

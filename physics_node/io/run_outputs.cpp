@@ -67,6 +67,16 @@ void write_summary(const std::string& path, const RunSummary& s, const physics::
   j["releases"] = s.releases;
   j["hand_penetration_max_m"] = s.penetration_max_m;
   j["hand_penetration_mean_m"] = mean_m;
+  j["hand_peak_wrist_speed_mps"] = s.hand_peak_wrist_mps;
+  j["hand_peak_joint_speed_radps"] = s.hand_peak_joint_radps;
+  if (s.have_input) {
+    nlohmann::ordered_json input = hand::input_counts_json(s.input);
+    input["max_gap_s"] = static_cast<double>(s.timing.max_gap_ns) * 1e-9;
+    input["glove_timeout_s"] = static_cast<double>(s.timing.glove_timeout_ns) * 1e-9;
+    j["input"] = std::move(input);
+  } else {
+    j["input"] = nullptr;
+  }
   auto& stages = j["stage_wall_s"] = nlohmann::ordered_json::object();
   for (int i = 0; i < physics::kStageCount; ++i) {
     stages[physics::stage_name(static_cast<physics::Stage>(i))] =

@@ -5,7 +5,10 @@
 //   events.jsonl      one JSON object per line: t_s, event (grasp|release), hand, object, reason,
 //                     contacts (+ residual_force_N, residual_torque_Nm)
 //   summary.json      steps, simulated and wall seconds, grasp/release counts, hand-object
-//                     penetration max and mean (m), final pose per object
+//                     penetration max and mean (m), the hand's peak wrist and joint speeds,
+//                     "input": the glove log's counts (hand::InputCounts: clamped values, missing
+//                     columns, rejected samples, intervals interpolated, gaps bridged and not,
+//                     glove lost) with the max gap and glove timeout used, final pose per object
 // Every file is written to "<name>.partial" and renamed when the run completes.
 
 #include <cstdint>
@@ -13,6 +16,8 @@
 #include <vector>
 
 #include "common/atomic_file.hpp"
+#include "hand/input_counts.hpp"
+#include "physics_node/io/input_timing.hpp"
 #include "physics_node/physics/world.hpp"
 
 namespace vcockpit::physics_io {
@@ -57,6 +62,11 @@ struct RunSummary {
   double penetration_sum_m = 0.0;
   uint64_t penetration_points = 0;
   std::vector<double> stage_total_s;  // per Stage
+  double hand_peak_wrist_mps = 0.0;    // HandMotionPeak
+  double hand_peak_joint_radps = 0.0;
+  bool have_input = false;  // a glove log drove the hand: `input` and `timing` apply
+  hand::InputCounts input;
+  InputTiming timing;
 };
 
 void write_summary(const std::string& path, const RunSummary& summary, const physics::World& world);

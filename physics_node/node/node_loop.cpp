@@ -9,6 +9,8 @@
 #include "common/signals.hpp"
 #include "physics_node/io/grasp_event_text.hpp"
 #include "physics_node/io/hand_input.hpp"
+#include "physics_node/io/hand_motion_peak.hpp"
+#include "physics_node/io/input_follower.hpp"
 #include "physics_node/io/replay_driver.hpp"
 #include "physics_node/node/loop_stats.hpp"
 #include "physics_node/node/sample_gate.hpp"
@@ -16,6 +18,13 @@
 
 namespace vcockpit::physics_node {
 namespace {
+
+physics_io::FollowerOptions follower_options(const NodeOptions& options) {
+  physics_io::FollowerOptions f;
+  f.max_gap_ns = options.timing.max_gap_ns;
+  if (options.input_delay_s) f.fixed_delay_ns = seconds_to_ns(*options.input_delay_s);
+  return f;
+}
 
 // Everything the loop keeps between steps, in one place.
 class Node {
@@ -25,7 +34,8 @@ class Node {
         world_(std::move(scene)),
         hand_(*world_.scene().hand),
         gate_(hand_),
-        replay_(world_, hand_),
+        replay_(world_, hand_, options.timing),
+        follower_(follower_options(options)),
         reader_(participant.make_reader<cockpit::HandSample>(options.lockstep ? "reliable"
                                                                               : "stream")),
         publisher_(participant, world_) {
@@ -39,9 +49,9 @@ class Node {
   int run_lockstep();
 
  private:
-  // Takes every pending sample; the accepted ones go to `on_sample(sample, new_source)`, their
-  // latencies to stats_. A different writer (a restarted glove driver) starts its own timeline:
-  // time order is checked per source. No allocation.
+  // Takes every pending sample; the accepted ones go to `on_sample(sample, new_source,
+  // take_ns)`, their latencies to stats_. A different writer (a restarted glove driver) starts
+  // its own timeline: time order is checked per source. No allocation.
   template <class OnSample>
   void drain(OnSample on_sample) {
     dds::SampleInfo info;
@@ -59,15 +69,13 @@ class Node {
       ++received_;
       stats_.record_sample(info, message_.source_stamp_ns(), take_ns);
       last_sample_wall_ns_ = take_ns;
-      stamps_.sample_time_ns = message_.sample_time_ns();
-      stamps_.source_stamp_ns = message_.source_stamp_ns();
-      on_sample(sample, new_source);
+      on_sample(sample, new_source, take_ns);
     }
   }
 
   bool glove_alive(int64_t now_ns) const {
     if (received_ == 0) return false;
-    const bool recent = now_ns - last_sample_wall_ns_ <= seconds_to_ns(options_.glove_timeout_s);
+    const bool recent = now_ns - last_sample_wall_ns_ <= options_.timing.glove_timeout_ns;
     return recent && reader_.alive_writer_count() > 0;
   }
 
@@ -75,6 +83,7 @@ class Node {
     const int64_t start_ns = monotonic_now_ns();
     world_.step();
     stats_.step_compute.record_ns(monotonic_now_ns() - start_ns);
+    hand_peak_.record(world_);
     publisher_.publish_events(world_);
     for (const auto& f : world_.step_faults()) {
       spdlog::warn("object '{}' (#{}): {} at {:.3f} s, put back where it was at the step's start, "
@@ -96,8 +105,23 @@ class Node {
     publisher_.publish_state(world_, stamps_, tracking);
     publish_ns_ += monotonic_now_ns() - start;
   }
+  // lockstep: the hand the replay driver gave the last step
+  void publish_lockstep_state() {
+    const physics_io::ShownInput& shown = replay_.shown();
+    stamps_ = {shown.sample_time_ns, shown.source_stamp_ns};
+    publish_state(shown.tracking);
+  }
 
   void maybe_publish_status(int64_t now_ns, bool alive, const char* detail);
+  // Everything counted about the input so far: the gate's, the timing's (follower in real time,
+  // replay driver in lockstep), glove lost.
+  hand::InputCounts input_counts() const {
+    hand::InputCounts c = gate_.counts();
+    c.rejected_out_of_range += gate_.rejected_flagged_or_far();  // as node_status always had it
+    c += options_.lockstep ? replay_.counts() : follower_.counts();
+    c.glove_lost += glove_lost_;
+    return c;
+  }
 
   // --duration: the loops stop by themselves at this monotonic time (0: never).
   void start_clock() {
@@ -115,7 +139,10 @@ class Node {
   physics::World world_;
   const hand::HandModel& hand_;
   SampleGate gate_;
-  physics_io::ReplayDriver replay_;  // lockstep: the world advanced to each sample's stamp
+  physics_io::ReplayDriver replay_;      // lockstep: the world advanced to each sample's stamp
+  physics_io::InputFollower follower_;  // real time: the hand a small delay behind the samples
+  physics_io::HandMotionPeak hand_peak_;
+  uint64_t glove_lost_ = 0;             // real time (lockstep: the replay driver counts)
   Reader<cockpit::HandSample> reader_;
   StatePublisher publisher_;
   cockpit::HandSample message_;
@@ -140,9 +167,19 @@ void Node::report_stop(StatsReport report) {
   report.steps = world_.step_count();
   report.samples = received_;
   report.rejected = gate_.rejected();
+  report.input = input_counts();
+  report.hand_peak_wrist_mps = hand_peak_.wrist_mps();
+  report.hand_peak_joint_radps = hand_peak_.joint_radps();
   spdlog::info("DDS transit {}; sample age at step {}; step compute {}",
                latency_text_us(stats_.dds_transit), latency_text_us(stats_.age_at_step),
                latency_text_us(stats_.step_compute));
+  spdlog::info("input: {}", hand::input_counts_text(report.input));
+  if (!options_.lockstep) {
+    spdlog::info("hand lag behind its source {} (interpolation delay now {:.2f} ms); peak wrist "
+                 "speed {:.2f} m/s, joint {:.1f} rad/s",
+                 latency_text_us(stats_.hand_lag), static_cast<double>(report.input_delay_ns.value_or(0)) * 1e-6,
+                 report.hand_peak_wrist_mps, report.hand_peak_joint_radps);
+  }
   if (options_.stats_out.empty()) return;
   write_stats_json(options_.stats_out, report, stats_);
   spdlog::info("statistics written to {}", options_.stats_out);
@@ -160,12 +197,21 @@ void Node::maybe_publish_status(int64_t now_ns, bool alive, const char* detail) 
   status.input_rate_hz(static_cast<double>(received_ - received_at_last_status_) / period_s);
   status.received(received_);
   status.published(world_.step_count());
-  const auto& c = gate_.counts();
-  status.rejected(gate_.rejected());
-  status.rejected_nonfinite(c.rejected_nonfinite);
-  status.rejected_out_of_range(c.rejected_out_of_range + gate_.rejected_flagged_or_far());
-  status.rejected_stale(c.rejected_stale);
-  status.clamped(c.clamped);
+  const hand::InputCounts input = input_counts();
+  status.rejected(input.rejected());
+  status.rejected_nonfinite(input.rejected_nonfinite);
+  status.rejected_out_of_range(input.rejected_out_of_range);
+  status.rejected_stale(input.rejected_stale);
+  status.clamped(input.clamped);
+  status.missing_columns(input.missing_columns);
+  status.intervals(input.intervals);
+  status.intervals_interpolated(input.intervals_interpolated);
+  status.gaps_bridged(input.gaps_bridged);
+  status.gaps_not_bridged(input.gaps_not_bridged);
+  status.intervals_late(input.intervals_late);
+  status.longest_interval_s(static_cast<double>(input.longest_interval_ns) * 1e-9);
+  status.glove_lost(input.glove_lost);
+  status.input_delay_ms(options_.lockstep ? 0.0 : static_cast<double>(follower_.delay_ns()) * 1e-6);
   status.late_steps(late_steps_);
   status.input_alive(alive);
   const double steps = steps_in_period_ > 0 ? static_cast<double>(steps_in_period_) : 1.0;
@@ -192,27 +238,40 @@ int Node::run_realtime() {
   int64_t next_publish_ns = next_ns;
   bool tracking = false;
   bool have_input = false;
-  spdlog::info("real time: {} Hz steps ({} substeps), world published at {} Hz", options_.rate_hz,
-               world_.substeps(), options_.publish_hz);
+  spdlog::info("real time: {} Hz steps ({} substeps), world published at {} Hz; hand input {} "
+               "behind its source, gaps over {:.3f} s not bridged",
+               options_.rate_hz, world_.substeps(), options_.publish_hz,
+               options_.input_delay_s ? std::to_string(*options_.input_delay_s * 1e3) + " ms"
+                                      : std::string("one usual sample interval + 2 ms"),
+               static_cast<double>(options_.timing.max_gap_ns) * 1e-9);
+  physics_io::FollowedInput followed;
   while (!should_stop(monotonic_now_ns())) {
     sleep_until_ns(next_ns);
-    drain([&](const hand::GloveSample& s, bool) {
-      input_ = physics_io::hand_input_from_glove(hand_, s);
-      have_input = true;
+    drain([&](const hand::GloveSample& s, bool new_source, int64_t take_ns) {
+      if (new_source) follower_.reset();
+      follower_.push(s, take_ns, message_.source_stamp_ns());
     });
     const int64_t now_ns = monotonic_now_ns();
     const bool alive = glove_alive(now_ns);
     if (alive != tracking && have_input) {
       spdlog::warn(alive ? "glove samples resumed: tracking" : "glove lost: holding the hand, "
                                                                "releasing what it holds");
+      if (!alive) ++glove_lost_;
     }
     tracking = alive;
+    // the hand at the end of this step's slot, a small delay behind the source
+    if (follower_.at(next_ns + period_ns, followed)) {
+      input_ = physics_io::hand_input_from_glove(hand_, followed.sample);
+      stamps_ = {followed.sample.t_ns, followed.source_stamp_ns};
+      have_input = true;
+    }
     if (have_input) {
       input_.tracking = tracking;
       world_.set_hand_input(input_);
     }
     step_world();
     const int64_t end_ns = monotonic_now_ns();
+    if (have_input && tracking) stats_.hand_lag.record_ns(end_ns - stamps_.source_stamp_ns);
     if (end_ns > next_ns + period_ns) ++late_steps_;
     if (end_ns >= next_publish_ns) {
       publish_state(tracking);
@@ -242,6 +301,7 @@ int Node::run_realtime() {
   report.rate_hz = rate_hz;
   report.late_steps = late_steps_;
   report.duration_s = loop_s;
+  report.input_delay_ns = follower_.delay_ns();
   report_stop(report);
   return 0;
 }
@@ -256,25 +316,28 @@ int Node::run_lockstep() {
   int64_t last_publish_ns = 0;
   while (!should_stop(monotonic_now_ns())) {
     const bool idle = !reader_.wait_for_data(20'000'000);
-    drain([&](const hand::GloveSample& s, bool new_source) {
+    drain([&](const hand::GloveSample& s, bool new_source, int64_t) {
       // world time 0 is the first sample; a later source continues from where the world is
       if (new_source) replay_.restart();
-      replay_.feed(s, [&] {
-        step_world();
-        dirty = true;
-        if (world_.time_ns() >= next_publish_sim_ns) {
-          publish_state(true);
-          last_publish_ns = monotonic_now_ns();
-          next_publish_sim_ns += publish_every_ns;
-        }
-      });
+      replay_.feed(
+          s,
+          [&] {
+            step_world();
+            dirty = true;
+            if (world_.time_ns() >= next_publish_sim_ns) {
+              publish_lockstep_state();
+              last_publish_ns = monotonic_now_ns();
+              next_publish_sim_ns += publish_every_ns;
+            }
+          },
+          message_.source_stamp_ns());
     });
     // caught up with the input: show where the world is, at most at --publish-hz of wall time
     // (a replay at its own pace would otherwise publish every sample), and at once when the
     // input pauses or ends
     const int64_t now_ns = monotonic_now_ns();
     if (dirty && (idle || now_ns - last_publish_ns >= publish_every_ns)) {
-      publish_state(true);
+      publish_lockstep_state();
       last_publish_ns = now_ns;
       dirty = false;
     }

@@ -1,28 +1,36 @@
 #pragma once
 // physics_node over DDS.
 //
-// Real time: steps at a fixed rate (1 kHz default) on the monotonic clock with the newest valid
-// hand sample, publishes the world at --publish-hz (90 default) and node_status once a second.
+// Real time: steps at a fixed rate (1 kHz default) on the monotonic clock, publishes the world
+// at --publish-hz (90 default) and node_status once a second. Each step's hand is the source's
+// hand a small, rate-adaptive delay ago, interpolated between the samples around it
+// (physics_io::InputFollower: about one sample interval + 2 ms; --input-delay fixes it, 0 = the
+// newest sample at once); the hand's lag behind its source is measured (hand_lag).
 // A step that ends after its slot is counted late; steps are never skipped silently: a node that
 // fell behind runs them back to back, and only beyond kMaxCatchUpSteps does it resynchronise,
 // counting every step it dropped as late and saying so in the log and the status.
 //
-// Lockstep: the world advances to each sample's stamp (world time 0 = the first sample), exactly
-// as the offline runner does with the same log, so a lockstep replay gives the same result. It
+// Lockstep: the world advances to each sample's stamp (world time 0 = the first sample) with the
+// hand interpolated between samples, exactly as the offline runner does with the same log
+// (physics_io::ReplayDriver), so a lockstep replay gives the same result. It
 // publishes at --publish-hz of simulated time, and when it has caught up with its input at most
 // at --publish-hz of wall time (a replay at its own pace would otherwise publish every sample)
 // and at once when the input pauses or ends.
 //
-// Glove lost (no sample for --glove-timeout, or the writer's liveliness lost): the hand stays
+// Gaps between samples longer than --max-gap are not bridged: the hand holds the earlier sample.
+// Glove lost (real time: no sample for --glove-timeout of wall time, or the writer's liveliness
+// lost; lockstep, as offline: the samples' timeline has none for that long): the hand stays
 // where it was, held objects are released ("glove lost"), the status says so; samples resume ->
-// tracking resumes.
+// tracking resumes. Input counts (hand::InputCounts) go to node_status and the stop log.
 //
 // Both modes measure their input latency and step cost (loop_stats.hpp), print them when they
 // stop and, with `stats_out`, write them to a JSON file.
 
+#include <optional>
 #include <string>
 
 #include "common/dds_participant.hpp"
+#include "physics_node/io/input_timing.hpp"
 #include "physics_node/physics/scene.hpp"
 
 namespace vcockpit::physics_node {
@@ -31,7 +39,8 @@ struct NodeOptions {
   bool lockstep = false;
   double rate_hz = 1000.0;
   double publish_hz = 90.0;
-  double glove_timeout_s = 0.5;
+  physics_io::InputTiming timing;         // --max-gap, --glove-timeout
+  std::optional<double> input_delay_s;    // real time: fixed interpolation delay (none: adaptive)
   std::string node_name = "physics_node";
   double duration_s = 0.0;  // stop by itself after this much real time (0: only on a signal)
   std::string stats_out;    // JSON file of loop statistics written at stop (empty: none)

@@ -18,7 +18,7 @@ class SampleGate {
 
   // True and `out` filled when the sample is accepted.
   bool accept(const cockpit::HandSample& sample, hand::GloveSample& out);
-  const hand::ValidationCounts& counts() const { return validator_.counts(); }
+  const hand::InputCounts& counts() const { return validator_.counts(); }
   // A new source: its stamps are compared with its own from now on.
   void reset_time() { validator_.reset_time(); }
   uint64_t rejected_flagged_or_far() const { return rejected_flagged_or_far_; }

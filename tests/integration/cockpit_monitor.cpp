@@ -2,7 +2,8 @@
 // flushed as they come so a test can watch the file while the rig runs:
 //   event t_ns=.. kind=grasp|release hand=.. object=.. contacts=.. reason=<text to end of line>
 //   status node=.. state=.. rate_hz=.. input_hz=.. received=.. rejected=.. nonfinite=.. range=..
-//          stale=.. clamped=.. late=.. alive=0|1
+//          stale=.. clamped=.. late=.. alive=0|1 missing=.. intervals=.. interpolated=..
+//          bridged=.. unbridged=.. intervals_late=.. longest_s=.. lost=.. delay_ms=..
 //   hand seq=.. sample_time_ns=.. source_stamp_ns=.. sim_time_ns=.. tracking=0|1 held=..
 //        x=.. y=.. z=.. qw=.. qx=.. qy=.. qz=..
 //   frame seq=.. width=.. height=.. source_stamp_ns=.. start_ns=.. end_ns=.. received_ns=..
@@ -77,7 +78,8 @@ int main(int argc, char** argv) {
         std::fprintf(f,
                      "status node=%s state=%d rate_hz=%.3f input_hz=%.3f received=%llu "
                      "rejected=%llu nonfinite=%llu range=%llu stale=%llu clamped=%llu late=%llu "
-                     "alive=%d\n",
+                     "alive=%d missing=%llu intervals=%llu interpolated=%llu bridged=%llu "
+                     "unbridged=%llu intervals_late=%llu longest_s=%.6f lost=%llu delay_ms=%.3f\n",
                      s.node_name().c_str(), static_cast<int>(s.state()), s.loop_rate_hz(),
                      s.input_rate_hz(), static_cast<unsigned long long>(s.received()),
                      static_cast<unsigned long long>(s.rejected()),
@@ -85,7 +87,14 @@ int main(int argc, char** argv) {
                      static_cast<unsigned long long>(s.rejected_out_of_range()),
                      static_cast<unsigned long long>(s.rejected_stale()),
                      static_cast<unsigned long long>(s.clamped()),
-                     static_cast<unsigned long long>(s.late_steps()), s.input_alive() ? 1 : 0);
+                     static_cast<unsigned long long>(s.late_steps()), s.input_alive() ? 1 : 0,
+                     static_cast<unsigned long long>(s.missing_columns()),
+                     static_cast<unsigned long long>(s.intervals()),
+                     static_cast<unsigned long long>(s.intervals_interpolated()),
+                     static_cast<unsigned long long>(s.gaps_bridged()),
+                     static_cast<unsigned long long>(s.gaps_not_bridged()),
+                     static_cast<unsigned long long>(s.intervals_late()), s.longest_interval_s(),
+                     static_cast<unsigned long long>(s.glove_lost()), s.input_delay_ms());
       }
       while (hands.take(h)) {
         std::fprintf(f,

@@ -75,6 +75,12 @@ TEST_F(GloveDriverTest, LockstepReplayOfFiveThousandSamplesAtFullSpeedIsComplete
   EXPECT_NE(status.find("published=5000"), std::string::npos) << status;
   EXPECT_NE(status.find("clamped=1"), std::string::npos) << status;
   EXPECT_NE(status.find("rejected=0"), std::string::npos) << status;
+  // its last line counts the clamp it warned about while loading (it used to say "clamped 0")
+  const std::string driver_log = read_text(dir + "/driver.log");
+  EXPECT_NE(driver_log.find("joint value(s) beyond the limits were clamped"), std::string::npos);
+  EXPECT_NE(driver_log.find("published 5000 samples"), std::string::npos) << driver_log;
+  EXPECT_NE(driver_log.find("clamped 1, missing columns 0, intervals 4999"), std::string::npos)
+      << driver_log;
 }
 
 TEST_F(GloveDriverTest, RecordReplayRecordRoundTripsToAnIdenticalLog) {

@@ -65,6 +65,17 @@ MonitorLog MonitorLog::read(const std::string& path) {
       s.stale = static_cast<uint64_t>(integer(f, "stale"));
       s.late = static_cast<uint64_t>(integer(f, "late"));
       s.alive = integer(f, "alive") != 0;
+      s.state = static_cast<int>(integer(f, "state"));
+      s.clamped = static_cast<uint64_t>(integer(f, "clamped"));
+      s.missing = static_cast<uint64_t>(integer(f, "missing"));
+      s.intervals = static_cast<uint64_t>(integer(f, "intervals"));
+      s.interpolated = static_cast<uint64_t>(integer(f, "interpolated"));
+      s.bridged = static_cast<uint64_t>(integer(f, "bridged"));
+      s.unbridged = static_cast<uint64_t>(integer(f, "unbridged"));
+      s.intervals_late = static_cast<uint64_t>(integer(f, "intervals_late"));
+      s.lost = static_cast<uint64_t>(integer(f, "lost"));
+      s.longest_s = num(f, "longest_s");
+      s.delay_ms = num(f, "delay_ms");
       log.statuses.push_back(s);
     } else if (kind == "hand") {
       SeenHand h;

@@ -26,6 +26,11 @@ struct SeenStatus {
   double input_hz = 0;
   uint64_t received = 0, rejected = 0, nonfinite = 0, range = 0, stale = 0, late = 0;
   bool alive = false;
+  int state = 0;
+  // the input counts (hand::InputCounts)
+  uint64_t clamped = 0, missing = 0, intervals = 0, interpolated = 0, bridged = 0, unbridged = 0,
+           intervals_late = 0, lost = 0;
+  double longest_s = 0, delay_ms = 0;
 };
 
 struct SeenHand {

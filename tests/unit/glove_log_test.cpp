@@ -91,11 +91,33 @@ TEST_F(GloveLogTest, EulerDegreesAndMissingJointsTakeTheRestPose) {
   EXPECT_EQ(log.samples[1].t_ns, 10'000'000);
 }
 
+TEST_F(GloveLogTest, ClampedValuesAndMissingColumnsAreCountedAndWarnedAbout) {
+  // two joint columns of 22; three values beyond the limits in two rows
+  const auto path = write("counts.csv",
+                          "t_s,x_m,y_m,z_m,qw,qx,qy,qz,index_mcp_deg,index_pip_deg\n"
+                          "0,0,0,0,1,0,0,0,500,-300\n0.01,0,0,0,1,0,0,0,10,10\n"
+                          "0.02,0,0,0,1,0,0,0,-400,10\n");
+  const GloveLog log = read_glove_log(path, hand_);
+  EXPECT_EQ(log.counts.clamped, 3u);
+  EXPECT_EQ(log.counts.missing_columns, static_cast<uint64_t>(hand::kJointCount - 2));
+  EXPECT_EQ(log.counts.missing_columns, log.missing_joints.size());
+  const auto warnings = glove_log_warnings(log);
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_NE(warnings[0].find("no column for 20 joint(s), using the rest pose: thumb_rotation"),
+            std::string::npos)
+      << warnings[0];
+  EXPECT_NE(warnings[1].find("3 joint value(s) beyond the limits were clamped; first: "),
+            std::string::npos)
+      << warnings[1];
+  EXPECT_NE(warnings[1].find("counts.csv:2: column 'index_mcp_deg'"), std::string::npos)
+      << warnings[1];
+}
+
 TEST_F(GloveLogTest, BeyondLimitsIsClampedAndCounted) {
   const auto path = write("limits.csv", std::string(kHeader) +
                                             "0,0,0,0,1,0,0,0,500\n0.01,0,0,0,1,0,0,0,10\n");
   const GloveLog log = read_glove_log(path, hand_);
-  EXPECT_EQ(log.clamped_values, 1);
+  EXPECT_EQ(log.counts.clamped, 1u);
   EXPECT_NE(log.first_clamp.find("limits.csv:2: column 'index_mcp_deg'"), std::string::npos)
       << log.first_clamp;
   EXPECT_EQ(log.samples[0].joints_rad[static_cast<int>(hand::Joint::kIndexMcp)],

@@ -51,5 +51,19 @@ TEST(SampleValidator, RejectsNonFiniteBadQuaternionAndStaleAndClampsJoints) {
   EXPECT_EQ(c.clamped, 1u);
   EXPECT_EQ(c.rejected(), 3u);
 }
+TEST(SampleValidator, CountsEveryClampedJointValue) {
+  const auto hand = default_hand();
+  SampleValidator validator(hand);
+  GloveSample s;
+  s.t_ns = 100;
+  s.joints_rad = hand.rest_pose();
+  s.joints_rad[static_cast<int>(Joint::kIndexPip)] = 10.0;
+  s.joints_rad[static_cast<int>(Joint::kMiddlePip)] = -10.0;
+  s.joints_rad[static_cast<int>(Joint::kRingPip)] = 10.0;
+  EXPECT_TRUE(validator.accept(s));
+  EXPECT_EQ(validator.counts().clamped, 3u) << "values, as node_status and the log reader count";
+  EXPECT_EQ(validator.counts().accepted, 1u);
+}
+
 }  // namespace
 }  // namespace vcockpit::hand

@@ -1,0 +1,99 @@
+// physics_node --offline counts a crafted log's faults honestly (physics_io/offline_runner.hpp):
+// k clamped values, a missing column, a gap bridged, gaps not bridged, the glove lost once; they
+// land in summary.json's "input" exactly, and the hand's peak speed stays the recorded one.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "physics_node/config/scene_config.hpp"
+#include "physics_node/io/offline_runner.hpp"
+#include "tests/support/crafted_glove_log.hpp"
+#include "tests/support/process.hpp"
+
+namespace vcockpit::physics_io {
+namespace {
+
+std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
+
+TEST(OfflineCounts, ACraftedLogsClampsMissingColumnGapsAndGloveLostLandInTheSummary) {
+  test::CraftedGloveLog craft;
+  craft.run(0, 100, 3);  // 3 values clamped
+  craft.run(200, 300);   // after a 0.1 s gap: bridged
+  craft.run(600, 700);   // after 0.3 s: not bridged (max gap 0.25 s)
+  craft.run(1400, 1500);  // after 0.7 s: not bridged, the glove lost from 1.2 s
+  const std::string dir = test::make_temp_dir("offline_counts");
+  const std::string log = dir + "/crafted.csv";
+  std::ofstream(log) << craft.text();
+
+  OfflineOptions options;
+  options.scene_path = source_dir() + "/config/cockpit.yaml";
+  options.log_path = log;
+  options.out_dir = dir + "/out";
+  const RunSummary summary = run_offline(load_scene(options.scene_path), options);
+  EXPECT_EQ(summary.steps, 1500u);
+
+  std::ifstream in(options.out_dir + "/summary.json");
+  const auto j = nlohmann::json::parse(in);
+  const auto& input = j.at("input");
+  EXPECT_EQ(input.at("accepted"), craft.rows());
+  EXPECT_EQ(input.at("rejected"), 0);
+  EXPECT_EQ(input.at("clamped"), 3);
+  EXPECT_EQ(craft.clamped(), 3);
+  EXPECT_EQ(input.at("missing_columns"), 1);
+  EXPECT_EQ(input.at("intervals"), craft.rows() - 1);
+  EXPECT_EQ(input.at("intervals_interpolated"), 40);
+  EXPECT_EQ(input.at("gaps_bridged"), 1);
+  EXPECT_EQ(input.at("gaps_not_bridged"), 2);
+  EXPECT_EQ(input.at("intervals_late"), 0);
+  EXPECT_NEAR(input.at("longest_interval_s").get<double>(), 0.7, 1e-12);
+  EXPECT_EQ(input.at("glove_lost"), 1);
+  EXPECT_EQ(input.at("max_gap_s"), 0.25);
+  EXPECT_EQ(input.at("glove_timeout_s"), 0.5);
+  // the jumps after the two gaps not bridged are the only fast steps: 0.3 s and 0.7 s of
+  // motion (6 and 14 cm) each in one step
+  EXPECT_NEAR(j.at("hand_peak_wrist_speed_mps").get<double>(), 0.2 * 0.7 / 0.001, 1e-6);
+}
+
+TEST(OfflineCounts, BridgingEveryGapLeavesTheRecordedSpeed) {
+  test::CraftedGloveLog craft;
+  craft.run(0, 100);
+  craft.run(200, 300);
+  const std::string dir = test::make_temp_dir("offline_counts_bridged");
+  const std::string log = dir + "/crafted.csv";
+  std::ofstream(log) << craft.text();
+  OfflineOptions options;
+  options.scene_path = source_dir() + "/config/cockpit.yaml";
+  options.log_path = log;
+  options.out_dir = dir + "/out";
+  run_offline(load_scene(options.scene_path), options);
+  std::ifstream in(options.out_dir + "/summary.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_NEAR(j.at("hand_peak_wrist_speed_mps").get<double>(), 0.2, 1e-9);
+  EXPECT_EQ(j.at("input").at("gaps_bridged"), 1);
+  EXPECT_EQ(j.at("input").at("glove_lost"), 0);
+}
+
+TEST(OfflineCounts, ADurationPastTheLogHoldsTheLastSampleAndLosesTheGloveAfterTheTimeout) {
+  test::CraftedGloveLog craft;
+  craft.run(0, 100);
+  const std::string dir = test::make_temp_dir("offline_counts_duration");
+  const std::string log = dir + "/crafted.csv";
+  std::ofstream(log) << craft.text();
+  OfflineOptions options;
+  options.scene_path = source_dir() + "/config/cockpit.yaml";
+  options.log_path = log;
+  options.out_dir = dir + "/out";
+  options.duration_s = 0.6;  // the glove is lost at 0.6 s, 0.5 s after the last sample
+  run_offline(load_scene(options.scene_path), options);
+  std::ifstream in(options.out_dir + "/summary.json");
+  EXPECT_EQ(nlohmann::json::parse(in).at("input").at("glove_lost"), 0) << "0.5 s: not yet";
+  options.duration_s = 0.601;
+  run_offline(load_scene(options.scene_path), options);
+  std::ifstream again(options.out_dir + "/summary.json");
+  EXPECT_EQ(nlohmann::json::parse(again).at("input").at("glove_lost"), 1);
+}
+
+}  // namespace
+}  // namespace vcockpit::physics_io
