@@ -16,6 +16,7 @@ constexpr double kHandReach_m = 0.2;
 constexpr int kShiftPasses = 16;           // Gauss-Seidel passes over the contact planes
 constexpr double kShiftTolerance_m = 1e-7;  // a pass that corrects less than this ends them
 constexpr double kTinyDepth_m = 1e-12;
+constexpr double kStandardGravity_mps2 = 9.80665;
 
 double series_stiffness(const Material& a, const Material& b) {
   return a.stiffness_Npm * b.stiffness_Npm / (a.stiffness_Npm + b.stiffness_Npm);
@@ -41,9 +42,12 @@ ProxyHand::ProxyHand(const Scene& scene)
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const ObjectSpec& o = scene.objects[i];
     dynamic_[i] = o.dynamic ? 1 : 0;
-    depth_limit_m_[i] =
-        o.dynamic ? params_.grip_force_N / series_stiffness(scene.hand_material, o.material)
-                  : params_.static_depth_m;
+    // a light object is pressed no harder than a few times its weight (at one standard g, so a
+    // weightless scene grips alike): a finger that arrives first nudges a 60 g bar, not flings it
+    const double force_N =
+        std::min(params_.grip_force_N, params_.grip_weight_ratio * o.mass_kg * kStandardGravity_mps2);
+    depth_limit_m_[i] = o.dynamic ? force_N / series_stiffness(scene.hand_material, o.material)
+                                  : params_.static_depth_m;
   }
   for (int f = 0; f < kFingerCount; ++f)
     for (const hand::DhRow& row : hand_.fingers[static_cast<std::size_t>(f)].rows)

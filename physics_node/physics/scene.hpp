@@ -91,7 +91,8 @@ struct ProxyParams {
   double max_speed_mps = 3.0;      // the wrist's catch-up speed toward the tracked hand
   double max_spin_radps = 30.0;    // the wrist's catch-up rotation rate
   double push_speed_mps = 0.3;     // how fast the hand moves while it pushes a free object
-  double grip_force_N = 8.0;       // a link goes into an object only as deep as this force needs
+  double grip_force_N = 8.0;       // a link goes into an object only as deep as this force needs,
+  double grip_weight_ratio = 3.0;  // or this many times the object's weight (at 1 g), if less
   double static_depth_m = 2.0e-4;  // how deep a link may rest in a static object
 };
 
