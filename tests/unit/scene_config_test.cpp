@@ -503,6 +503,16 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
        "contact:", "contact.slip_speed_mps", "must be positive"},
       {"unknown_contact_key", "max_substeps: 16", "max_substeps: 16, points: 4",
        "contact:", "contact.points", "unknown key 'points'"},
+      // the proxy hand
+      {"proxy_static_depth_above_1mm", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {static_depth_m: 0.002}",
+       "proxy:", "proxy.static_depth_m", "must be in (0, 0.001]"},
+      {"proxy_push_faster_than_max", "contact: {slip_speed_mps: 0.002, max_substeps: 16}",
+       "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {max_speed_mps: 1, push_speed_mps: 2}", "proxy:",
+       "proxy.push_speed_mps", "must not exceed max_speed_mps 1"},
+      {"proxy_grip_force_zero", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {grip_force_N: 0}",
+       "proxy:", "proxy.grip_force_N", "must be positive"},
+      {"proxy_unknown_key", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {speed: 1}", "proxy:",
+       "proxy.speed", "unknown key 'speed'"},
       // the hand file
       {"hand_file_missing", "step_s: 0.001\n", "step_s: 0.001\nhand: no_such_hand.yaml\n",
        "hand: no_such", "hand", "cannot open hand file"},
