@@ -56,13 +56,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0x1c8aba7e5573358d") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0x9e1fe8f810c990e3") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0x39d26762e1d4018e") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0xc17ba7c9cb511743") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x8fe3657718aaf346") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0xb92d6e7b5c0bdb1a") << "final state";
 }
 
 }  // namespace
