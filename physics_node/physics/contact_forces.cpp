@@ -146,12 +146,12 @@ void ContactForceModel::solve_pair(const std::vector<ContactPoint>& contacts, st
     applied.push_back({c, F, w.N, !decision.sticking});
     n_weighted += w.N * c.n_G;
   }
-  // the pair's rolling resistance: one couple for the patch, from its total load
-  if (sums.N_sum > 0.0 && mu.mu_roll_m > 0.0) {
-    const Eigen::Vector3d M_roll =
-        rolling_torque_on_b_G(A, B, n_weighted.normalized(), sums.N_sum, mu.mu_roll_m, dt_s);
-    M_G[b] += M_roll;
-    M_G[a] -= M_roll;
+  // the pair's rolling and spinning resistance: one couple for the patch, from its total load
+  if (sums.N_sum > 0.0 && (mu.mu_roll_m > 0.0 || mu.mu_spin_m > 0.0)) {
+    const Eigen::Vector3d M_couple = resistance_couple_on_b_G(
+        A, B, n_weighted.normalized(), sums.N_sum, mu.mu_roll_m, mu.mu_spin_m, dt_s);
+    M_G[b] += M_couple;
+    M_G[a] -= M_couple;
   }
 }
 

@@ -6,6 +6,7 @@
 //                       or slides (mu_d N against the relative motion) as one patch
 //   contact_sums.hpp    eqs. 18-19: each body's force sum and torque sum about its centroid
 //   rolling_resistance.hpp  beyond the paper: a couple against the pair's relative rolling
+//                       and spinning
 // This model runs them over a substep's contacts, pair by pair, and keeps the stick anchors
 // from substep to substep: a new contact takes the anchor of the previous substep's contact of
 // the same pair within kAnchorMatch_m of it.
@@ -64,8 +65,8 @@ class ContactForceModel {
   void reset() { anchors_.clear(); }
 
  private:
-  // One pair's points, contacts[first, end): normal forces, friction, rolling resistance, and
-  // their sums.
+  // One pair's points, contacts[first, end): normal forces, friction, rolling and spinning
+  // resistance, and their sums.
   void solve_pair(const std::vector<ContactPoint>& contacts, std::size_t first, std::size_t end,
                   const std::vector<ContactBody>& bodies, double dt_s,
                   std::vector<Eigen::Vector3d>& F_G,

@@ -56,13 +56,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0x465ef7bd91a01e80") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0x00c02a6a10bc9c7e") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0x65107900ee73e1fb") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x65729f36383c175c") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x96686a88e14864b8") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0xe795633ab428a406") << "final state";
 }
 
 }  // namespace
