@@ -107,6 +107,7 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   summary.simulated_s = ns_to_seconds(world.time_ns());
   summary.grasps = events.grasps();
   summary.releases = events.releases();
+  summary.non_finite_refused = trajectories.refused() + events.refused();
   trajectories.commit();
   events.commit();
   write_summary(options.out_dir + "/summary.json", summary, world);
