@@ -83,13 +83,15 @@ void read_optional(const ConfigNode& map, std::string_view key, T& value, Parse 
 // ---- materials, shapes, poses, colours ------------------------------------------------------
 
 Material parse_material(const ConfigNode& node, const Material& defaults) {
-  node.expect_keys({"stiffness", "damping_ratio", "mu_s", "mu_d"});
+  node.expect_keys({"stiffness", "damping_ratio", "mu_s", "mu_d", "mu_roll_m", "mu_spin_m"});
   Material m = defaults;
   read_optional(node, "stiffness", m.stiffness_Npm,
                 [](const ConfigNode& n) { return positive(n); });
   read_optional(node, "damping_ratio", m.damping_ratio, non_negative);
   read_optional(node, "mu_s", m.mu_s, non_negative);
   read_optional(node, "mu_d", m.mu_d, non_negative);
+  read_optional(node, "mu_roll_m", m.mu_roll_m, non_negative);  // 0: no rolling resistance
+  read_optional(node, "mu_spin_m", m.mu_spin_m, non_negative);  // 0: no spinning resistance
   if (m.mu_d > m.mu_s) {
     // blame the key the user wrote (mu_d if given, else the mu_s that undercut the default)
     const ConfigNode at = node.has("mu_d") ? node["mu_d"] : node["mu_s"];

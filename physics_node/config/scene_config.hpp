@@ -3,7 +3,8 @@
 // config/cockpit.yaml.
 //
 // Every bad value throws vcockpit::ConfigError "file:line:col: key.path: message": unknown keys,
-// missing fields, non-positive sizes, masses, densities and stiffnesses, mu_d > mu_s, unknown
+// missing fields, non-positive sizes, masses, densities and stiffnesses, negative friction,
+// rolling- or spinning-resistance coefficients, mu_d > mu_s, unknown
 // shapes and kinds, duplicate object names, mass with density, mass on a static object, a step
 // outside (0, 0.1] s. Errors inside the hand file come from the hand loader and name that file.
 

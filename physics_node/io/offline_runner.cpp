@@ -133,6 +133,7 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   summary.releases = events.releases();
   summary.hand_peak_wrist_mps = hand_peak.wrist_mps();
   summary.hand_peak_joint_radps = hand_peak.joint_radps();
+  summary.non_finite_refused = trajectories.refused() + events.refused();
   trajectories.commit();
   events.commit();
   write_summary(options.out_dir + "/summary.json", summary, world);

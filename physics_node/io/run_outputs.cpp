@@ -22,6 +22,11 @@ void TrajectoryWriter::write(const physics::World& world) {
   for (std::size_t i = 0; i < objects.size(); ++i) {
     if (!objects[i].dynamic) continue;
     const auto& b = world.bodies()[i];
+    const std::string& name = objects[i].name;
+    const bool finite = guard_.pass(b.X_GO.matrix().allFinite(), name, "pose", world.time_ns()) &&
+                        guard_.pass(b.v_G.allFinite(), name, "linear velocity", world.time_ns()) &&
+                        guard_.pass(b.w_G.allFinite(), name, "angular velocity", world.time_ns());
+    if (!finite) continue;  // the row is left out
     const Eigen::Vector3d p = b.X_GO.translation();
     const Eigen::Quaterniond q(b.X_GO.linear());
     std::fprintf(file_.get(),
@@ -35,18 +40,21 @@ void TrajectoryWriter::write(const physics::World& world) {
 EventWriter::EventWriter(const std::string& path) : file_(path) {}
 
 void EventWriter::write(const physics::World& world) {
-  for (const auto& e : world.step_events()) {
-    (e.grasp ? grasps_ : releases_)++;
-    const nlohmann::ordered_json record = {{"t_s", static_cast<double>(e.t_ns) / 1e9},
-                                           {"event", e.grasp ? "grasp" : "release"},
-                                           {"hand", hand_name(e.hand_id)},
-                                           {"object", world.scene().objects[e.object].name},
-                                           {"reason", grasp_event_text(e)},
-                                           {"contacts", e.contacts},
-                                           {"residual_force_N", e.residual_force_N},
-                                           {"residual_torque_Nm", e.residual_torque_Nm}};
-    file_.write(json_text(record) + "\n");
-  }
+  for (const auto& e : world.step_events()) write(e, world.scene().objects[e.object].name);
+}
+
+void EventWriter::write(const physics::GraspEvent& e, const std::string& object_name) {
+  (e.grasp ? grasps_ : releases_)++;
+  nlohmann::ordered_json record = {{"t_s", static_cast<double>(e.t_ns) / 1e9},
+                                   {"event", e.grasp ? "grasp" : "release"},
+                                   {"hand", hand_name(e.hand_id)},
+                                   {"object", object_name},
+                                   {"reason", grasp_event_text(e)},
+                                   {"contacts", e.contacts},
+                                   {"residual_force_N", e.residual_force_N},
+                                   {"residual_torque_Nm", e.residual_torque_Nm}};
+  guard_.scrub(record, object_name, e.t_ns);  // a residual that is not finite is left out
+  file_.write(json_text(record) + "\n");
 }
 
 void write_summary(const std::string& path, const RunSummary& s, const physics::World& world) {
@@ -95,6 +103,9 @@ void write_summary(const std::string& path, const RunSummary& s, const physics::
         {"held_by", b.held_by == physics::kNotHeld ? nlohmann::ordered_json(nullptr)
                                                    : nlohmann::ordered_json(hand_name(b.held_by))}};
   }
+  NonFiniteGuard guard("summary.json");
+  guard.scrub(j, "the run", world.time_ns());
+  j["non_finite_refused"] = s.non_finite_refused + guard.refused();
   write_json_file(path, j);
 }
 

@@ -8,8 +8,14 @@
 //                     penetration max and mean (m), the hand's peak wrist and joint speeds,
 //                     "input": the glove log's counts (hand::InputCounts: clamped values, missing
 //                     columns, rejected samples, intervals interpolated, gaps bridged and not,
-//                     glove lost) with the max gap and glove timeout used, final pose per object
+//                     glove lost) with the max gap and glove timeout used, final pose per object,
+//                     non_finite_refused
 // Every file is written to "<name>.partial" and renamed when the run completes.
+//
+// Only finite numbers are written (non_finite_guard.hpp): a trajectory row with a NaN or an
+// infinity is left out; a JSON member holding one is left out of its record (a residual, a
+// final position); each refusal is counted (summary.json's non_finite_refused, all three files)
+// and named once in the log.
 
 #include <cstdint>
 #include <string>
@@ -18,6 +24,7 @@
 #include "common/atomic_file.hpp"
 #include "hand/input_counts.hpp"
 #include "physics_node/io/input_timing.hpp"
+#include "physics_node/io/non_finite_guard.hpp"
 #include "physics_node/physics/world.hpp"
 
 namespace vcockpit::physics_io {
@@ -27,23 +34,28 @@ std::string hand_name(int hand_id);
 class TrajectoryWriter {
  public:
   explicit TrajectoryWriter(const std::string& path);
-  void write(const physics::World& world);  // one row per dynamic object
+  void write(const physics::World& world);  // one row per dynamic object (finite ones)
   void commit() { file_.commit(); }
+  uint64_t refused() const { return guard_.refused(); }  // rows left out
 
  private:
   AtomicFile file_;
+  NonFiniteGuard guard_{"trajectories.csv"};
 };
 
 class EventWriter {
  public:
   explicit EventWriter(const std::string& path);
   void write(const physics::World& world);  // the last step's events
+  void write(const physics::GraspEvent& event, const std::string& object_name);
   void commit() { file_.commit(); }
   int grasps() const { return grasps_; }
   int releases() const { return releases_; }
+  uint64_t refused() const { return guard_.refused(); }  // members left out
 
  private:
   AtomicFile file_;
+  NonFiniteGuard guard_{"events.jsonl"};
   int grasps_ = 0;
   int releases_ = 0;
 };
@@ -67,8 +79,10 @@ struct RunSummary {
   bool have_input = false;  // a glove log drove the hand: `input` and `timing` apply
   hand::InputCounts input;
   InputTiming timing;
+  uint64_t non_finite_refused = 0;    // left out of trajectories.csv and events.jsonl
 };
 
+// Its own refusals are added to summary.non_finite_refused in the file's count.
 void write_summary(const std::string& path, const RunSummary& summary, const physics::World& world);
 
 }  // namespace vcockpit::physics_io

@@ -1,5 +1,7 @@
 #include "physics_node/node/state_publisher.hpp"
 
+#include <cmath>
+
 #include "common/clock.hpp"
 #include "idl/topics/hand_info_convert.hpp"
 #include "idl/topics/pose_convert.hpp"
@@ -18,6 +20,17 @@ cockpit::ShapeKind shape_to_idl(physics::ShapeKind kind) {
   return cockpit::BOX;
 }
 
+// The residuals are magnitudes: -1 says "not available" where a value is not finite.
+constexpr double kNoResidual = -1.0;
+// A rate or stage time that is not finite: -1, as no measurement is negative.
+constexpr double kNoMeasurement = -1.0;
+
+bool all_finite(const std::array<Eigen::Isometry3d, hand::kLinkCount>& X_GL) {
+  for (const Eigen::Isometry3d& X : X_GL)
+    if (!X.matrix().allFinite()) return false;
+  return true;
+}
+
 }  // namespace
 
 StatePublisher::StatePublisher(DdsParticipant& participant, const physics::World& world)
@@ -34,6 +47,13 @@ void StatePublisher::publish_object_info(const physics::World& world) {
   const auto& objects = world.scene().objects;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const physics::ObjectSpec& o = objects[i];
+    const bool finite =
+        info_guard_.pass(std::isfinite(o.mass_kg) && o.shape.box_size_m.allFinite() &&
+                             std::isfinite(o.shape.radius_m) && std::isfinite(o.shape.length_m),
+                         o.name, "size or mass", world.time_ns()) &&
+        info_guard_.pass(o.dynamic || world.bodies()[i].X_GO.matrix().allFinite(), o.name, "pose",
+                         world.time_ns());
+    if (!finite) continue;  // not drawn at all rather than drawn nowhere
     cockpit::ObjectInfo info;
     info.object_id(static_cast<uint32_t>(i));
     info.name(o.name.substr(0, 64));
@@ -74,6 +94,12 @@ void StatePublisher::publish_state(const physics::World& world, const InputStamp
     const physics::BodyState& b = world.bodies()[i];
     if (b.held_by == world.hand_id()) held = static_cast<int>(i);
     if (!objects[i].dynamic) continue;
+    const std::string& name = objects[i].name;
+    const int64_t t_ns = world.time_ns();
+    if (!object_guard_.pass(b.X_GO.matrix().allFinite(), name, "pose", t_ns) ||
+        !object_guard_.pass(b.v_G.allFinite(), name, "linear velocity", t_ns) ||
+        !object_guard_.pass(b.w_G.allFinite(), name, "angular velocity", t_ns))
+      continue;  // the last good sample stands
     object_msg_.object_id(static_cast<uint32_t>(i));
     object_msg_.sim_time_ns(world.time_ns());
     object_msg_.X_GO(to_idl(b.X_GO));
@@ -83,6 +109,9 @@ void StatePublisher::publish_state(const physics::World& world, const InputStamp
     object_writer_.write(object_msg_);
   }
   if (!world.hand_active()) return;
+  if (!hand_guard_.pass(world.X_GH().matrix().allFinite(), "the hand", "pose X_GH", world.time_ns()) ||
+      !hand_guard_.pass(all_finite(world.X_GL()), "the hand", "link poses X_GL", world.time_ns()))
+    return;
   hand_msg_.seq(hand_seq_++);
   hand_msg_.sample_time_ns(stamps.sample_time_ns);
   hand_msg_.source_stamp_ns(stamps.source_stamp_ns);
@@ -106,10 +135,35 @@ void StatePublisher::publish_events(const physics::World& world) {
     event_msg_.kind(e.grasp ? cockpit::GRASP : cockpit::RELEASE);
     event_msg_.reason(physics_io::grasp_event_text(e).c_str());
     event_msg_.contact_count(static_cast<uint32_t>(e.contacts));
-    event_msg_.residual_force_N(e.residual_force_N);
-    event_msg_.residual_torque_Nm(e.residual_torque_Nm);
+    const std::string& name = world.scene().objects[static_cast<std::size_t>(e.object)].name;
+    const bool force_finite =
+        event_guard_.pass(std::isfinite(e.residual_force_N), name, "residual_force_N", e.t_ns);
+    const bool torque_finite =
+        event_guard_.pass(std::isfinite(e.residual_torque_Nm), name, "residual_torque_Nm", e.t_ns);
+    event_msg_.residual_force_N(force_finite ? e.residual_force_N : kNoResidual);
+    event_msg_.residual_torque_Nm(torque_finite ? e.residual_torque_Nm : kNoResidual);
     event_writer_.write(event_msg_);
   }
+}
+
+void StatePublisher::publish_status(const cockpit::NodeStatus& status) {
+  bool finite = std::isfinite(status.loop_rate_hz()) && std::isfinite(status.input_rate_hz());
+  for (const double t_us : status.stage_time_us()) finite = finite && std::isfinite(t_us);
+  if (finite) {
+    status_writer_.write(status);
+    return;
+  }
+  // rare: a copy with -1 in place of each value that is not finite
+  cockpit::NodeStatus sent = status;
+  const auto measured = [&](double value, const char* field) {
+    return status_guard_.pass(std::isfinite(value), "the node", field, status.stamp_ns())
+               ? value
+               : kNoMeasurement;
+  };
+  sent.loop_rate_hz(measured(status.loop_rate_hz(), "loop_rate_hz"));
+  sent.input_rate_hz(measured(status.input_rate_hz(), "input_rate_hz"));
+  for (double& t_us : sent.stage_time_us()) t_us = measured(t_us, "stage_time_us");
+  status_writer_.write(sent);
 }
 
 void StatePublisher::flush(int64_t timeout_ns) {

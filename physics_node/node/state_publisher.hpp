@@ -8,11 +8,18 @@
 //   cockpit/object_state  every dynamic object's pose and velocities (state)
 //   cockpit/grasp_event   every GRASP and RELEASE with its reason (event)
 //   cockpit/node_status   rates, stage timings, counters, glove liveliness (state)
+//
+// No NaN or infinity is published (physics_io::NonFiniteGuard: counted, named once in the log):
+// an object or hand sample with one is not sent (the last good one stands); an object_info with
+// one is not sent; a grasp event is sent with a residual that is not finite replaced by -1 (the
+// residuals are magnitudes: negative means "not available"); a node_status with a rate or stage
+// time that is not finite is sent with -1 in its place.
 
 #include <cstdint>
 #include <vector>
 
 #include "common/dds_participant.hpp"
+#include "physics_node/io/non_finite_guard.hpp"
 #include "physics_node/physics/world.hpp"
 
 namespace vcockpit::physics_node {
@@ -32,9 +39,15 @@ class StatePublisher {
   void publish_hand_info(const physics::World& world);
   void publish_state(const physics::World& world, const InputStamps& stamps, bool tracking);
   void publish_events(const physics::World& world);
-  void publish_status(const cockpit::NodeStatus& status) { status_writer_.write(status); }
+  void publish_status(const cockpit::NodeStatus& status);
   // Waits (bounded) until reliable readers have the last state and events, before shutdown.
   void flush(int64_t timeout_ns);
+
+  // Samples not sent and values replaced because they were not finite, over all topics.
+  uint64_t non_finite_refused() const {
+    return info_guard_.refused() + object_guard_.refused() + hand_guard_.refused() +
+           event_guard_.refused() + status_guard_.refused();
+  }
 
  private:
   Writer<cockpit::ObjectInfo> info_writer_;
@@ -48,6 +61,11 @@ class StatePublisher {
   cockpit::GraspEvent event_msg_;
   uint64_t hand_seq_ = 0;
   uint64_t event_seq_ = 0;
+  physics_io::NonFiniteGuard info_guard_{"cockpit/object_info"};
+  physics_io::NonFiniteGuard object_guard_{"cockpit/object_state"};
+  physics_io::NonFiniteGuard hand_guard_{"cockpit/hand_state"};
+  physics_io::NonFiniteGuard event_guard_{"cockpit/grasp_event"};
+  physics_io::NonFiniteGuard status_guard_{"cockpit/node_status"};
 };
 
 }  // namespace vcockpit::physics_node

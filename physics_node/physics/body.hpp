@@ -1,7 +1,7 @@
 #pragma once
 // The mutable state of one object (MuJoCo's mjData, in spirit) and the per-body data the contact
-// model needs: inverse mass (0 = immovable: static, held, or a hand link), material, and how fast
-// a point fixed on the body moves.
+// model needs: inverse mass and inertia (0 = immovable: static, held, or a hand link), material,
+// and how fast a point fixed on the body moves.
 
 #include <Eigen/Geometry>
 
@@ -25,6 +25,7 @@ struct ContactBody {
   Eigen::Vector3d w_G = Eigen::Vector3d::Zero();
   double inv_mass = 0.0;        // 0: does not respond to contact forces
   double mass_for_damping = 0.0;  // effective mass seen by a contact (kg); 0 when immovable
+  Eigen::Matrix3d inv_I_O = Eigen::Matrix3d::Zero();  // inverse inertia, body frame; 0 when immovable
   const Material* material = nullptr;
   bool dynamic = false;          // forces on it are integrated
 

@@ -6,6 +6,7 @@
 #include "common/assert.hpp"
 #include "physics_node/physics/contact_sums.hpp"
 #include "physics_node/physics/normal_force.hpp"
+#include "physics_node/physics/rolling_resistance.hpp"
 
 namespace vcockpit::physics {
 namespace {
@@ -42,7 +43,7 @@ const StickAnchor* ContactForceModel::match_anchor(const std::vector<StickAnchor
 }
 
 void ContactForceModel::apply(const std::vector<ContactPoint>& contacts,
-                              const std::vector<ContactBody>& bodies,
+                              const std::vector<ContactBody>& bodies, double dt_s,
                               std::vector<Eigen::Vector3d>& F_G, std::vector<Eigen::Vector3d>& M_G,
                               std::vector<AppliedContact>& applied,
                               std::vector<StickAnchor>& anchors, const KeptPairs& kept) {
@@ -77,7 +78,7 @@ void ContactForceModel::apply(const std::vector<ContactPoint>& contacts,
     if (kept.objects != nullptr) carry_kept_before(a, b);
     present_a = a;
     present_b = b;
-    solve_pair(contacts, i, end, bodies, F_G, M_G, applied, anchors);
+    solve_pair(contacts, i, end, bodies, dt_s, F_G, M_G, applied, anchors);
     i = end;
   }
   if (kept.objects != nullptr) carry_kept_before(INT32_MAX, INT32_MAX);
@@ -86,7 +87,7 @@ void ContactForceModel::apply(const std::vector<ContactPoint>& contacts,
 
 void ContactForceModel::solve_pair(const std::vector<ContactPoint>& contacts, std::size_t first,
                                    std::size_t end, const std::vector<ContactBody>& bodies,
-                                   std::vector<Eigen::Vector3d>& F_G,
+                                   double dt_s, std::vector<Eigen::Vector3d>& F_G,
                                    std::vector<Eigen::Vector3d>& M_G,
                                    std::vector<AppliedContact>& applied,
                                    const std::vector<StickAnchor>& previous) {
@@ -134,6 +135,7 @@ void ContactForceModel::solve_pair(const std::vector<ContactPoint>& contacts, st
   // pass 2: the pair sticks or slides as a whole (eqs. 15-17); each point's force goes into
   // both bodies' sums (eqs. 18-19)
   const PatchDecision decision = decide_patch(sums, mu, slip_speed_mps_);
+  Eigen::Vector3d n_weighted = Eigen::Vector3d::Zero();  // the patch's normal, by load
   for (std::size_t j = 0; j < work_.size(); ++j) {
     const ContactPoint& c = contacts[first + j];
     const FrictionPoint& w = work_[j];
@@ -142,6 +144,14 @@ void ContactForceModel::solve_pair(const std::vector<ContactPoint>& contacts, st
     const Eigen::Vector3d F = contact_force_G(w.N, c.n_G, f_t);
     add_contact_to_sums(a, b, A, B, c.p_G, F, F_G, M_G);
     applied.push_back({c, F, w.N, !decision.sticking});
+    n_weighted += w.N * c.n_G;
+  }
+  // the pair's rolling and spinning resistance: one couple for the patch, from its total load
+  if (sums.N_sum > 0.0 && (mu.mu_roll_m > 0.0 || mu.mu_spin_m > 0.0)) {
+    const Eigen::Vector3d M_couple = resistance_couple_on_b_G(
+        A, B, n_weighted.normalized(), sums.N_sum, mu.mu_roll_m, mu.mu_spin_m, dt_s);
+    M_G[b] += M_couple;
+    M_G[a] -= M_couple;
   }
 }
 

@@ -5,6 +5,8 @@
 //   friction_force.hpp  eqs. 15-17: a pair sticks (a tangential spring capped at mu_s sum(N))
 //                       or slides (mu_d N against the relative motion) as one patch
 //   contact_sums.hpp    eqs. 18-19: each body's force sum and torque sum about its centroid
+//   rolling_resistance.hpp  beyond the paper: a couple against the pair's relative rolling
+//                       and spinning
 // This model runs them over a substep's contacts, pair by pair, and keeps the stick anchors
 // from substep to substep: a new contact takes the anchor of the previous substep's contact of
 // the same pair within kAnchorMatch_m of it.
@@ -43,28 +45,31 @@ class ContactForceModel {
 
   explicit ContactForceModel(double slip_speed_mps) : slip_speed_mps_(slip_speed_mps) {}
 
-  // Computes every contact's force for bodies `bodies` (indexed like the contacts) and adds them
-  // to F_G / M_G (force and torque about each body's origin). `contacts` must be sorted by pair.
+  // Computes every contact's force for bodies `bodies` (indexed like the contacts) over a
+  // substep of dt_s and adds them to F_G / M_G (force and torque about each body's origin), with
+  // each pair's rolling-resistance couple. `contacts` must be sorted by pair.
   // Updates the stick anchors `anchors` (the previous substep's in, this one's out; those of
   // `kept` pairs absent from `contacts` carry over). No allocation once the vectors have grown
   // to the scene's size.
   void apply(const std::vector<ContactPoint>& contacts, const std::vector<ContactBody>& bodies,
-             std::vector<Eigen::Vector3d>& F_G, std::vector<Eigen::Vector3d>& M_G,
+             double dt_s, std::vector<Eigen::Vector3d>& F_G, std::vector<Eigen::Vector3d>& M_G,
              std::vector<AppliedContact>& applied, std::vector<StickAnchor>& anchors,
              const KeptPairs& kept = {});
   // The same with anchors the model keeps itself.
   void apply(const std::vector<ContactPoint>& contacts, const std::vector<ContactBody>& bodies,
-             std::vector<Eigen::Vector3d>& F_G, std::vector<Eigen::Vector3d>& M_G,
+             double dt_s, std::vector<Eigen::Vector3d>& F_G, std::vector<Eigen::Vector3d>& M_G,
              std::vector<AppliedContact>& applied, const KeptPairs& kept = {}) {
-    apply(contacts, bodies, F_G, M_G, applied, anchors_, kept);
+    apply(contacts, bodies, dt_s, F_G, M_G, applied, anchors_, kept);
   }
 
   void reset() { anchors_.clear(); }
 
  private:
-  // One pair's points, contacts[first, end): normal forces, friction, and their sums.
+  // One pair's points, contacts[first, end): normal forces, friction, rolling and spinning
+  // resistance, and their sums.
   void solve_pair(const std::vector<ContactPoint>& contacts, std::size_t first, std::size_t end,
-                  const std::vector<ContactBody>& bodies, std::vector<Eigen::Vector3d>& F_G,
+                  const std::vector<ContactBody>& bodies, double dt_s,
+                  std::vector<Eigen::Vector3d>& F_G,
                   std::vector<Eigen::Vector3d>& M_G, std::vector<AppliedContact>& applied,
                   const std::vector<StickAnchor>& previous);
   // The previous substep's unused anchor of c's pair nearest p_A (within kAnchorMatch_m), if any.

@@ -33,10 +33,13 @@ struct StickAnchor {
 
 struct PairFriction {
   double mu_s = 0.0;
-  double mu_d = 0.0;  // at most mu_s
+  double mu_d = 0.0;       // at most mu_s
+  double mu_roll_m = 0.0;  // rolling resistance (rolling_resistance.hpp)
+  double mu_spin_m = 0.0;  // spinning resistance (rolling_resistance.hpp)
 };
 
-// The pair's coefficients: geometric means (Box2D, Jolt), mu_d capped at mu_s.
+// The pair's coefficients: geometric means (Box2D, Jolt), mu_d capped at mu_s; the rolling and
+// spinning resistance's too (0 when either material has none).
 PairFriction pair_friction(const ContactBody& A, const ContactBody& B);
 
 // One point of the pair being solved: its normal force and its friction figures.

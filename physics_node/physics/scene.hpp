@@ -46,6 +46,13 @@ struct Material {
   double damping_ratio = 0.7;
   double mu_s = 0.6;  // static
   double mu_d = 0.4;  // dynamic (sliding)
+  // Rolling and spinning resistance (rolling_resistance.hpp), lengths: the couples against
+  // rolling and against spinning about the normal are at most mu_roll N and mu_spin N. 0 turns
+  // either off. mu_roll: 0.1 mm is MuJoCo's default: a 3 cm ball rolling at 0.5 m/s on a hard
+  // top stops after ~5 m (rolling resistance coefficient mu_roll / r = 0.003). mu_spin: a
+  // pressed patch of radius a resists spinning with (3 pi / 16) mu_d a N; a ~ 1 mm.
+  double mu_roll_m = 1.0e-4;
+  double mu_spin_m = 5.0e-4;
 };
 
 struct ObjectSpec {

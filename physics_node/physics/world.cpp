@@ -218,7 +218,7 @@ void World::substep(double dt_s, double alpha, int remaining, bool skip_held_han
     }
     KeptPairs kept;
     if (skip_held_hand_pairs) kept = {&held_mask_, object_count_};
-    forces_.apply(contacts_, contact_bodies_, F_G_, M_G_, applied_, state_.anchors, kept);
+    forces_.apply(contacts_, contact_bodies_, dt_s, F_G_, M_G_, applied_, state_.anchors, kept);
   }
   {
     StageTimer timer(stage_times_, Stage::kIntegrate);
@@ -315,6 +315,7 @@ void World::build_contact_bodies() {
     c.dynamic = o.dynamic && s.held_by == kNotHeld;
     c.inv_mass = c.dynamic ? 1.0 / o.mass_kg : 0.0;
     c.mass_for_damping = c.dynamic ? o.mass_kg : 0.0;
+    c.inv_I_O = c.dynamic ? I_O_inv_[i] : Eigen::Matrix3d::Zero();
   }
   if (!scene_.hand) return;
   // a link's velocity only where it touches something (the rotation's log is not free)
@@ -345,6 +346,7 @@ void World::build_contact_bodies() {
     c.dynamic = false;
     c.inv_mass = 0.0;
     c.mass_for_damping = 0.0;
+    c.inv_I_O.setZero();
   }
 }
 

@@ -810,11 +810,39 @@ TEST(CollisionHand, HandAgainstStaticObjectAndLinkAgainstLinkAreNeverPairs) {
   const auto X_GL = flat_hand_links(hand, pose(0.2, -0.1, 0.9));
   Scene scene;
   scene.hand = hand;
+  scene.proxy.enabled = false;  // the paper's kinematic hand: no hand-static pairs at all
   scene.objects = {box_under_index_tip(hand, X_GL, 2e-3, false)};
   CollisionWorld world(scene);
   // the phalanx capsules overlap at every joint, the box overlaps the index tip
   EXPECT_TRUE(step(world, initial_poses(scene), &X_GL).empty());
   EXPECT_EQ(world.candidate_pair_count(), 0u);
+}
+
+TEST(CollisionHand, AProxyHandGetsItsStaticContactsApart) {
+  const HandModel& hand = shipped_hand();
+  const auto X_GL = flat_hand_links(hand, pose(0.2, -0.1, 0.9));
+  Scene scene;
+  scene.hand = hand;
+  scene.objects = {box_under_index_tip(hand, X_GL, 2e-3, false)};
+  CollisionWorld world(scene);
+  ASSERT_TRUE(world.reports_hand_static());
+  world.set_poses(initial_poses(scene), &X_GL);
+  world.find_candidate_pairs();
+  std::vector<ContactPoint> contacts, hand_static;
+  world.compute_contacts(contacts, &hand_static);
+  EXPECT_TRUE(contacts.empty()) << "no force acts between the hand and a static box";
+  ASSERT_FALSE(hand_static.empty());
+  for (const ContactPoint& c : hand_static) {
+    EXPECT_EQ(c.body_a, 0) << "the box first";
+    EXPECT_EQ(c.body_b, world.hand_link_body(Link::kIndexDistal));
+    EXPECT_NEAR(c.depth_m, 2e-3, 1e-6);
+  }
+  // the same contacts again for links moved 1 mm up: 1 mm shallower
+  auto X_GL_up = X_GL;
+  for (auto& X : X_GL_up) X.translation().z() += 1e-3;
+  world.compute_hand_static_contacts(X_GL_up, hand_static);
+  ASSERT_FALSE(hand_static.empty());
+  for (const ContactPoint& c : hand_static) EXPECT_NEAR(c.depth_m, 1e-3, 1e-6);
 }
 
 // ---- determinism and the allocation-free loop ------------------------------------------------

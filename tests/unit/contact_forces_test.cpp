@@ -13,6 +13,7 @@ namespace {
 constexpr double kStiffness_Npm = 2.0e4;  // both bodies: the pair's k = 1e4
 constexpr double kDepth_m = 1.0e-3;
 constexpr double kSlide_m = 2.0e-4;       // the link moves this far across the contact
+constexpr double kDt_s = 1.0e-3;          // the substep
 
 struct Rig {
   Material material{kStiffness_Npm, 0.7, 0.6, 0.4};
@@ -32,7 +33,7 @@ struct Rig {
     if (with_contact) contacts.push_back({0, 1, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), kDepth_m});
     KeptPairs kept;
     if (keep) kept = {&held, 1};
-    model.apply(contacts, bodies, F_G, M_G, applied, kept);
+    model.apply(contacts, bodies, kDt_s, F_G, M_G, applied, kept);
     return applied.empty() ? 0.0 : applied.front().F_on_b_G.x();
   }
 };
@@ -68,10 +69,10 @@ TEST(ContactForceAnchors, KeptAnchorsStayInPairOrderAmongNewOnes) {
   const auto contact = [](int a) {
     return ContactPoint{a, 3, Eigen::Vector3d(0.1 * a, 0, 0), Eigen::Vector3d::UnitZ(), kDepth_m};
   };
-  model.apply({contact(0), contact(1), contact(2)}, bodies, F, M, applied);
+  model.apply({contact(0), contact(1), contact(2)}, bodies, kDt_s, F, M, applied);
   bodies[3].X_GB.translation().x() = kSlide_m;
-  model.apply({contact(1)}, bodies, F, M, applied, {&held, 3});
-  model.apply({contact(0), contact(1), contact(2)}, bodies, F, M, applied);
+  model.apply({contact(1)}, bodies, kDt_s, F, M, applied, {&held, 3});
+  model.apply({contact(0), contact(1), contact(2)}, bodies, kDt_s, F, M, applied);
   ASSERT_EQ(applied.size(), 3u);
   EXPECT_NEAR(applied[0].F_on_b_G.x(), -1.0e4 * kSlide_m, 1e-9);  // carried: pulls back
   EXPECT_NEAR(applied[1].F_on_b_G.x(), -1.0e4 * kSlide_m, 1e-9);  // seen every substep

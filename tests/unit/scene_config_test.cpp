@@ -116,8 +116,10 @@ TEST_F(ShippedCockpit, WorldAndHand) {
 }
 
 TEST_F(ShippedCockpit, ObjectsKindsAndMasses) {
-  const std::vector<std::string> statics = {"floor",          "instrument_panel", "glareshield",
-                                            "centre_console", "left_wall",        "right_wall"};
+  const std::vector<std::string> statics = {
+      "floor",     "instrument_panel", "glareshield",   "centre_console", "left_wall",
+      "right_wall", "front_bulkhead",  "nose_bulkhead", "windscreen",     "back_wall",
+      "left_window", "right_window",   "canopy"};
   for (const auto& name : statics) {
     EXPECT_FALSE(object(name).dynamic) << name;
     EXPECT_EQ(object(name).shape.kind, ShapeKind::kBox) << name;
@@ -243,7 +245,8 @@ objects:
     kind: static
     shape: {box: [1.0, 0.8, 0.1]}
     pose: {position: [0.5, 0.0, 0.65], rpy_deg: [0, 0, 0]}
-    material: {stiffness: 5.0e4, damping_ratio: 0.9, mu_s: 0.6, mu_d: 0.5}
+    material: {stiffness: 5.0e4, damping_ratio: 0.9, mu_s: 0.6, mu_d: 0.5, mu_roll_m: 3.0e-4,
+               mu_spin_m: 2.0e-3}
     color: [0.4, 0.4, 0.4]
   - name: mug
     kind: dynamic
@@ -275,11 +278,17 @@ TEST(SceneConfig, ValidSceneParses) {
   const ObjectSpec& table = scene.objects[0];
   EXPECT_FALSE(table.dynamic);
   EXPECT_EQ(table.material.damping_ratio, 0.9);
+  EXPECT_EQ(table.material.mu_roll_m, 3.0e-4);
+  EXPECT_EQ(table.material.mu_spin_m, 2.0e-3);
   EXPECT_EQ(table.color_rgba, (std::array<float, 4>{0.4f, 0.4f, 0.4f, 1.0f}));
 
   const ObjectSpec& mug = scene.objects[1];
   EXPECT_EQ(mug.mass_kg, 0.3);
   EXPECT_EQ(mug.material.stiffness_Npm, physics::Material{}.stiffness_Npm);  // defaults
+  EXPECT_EQ(mug.material.mu_roll_m, physics::Material{}.mu_roll_m);
+  EXPECT_EQ(mug.material.mu_spin_m, physics::Material{}.mu_spin_m);
+  EXPECT_GT(physics::Material{}.mu_roll_m, 0.0) << "a little rolling resistance by default";
+  EXPECT_GT(physics::Material{}.mu_spin_m, 0.0) << "and a little spinning resistance";
   EXPECT_EQ(mug.color_rgba, ObjectSpec{}.color_rgba);
 
   const ObjectSpec& marble = scene.objects[2];
@@ -295,6 +304,7 @@ TEST(SceneConfig, ValidSceneParses) {
   EXPECT_EQ(pen.I_O, Eigen::Vector3d(2.5e-5, 2.5e-5, 2.5e-7).asDiagonal().toDenseMatrix());
   EXPECT_EQ(pen.material.mu_s, 0.3);
   EXPECT_EQ(pen.material.stiffness_Npm, physics::Material{}.stiffness_Npm);
+  EXPECT_EQ(pen.material.mu_roll_m, physics::Material{}.mu_roll_m);
   EXPECT_EQ(pen.color_rgba[3], 0.5f);
   EXPECT_NEAR(pen.X_GO.linear().col(2).x(), 1.0, 1e-15);
 
@@ -302,6 +312,16 @@ TEST(SceneConfig, ValidSceneParses) {
   EXPECT_EQ(scene.grasp.exit_scale, physics::GraspParams{}.exit_scale);  // not given: default
   EXPECT_EQ(scene.contact.max_substeps, 16);
   EXPECT_EQ(scene.contact.substep_safety, physics::ContactParams{}.substep_safety);
+}
+
+TEST(SceneConfig, ZeroRollingAndSpinningResistanceAreAllowed) {
+  std::string text = kValidScene;
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"mu_roll_m: 3.0e-4", "mu_roll_m: 0"},
+                                 {"mu_spin_m: 2.0e-3", "mu_spin_m: 0.0"}})
+    text.replace(text.find(from), from.size(), to);
+  const Scene scene = parse_scene(ConfigNode::load_string(text, "inline.yaml"), "");
+  EXPECT_EQ(scene.objects[0].material.mu_roll_m, 0.0);
+  EXPECT_EQ(scene.objects[0].material.mu_spin_m, 0.0);
 }
 
 TEST(SceneConfig, OptionalBlocksMayBeLeftOut) {
@@ -403,6 +423,16 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
        "objects[3].material.mu_d", "must be >= 0"},
       {"negative_damping", "damping_ratio: 0.9", "damping_ratio: -0.9", "damping_ratio: -0.9",
        "objects[0].material.damping_ratio", "must be >= 0"},
+      {"negative_mu_roll", "mu_roll_m: 3.0e-4", "mu_roll_m: -3.0e-4", "mu_roll_m: -3.0e-4",
+       "objects[0].material.mu_roll_m", "must be >= 0, got -0.0003"},
+      {"mu_roll_not_a_number", "mu_roll_m: 3.0e-4", "mu_roll_m: small", "mu_roll_m: small",
+       "objects[0].material.mu_roll_m", "expected a number"},
+      {"mu_roll_without_unit", "mu_roll_m: 3.0e-4", "mu_roll: 3.0e-4", "mu_roll: 3.0e-4",
+       "objects[0].material.mu_roll", "unknown key 'mu_roll'"},
+      {"negative_mu_spin", "mu_spin_m: 2.0e-3", "mu_spin_m: -2.0e-3", "mu_spin_m: -2.0e-3",
+       "objects[0].material.mu_spin_m", "must be >= 0, got -0.002"},
+      {"negative_hand_mu_roll", "mu_s: 1.0, mu_d: 0.8}", "mu_s: 1.0, mu_d: 0.8, mu_roll_m: -1}",
+       "hand_material:", "hand_material.mu_roll_m", "must be >= 0"},
       {"unknown_material_key", "material: {mu_s: 0.3, mu_d: 0.2}",
        "material: {mu_s: 0.3, mu_d: 0.2, k: 5}", "k: 5", "objects[3].material.k",
        "unknown key 'k'"},
@@ -422,7 +452,7 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
       // names and fields
       {"duplicate_name", "name: marble", "name: mug",
        "name: mug\n    kind: dynamic\n    shape: {sph", "objects[2].name",
-       "duplicate object name 'mug' (first used on line 11)"},
+       "duplicate object name 'mug' (first used on line 12)"},
       {"empty_name", "name: marble", "name: ''", "name: ''", "objects[2].name",
        "must not be empty"},
       {"missing_pose", "    pose: {position: [0.3, 0.1, 0.71]}\n", "", "name: marble", "objects[2]",
