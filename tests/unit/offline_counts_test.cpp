@@ -15,13 +15,15 @@
 namespace vcockpit::physics_io {
 namespace {
 
-std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
+std::string source_dir() {
+  return std::getenv("VCOCKPIT_SOURCE_DIR");
+}
 
 TEST(OfflineCounts, ACraftedLogsClampsMissingColumnGapsAndGloveLostLandInTheSummary) {
   test::CraftedGloveLog craft;
-  craft.run(0, 100, 3);  // 3 values clamped
-  craft.run(200, 300);   // after a 0.1 s gap: bridged
-  craft.run(600, 700);   // after 0.3 s: not bridged (max gap 0.25 s)
+  craft.run(0, 100, 3);   // 3 values clamped
+  craft.run(200, 300);    // after a 0.1 s gap: bridged
+  craft.run(600, 700);    // after 0.3 s: not bridged (max gap 0.25 s)
   craft.run(1400, 1500);  // after 0.7 s: not bridged, the glove lost from 1.2 s
   const std::string dir = test::make_temp_dir("offline_counts");
   const std::string log = dir + "/crafted.csv";
