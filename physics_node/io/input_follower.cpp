@@ -36,9 +36,10 @@ void InputFollower::push(const hand::GloveSample& sample, int64_t arrival_ns,
   if (size_ == 0 && !have_at_) {
     offset_ns_ = offset_ns;  // a new timeline
   } else {
-    const int64_t creep_ns =
-        (arrival_ns - last_arrival_ns_) * kOffsetCreepPerSecond_ns / 1'000'000'000;
-    offset_ns_ = std::min(offset_ns_ + std::max<int64_t>(creep_ns, 0), offset_ns);
+    // up by 1 ms per second of arrivals (a division: no overflow however long the pause)
+    const int64_t creep_ns = std::max<int64_t>(arrival_ns - last_arrival_ns_, 0) /
+                             (1'000'000'000 / kOffsetCreepPerSecond_ns);
+    offset_ns_ = std::min(offset_ns_ + creep_ns, offset_ns);
   }
   last_arrival_ns_ = arrival_ns;
   if (size_ > 0) {
