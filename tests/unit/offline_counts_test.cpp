@@ -97,5 +97,18 @@ TEST(OfflineCounts, ADurationPastTheLogHoldsTheLastSampleAndLosesTheGloveAfterTh
   EXPECT_EQ(nlohmann::json::parse(again).at("input").at("glove_lost"), 1);
 }
 
+TEST(OfflineCounts, WithoutADurationTheRunEndsWhereALockstepReplayStops) {
+  // stamps off the 1 ms grid: the last step that ends by the last sample (61.2 ms) is the 61st
+  const std::string dir = test::make_temp_dir("offline_counts_end");
+  const std::string log = dir + "/off_grid.csv";
+  std::ofstream(log) << "t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0,0,3,1,0,0,0\n"
+                        "0.0305,0.01,0,3,1,0,0,0\n0.0612,0.02,0,3,1,0,0,0\n";
+  OfflineOptions options;
+  options.scene_path = source_dir() + "/config/cockpit.yaml";
+  options.log_path = log;
+  options.out_dir = dir + "/out";
+  EXPECT_EQ(run_offline(load_scene(options.scene_path), options).steps, 61u);
+}
+
 }  // namespace
 }  // namespace vcockpit::physics_io
