@@ -24,24 +24,23 @@ InputCounts& InputCounts::operator+=(const InputCounts& o) {
 
 std::string input_counts_text(const InputCounts& c) {
   char text[512];
-  std::snprintf(text, sizeof text,
-                "accepted %llu, rejected %llu (non-finite %llu, out of range %llu, stale %llu), "
-                "clamped %llu, missing columns %llu, intervals %llu (interpolated %llu, gaps "
-                "bridged %llu, not bridged %llu, late %llu), longest %.3f s, glove lost %llu",
-                static_cast<unsigned long long>(c.accepted),
-                static_cast<unsigned long long>(c.rejected()),
-                static_cast<unsigned long long>(c.rejected_nonfinite),
-                static_cast<unsigned long long>(c.rejected_out_of_range),
-                static_cast<unsigned long long>(c.rejected_stale),
-                static_cast<unsigned long long>(c.clamped),
-                static_cast<unsigned long long>(c.missing_columns),
-                static_cast<unsigned long long>(c.intervals),
-                static_cast<unsigned long long>(c.intervals_interpolated),
-                static_cast<unsigned long long>(c.gaps_bridged),
-                static_cast<unsigned long long>(c.gaps_not_bridged),
-                static_cast<unsigned long long>(c.intervals_late),
-                static_cast<double>(c.longest_interval_ns) * 1e-9,
-                static_cast<unsigned long long>(c.glove_lost));
+  std::snprintf(
+      text, sizeof text,
+      "accepted %llu, rejected %llu (non-finite %llu, out of range %llu, stale %llu), "
+      "clamped %llu, missing columns %llu, intervals %llu (interpolated %llu, gaps "
+      "bridged %llu, not bridged %llu, late %llu), longest %.3f s, glove lost %llu",
+      static_cast<unsigned long long>(c.accepted), static_cast<unsigned long long>(c.rejected()),
+      static_cast<unsigned long long>(c.rejected_nonfinite),
+      static_cast<unsigned long long>(c.rejected_out_of_range),
+      static_cast<unsigned long long>(c.rejected_stale), static_cast<unsigned long long>(c.clamped),
+      static_cast<unsigned long long>(c.missing_columns),
+      static_cast<unsigned long long>(c.intervals),
+      static_cast<unsigned long long>(c.intervals_interpolated),
+      static_cast<unsigned long long>(c.gaps_bridged),
+      static_cast<unsigned long long>(c.gaps_not_bridged),
+      static_cast<unsigned long long>(c.intervals_late),
+      static_cast<double>(c.longest_interval_ns) * 1e-9,
+      static_cast<unsigned long long>(c.glove_lost));
   return text;
 }
 

@@ -17,9 +17,8 @@
 // A node that does not move a hand (the glove driver) counts the interval kinds it sees against
 // the same max gap: its "bridged" gaps are those a physics node with that max gap would bridge.
 
-#include <nlohmann/json.hpp>
-
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace vcockpit::hand {

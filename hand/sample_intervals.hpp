@@ -30,7 +30,10 @@ class IntervalTracker {
   IntervalKind add(int64_t interval_ns, int64_t max_gap_ns);
   // The median of the remembered intervals; 0 before the first.
   int64_t typical_ns() const;
-  void reset() { size_ = 0; next_ = 0; }
+  void reset() {
+    size_ = 0;
+    next_ = 0;
+  }
 
  private:
   std::array<int64_t, kWindow> window_{};

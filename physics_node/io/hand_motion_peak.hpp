@@ -5,7 +5,6 @@
 // The offline summary and the real-time node's statistics report it.
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

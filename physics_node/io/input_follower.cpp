@@ -8,11 +8,10 @@
 
 namespace vcockpit::physics_io {
 
-InputFollower::InputFollower(const FollowerOptions& options)
-    : options_(options), ring_(kCapacity) {
-  VCOCKPIT_ASSERT(options.max_gap_ns >= 0 && options.margin_ns >= 0 &&
-                      options.fixed_delay_ns.value_or(0) >= 0,
-                  "follower times must not be negative");
+InputFollower::InputFollower(const FollowerOptions& options) : options_(options), ring_(kCapacity) {
+  VCOCKPIT_ASSERT(
+      options.max_gap_ns >= 0 && options.margin_ns >= 0 && options.fixed_delay_ns.value_or(0) >= 0,
+      "follower times must not be negative");
   reset();
 }
 
@@ -37,8 +36,10 @@ void InputFollower::push(const hand::GloveSample& sample, int64_t arrival_ns,
   if (size_ == 0 && !have_at_) {
     offset_ns_ = offset_ns;  // a new timeline
   } else {
-    const int64_t creep_ns = (arrival_ns - last_arrival_ns_) * kOffsetCreepPerSecond_ns / 1'000'000'000;
-    offset_ns_ = std::min(offset_ns_ + std::max<int64_t>(creep_ns, 0), offset_ns);
+    // up by 1 ms per second of arrivals (a division: no overflow however long the pause)
+    const int64_t creep_ns = std::max<int64_t>(arrival_ns - last_arrival_ns_, 0) /
+                             (1'000'000'000 / kOffsetCreepPerSecond_ns);
+    offset_ns_ = std::min(offset_ns_ + creep_ns, offset_ns);
   }
   last_arrival_ns_ = arrival_ns;
   if (size_ > 0) {
@@ -86,8 +87,8 @@ bool InputFollower::at(int64_t now_ns, FollowedInput& out) {
   if (size_ >= 2 && t_ns > a.sample.t_ns && entry(1).bridged_from_previous) {
     const Entry& b = entry(1);
     out.sample = interpolate_sample(a.sample, b.sample, t_ns);
-    out.source_stamp_ns = interpolate_stamp_ns(a.source_stamp_ns, b.source_stamp_ns,
-                                               a.sample.t_ns, b.sample.t_ns, t_ns);
+    out.source_stamp_ns = interpolate_stamp_ns(a.source_stamp_ns, b.source_stamp_ns, a.sample.t_ns,
+                                               b.sample.t_ns, t_ns);
     return true;
   }
   // before the oldest (the start), waiting for the next sample, or a gap not bridged: hold

@@ -39,7 +39,7 @@ namespace vcockpit::physics_io {
 struct FollowerOptions {
   int64_t max_gap_ns = hand::kDefaultMaxGap_ns;
   std::optional<int64_t> fixed_delay_ns;  // none: adaptive (usual interval + margin)
-  int64_t margin_ns = 2'000'000;           // arrival jitter + one 1 ms step of slot phase
+  int64_t margin_ns = 2'000'000;          // arrival jitter + one 1 ms step of slot phase
 };
 
 struct FollowedInput {
@@ -74,7 +74,9 @@ class InputFollower {
     int64_t source_stamp_ns = 0;
     bool bridged_from_previous = false;  // the interval ending here is interpolated
   };
-  const Entry& entry(int i) const { return ring_[static_cast<std::size_t>((head_ + i) % kCapacity)]; }
+  const Entry& entry(int i) const {
+    return ring_[static_cast<std::size_t>((head_ + i) % kCapacity)];
+  }
   int64_t target_delay_ns() const;
   int64_t shown_time_ns(int64_t now_ns) const { return now_ns - offset_ns_ - delay_ns_; }
 

@@ -119,7 +119,9 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
       }
       driver.feed(samples[i], step);
     }
-    driver.step_until(end_ns, step);
+    // without --duration the run ends where a lockstep replay of the log ends: at the last step
+    // that ends by the last sample
+    if (options.duration_s) driver.step_until(end_ns, step);
     input_counts += driver.counts();
     summary.have_input = true;
     summary.input = input_counts;

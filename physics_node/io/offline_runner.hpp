@@ -4,8 +4,8 @@
 //
 // Time: the ReplayDriver's rule (replay_driver.hpp), which lockstep replay over DDS shares, so
 // both give the same result: the hand interpolated between samples, gaps beyond the max gap held,
-// the glove lost after the timeout. Without --duration the run ends at the last sample; with a
-// longer one the hand holds the last sample (and the glove is lost after the timeout, as a live
+// the glove lost after the timeout. Without --duration the run ends at the last step that ends
+// by the last sample (where a lockstep replay of the log stops); with a longer one the hand holds the last sample (and the glove is lost after the timeout, as a live
 // node would find). Every sample passes the SampleValidator a live node applies; the log's and
 // the validator's counts go to summary.json ("input") and the log. No YAML and no DDS here: the
 // caller loads the scene.

@@ -53,7 +53,8 @@ class ReplayDriver {
   template <class Step>
   void feed(const hand::GloveSample& sample, Step&& step, int64_t source_stamp_ns = 0) {
     push(sample, source_stamp_ns);
-    while (world_.time_ns() + step_ns_ <= newest_.world_t_ns) one_step(step);
+    while (world_.time_ns() + step_ns_ <= newest_.world_t_ns)
+      one_step(step);
   }
 
   // Takes the next sample without stepping (the look-ahead past the end of a shorter run).
@@ -62,7 +63,8 @@ class ReplayDriver {
   // Steps until world time reaches t_ns; past the newest sample the hand holds it.
   template <class Step>
   void step_until(int64_t t_ns, Step&& step) {
-    while (world_.time_ns() < t_ns) one_step(step);
+    while (world_.time_ns() < t_ns)
+      one_step(step);
   }
 
   // A new source (a restarted glove driver): its first sample is the world's present, and no

@@ -177,7 +177,8 @@ void Node::report_stop(StatsReport report) {
   if (!options_.lockstep) {
     spdlog::info("hand lag behind its source {} (interpolation delay now {:.2f} ms); peak wrist "
                  "speed {:.2f} m/s, joint {:.1f} rad/s",
-                 latency_text_us(stats_.hand_lag), static_cast<double>(report.input_delay_ns.value_or(0)) * 1e-6,
+                 latency_text_us(stats_.hand_lag),
+                 static_cast<double>(report.input_delay_ns.value_or(0)) * 1e-6,
                  report.hand_peak_wrist_mps, report.hand_peak_joint_radps);
   }
   if (options_.stats_out.empty()) return;
@@ -238,10 +239,10 @@ int Node::run_realtime() {
   int64_t next_publish_ns = next_ns;
   bool tracking = false;
   bool have_input = false;
-  spdlog::info("real time: {} Hz steps ({} substeps), world published at {} Hz; hand input {} "
-               "behind its source, gaps over {:.3f} s not bridged",
+  spdlog::info("real time: {} Hz steps ({} substeps), world published at {} Hz; the hand {} "
+               "behind its glove, gaps over {:.3f} s not bridged",
                options_.rate_hz, world_.substeps(), options_.publish_hz,
-               options_.input_delay_s ? std::to_string(*options_.input_delay_s * 1e3) + " ms"
+               options_.input_delay_s ? fmt::format("{:.1f} ms", *options_.input_delay_s * 1e3)
                                       : std::string("one usual sample interval + 2 ms"),
                static_cast<double>(options_.timing.max_gap_ns) * 1e-9);
   physics_io::FollowedInput followed;

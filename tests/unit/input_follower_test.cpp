@@ -15,8 +15,8 @@ namespace vcockpit::physics_io {
 namespace {
 
 constexpr int64_t kMs = 1'000'000;
-constexpr int64_t kTransit_ns = 150'000;            // source clock -> arrival
-constexpr int64_t kStampBase_ns = 7'000'000'000;    // the source's stamp of its time 0
+constexpr int64_t kTransit_ns = 150'000;             // source clock -> arrival
+constexpr int64_t kStampBase_ns = 7'000'000'000;     // the source's stamp of its time 0
 constexpr int64_t kArrivalBase_ns = 50'000'000'000;  // the local clock at the source's time 0
 constexpr double kV_mps = 0.4;
 
@@ -36,7 +36,7 @@ struct FollowRun {
 
 // Samples at `rate_hz` (arrival = stamp + transit + jitter), the follower asked every 1 ms.
 FollowRun follow(double rate_hz, int64_t jitter_max_ns, const FollowerOptions& options,
-           double duration_s = 2.0) {
+                 double duration_s = 2.0) {
   InputFollower follower(options);
   std::mt19937 rng(7);
   std::uniform_int_distribution<int64_t> jitter(0, jitter_max_ns);
@@ -66,8 +66,8 @@ FollowRun follow(double rate_hz, int64_t jitter_max_ns, const FollowerOptions& o
     if (now - kArrivalBase_ns > 500 * kMs) {  // past the start and the delay's adaptation
       // lag behind the source's present (now - transit on the source clock)
       const double lag_ns = static_cast<double>(now - kArrivalBase_ns - kTransit_ns) - shown_t_ns;
-      run.worst_lag_error_ns = std::max(run.worst_lag_error_ns,
-                                        std::abs(lag_ns - static_cast<double>(follower.delay_ns())));
+      run.worst_lag_error_ns = std::max(
+          run.worst_lag_error_ns, std::abs(lag_ns - static_cast<double>(follower.delay_ns())));
     }
   }
   run.delay_ns = follower.delay_ns();
@@ -121,7 +121,8 @@ TEST(InputFollower, AGapOverTheMaxGapHoldsTheEarlierSampleUntilTheLaterIsDue) {
   InputFollower follower(FollowerOptions{});  // max gap 0.25 s
   const int64_t arrival0 = kArrivalBase_ns;
   // 100 Hz to 100 ms, then nothing until 400 ms (a 0.3 s gap), then 100 Hz again
-  for (int64_t t = 0; t <= 100 * kMs; t += 10 * kMs) follower.push(at_source_time(t), arrival0 + t, 0);
+  for (int64_t t = 0; t <= 100 * kMs; t += 10 * kMs)
+    follower.push(at_source_time(t), arrival0 + t, 0);
   FollowedInput in;
   for (int64_t now = arrival0 + 100 * kMs; now < arrival0 + 400 * kMs; now += kMs) {
     ASSERT_TRUE(follower.at(now, in));
@@ -147,7 +148,8 @@ TEST(InputFollower, AGapOverTheMaxGapHoldsTheEarlierSampleUntilTheLaterIsDue) {
 TEST(InputFollower, AGapTheDelayDoesNotCoverIsCountedLate) {
   InputFollower follower(FollowerOptions{});
   const int64_t arrival0 = kArrivalBase_ns;
-  for (int64_t t = 0; t <= 100 * kMs; t += 10 * kMs) follower.push(at_source_time(t), arrival0 + t, 0);
+  for (int64_t t = 0; t <= 100 * kMs; t += 10 * kMs)
+    follower.push(at_source_time(t), arrival0 + t, 0);
   FollowedInput in;
   for (int64_t now = arrival0 + 100 * kMs; now < arrival0 + 200 * kMs; now += kMs) {
     ASSERT_TRUE(follower.at(now, in));

@@ -15,13 +15,15 @@
 namespace vcockpit::physics_io {
 namespace {
 
-std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
+std::string source_dir() {
+  return std::getenv("VCOCKPIT_SOURCE_DIR");
+}
 
 TEST(OfflineCounts, ACraftedLogsClampsMissingColumnGapsAndGloveLostLandInTheSummary) {
   test::CraftedGloveLog craft;
-  craft.run(0, 100, 3);  // 3 values clamped
-  craft.run(200, 300);   // after a 0.1 s gap: bridged
-  craft.run(600, 700);   // after 0.3 s: not bridged (max gap 0.25 s)
+  craft.run(0, 100, 3);   // 3 values clamped
+  craft.run(200, 300);    // after a 0.1 s gap: bridged
+  craft.run(600, 700);    // after 0.3 s: not bridged (max gap 0.25 s)
   craft.run(1400, 1500);  // after 0.7 s: not bridged, the glove lost from 1.2 s
   const std::string dir = test::make_temp_dir("offline_counts");
   const std::string log = dir + "/crafted.csv";
@@ -95,6 +97,19 @@ TEST(OfflineCounts, ADurationPastTheLogHoldsTheLastSampleAndLosesTheGloveAfterTh
   run_offline(load_scene(options.scene_path), options);
   std::ifstream again(options.out_dir + "/summary.json");
   EXPECT_EQ(nlohmann::json::parse(again).at("input").at("glove_lost"), 1);
+}
+
+TEST(OfflineCounts, WithoutADurationTheRunEndsWhereALockstepReplayStops) {
+  // stamps off the 1 ms grid: the last step that ends by the last sample (61.2 ms) is the 61st
+  const std::string dir = test::make_temp_dir("offline_counts_end");
+  const std::string log = dir + "/off_grid.csv";
+  std::ofstream(log) << "t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0,0,3,1,0,0,0\n"
+                        "0.0305,0.01,0,3,1,0,0,0\n0.0612,0.02,0,3,1,0,0,0\n";
+  OfflineOptions options;
+  options.scene_path = source_dir() + "/config/cockpit.yaml";
+  options.log_path = log;
+  options.out_dir = dir + "/out";
+  EXPECT_EQ(run_offline(load_scene(options.scene_path), options).steps, 61u);
 }
 
 }  // namespace

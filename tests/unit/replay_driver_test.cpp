@@ -59,9 +59,9 @@ TEST(ReplayDriver, A33HzStreamMovesTheHandOverTheWholeIntervalAtTheRecordedSpeed
     // the hand at the step's end is the recorded hand at that time
     const Eigen::Isometry3d expected = hand::X_GH_from_sample(hand, truth(hand, world.time_ns()));
     worst_m = std::max(worst_m, (world.X_GH().translation() - expected.translation()).norm());
-    worst_rad = std::max(worst_rad, std::abs(world.state().hand_to.q_rad[static_cast<int>(
-                                                 hand::Joint::kIndexMcp)] -
-                                             (0.1 + kCurl_radps * world.time_ns() * 1e-9)));
+    worst_rad = std::max(
+        worst_rad, std::abs(world.state().hand_to.q_rad[static_cast<int>(hand::Joint::kIndexMcp)] -
+                            (0.1 + kCurl_radps * world.time_ns() * 1e-9)));
   };
   const int64_t interval_ns = 30'303'030;  // 33 Hz, off the 1 ms step grid
   for (int k = 0; k <= 16; ++k) {
@@ -92,7 +92,8 @@ TEST(ReplayDriver, MaxGapZeroTakesEachSampleInOneStepAsBefore) {
     world.step();
     peak.record(world);
   };
-  for (int k = 0; k <= 16; ++k) driver.feed(truth(hand, k * 30'303'030), step);
+  for (int k = 0; k <= 16; ++k)
+    driver.feed(truth(hand, k * 30'303'030), step);
   // a 30.3 ms move done in one 1 ms step: 30x the recorded speed
   EXPECT_NEAR(peak.wrist_mps(), kV_mps.norm() * 30.303030, 1e-6);
   EXPECT_EQ(driver.counts().gaps_not_bridged, 16u);
@@ -104,7 +105,8 @@ std::vector<hand::GloveSample> runs(const hand::HandModel& hand,
                                     const std::vector<std::pair<int, int>>& runs_ms) {
   std::vector<hand::GloveSample> out;
   for (const auto& [from_ms, to_ms] : runs_ms) {
-    for (int ms = from_ms; ms <= to_ms; ms += 10) out.push_back(truth(hand, ms * kMs));
+    for (int ms = from_ms; ms <= to_ms; ms += 10)
+      out.push_back(truth(hand, ms * kMs));
   }
   return out;
 }
@@ -144,7 +146,8 @@ TEST(ReplayDriver, GapsOverTheMaxGapHoldAndOverTheTimeoutLoseTheGloveUntilTheNex
       ++checked;
     }
   };
-  for (const auto& s : samples) driver.feed(s, step);
+  for (const auto& s : samples)
+    driver.feed(s, step);
   EXPECT_EQ(checked, 99 + 299 + 699 + 2);
   const auto& c = driver.counts();
   EXPECT_EQ(c.intervals, samples.size() - 1);
@@ -161,7 +164,8 @@ TEST(ReplayDriver, PastTheLastSampleTheHandHoldsItAndTheGloveIsLostAfterTheTimeo
   const hand::HandModel& hand = *world.scene().hand;
   ReplayDriver driver(world, hand);
   auto step = [&] { world.step(); };
-  for (const auto& s : runs(hand, {{0, 50}})) driver.feed(s, step);
+  for (const auto& s : runs(hand, {{0, 50}}))
+    driver.feed(s, step);
   driver.step_until(550 * kMs, step);
   EXPECT_TRUE(driver.shown().tracking) << "0.5 s after the last sample: not yet";
   driver.step_until(551 * kMs, step);
@@ -175,7 +179,8 @@ TEST(ReplayDriver, ARestartedSourceStartsAtTheWorldsPresentWithNoIntervalFromThe
   const hand::HandModel& hand = *world.scene().hand;
   ReplayDriver driver(world, hand);
   auto step = [&] { world.step(); };
-  for (const auto& s : runs(hand, {{0, 100}})) driver.feed(s, step, 7 + s.t_ns);
+  for (const auto& s : runs(hand, {{0, 100}}))
+    driver.feed(s, step, 7 + s.t_ns);
   EXPECT_EQ(driver.shown().source_stamp_ns, 7 + 100 * kMs);
   driver.restart();
   // the new source's timeline starts far away; its first sample is the hand at once

@@ -46,7 +46,8 @@ TEST(SampleInterpolation, LinearInPositionAndJointsSlerpInOrientation) {
     const auto expected = sample(t, 0.1 + 0.3 * s_exact, 0.2 + 1.5 * s_exact, 0.3 - 0.6 * s_exact);
     EXPECT_LT((s.p_MT_m - expected.p_MT_m).norm(), 1e-15);
     EXPECT_LT(s.q_MT.angularDistance(expected.q_MT), 1e-12) << "angle grows linearly (slerp)";
-    for (int j = 0; j < hand::kJointCount; ++j) EXPECT_NEAR(s.joints_rad[j], expected.joints_rad[j], 1e-15);
+    for (int j = 0; j < hand::kJointCount; ++j)
+      EXPECT_NEAR(s.joints_rad[j], expected.joints_rad[j], 1e-15);
   }
 }
 

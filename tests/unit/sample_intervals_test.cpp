@@ -2,10 +2,11 @@
 // (hand/input_counts.hpp): the usual interval is the median of the recent ones, a gap is more than
 // twice that, beyond the max gap is not bridged; every interval lands in exactly one count.
 
+#include "hand/sample_intervals.hpp"
+
 #include <gtest/gtest.h>
 
 #include "hand/input_counts.hpp"
-#include "hand/sample_intervals.hpp"
 
 namespace vcockpit::hand {
 namespace {
@@ -15,7 +16,8 @@ constexpr int64_t kMs = 1'000'000;
 TEST(IntervalTracker, TheUsualIntervalIsTheMedianAndALoneDropDoesNotMoveIt) {
   IntervalTracker t;
   EXPECT_EQ(t.typical_ns(), 0);
-  for (int64_t ms : {30, 31, 29, 30, 32, 30}) t.add(ms * kMs, 250 * kMs);
+  for (int64_t ms : {30, 31, 29, 30, 32, 30})
+    t.add(ms * kMs, 250 * kMs);
   EXPECT_EQ(t.typical_ns(), 30 * kMs);
   EXPECT_EQ(t.add(61 * kMs, 250 * kMs), IntervalKind::kGap) << "just over twice the usual";
   EXPECT_EQ(t.typical_ns(), 30 * kMs) << "one gap among seven does not move the median";
@@ -34,9 +36,11 @@ TEST(IntervalTracker, NoGapBeforeThreeIntervalsAndBeyondTheMaxGapIsNotRemembered
 
 TEST(IntervalTracker, FollowsAChangeOfRateWithinEightIntervals) {
   IntervalTracker t;
-  for (int i = 0; i < 15; ++i) t.add(1 * kMs, 250 * kMs);
+  for (int i = 0; i < 15; ++i)
+    t.add(1 * kMs, 250 * kMs);
   int gaps = 0;
-  for (int i = 0; i < 15; ++i) gaps += t.add(30 * kMs, 250 * kMs) == IntervalKind::kGap ? 1 : 0;
+  for (int i = 0; i < 15; ++i)
+    gaps += t.add(30 * kMs, 250 * kMs) == IntervalKind::kGap ? 1 : 0;
   EXPECT_EQ(gaps, 8) << "1 kHz -> 33 Hz: the first eight 30 ms intervals are gaps, then the usual";
   EXPECT_EQ(t.typical_ns(), 30 * kMs);
 }
