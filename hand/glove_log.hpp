@@ -12,9 +12,12 @@
 // (hand_joints.hpp) with _rad or _deg. Missing joint columns take the hand's rest pose and are
 // reported once; an unknown or repeated column is an error. Values beyond a joint's limits are
 // clamped to the limit and counted (a glove reads a little past a calibrated range all the
-// time; rejecting the whole log for it would be useless). Everything else that is wrong — a
-// non-numeric field, NaN/Inf, time not increasing, a short or truncated line, an empty or
-// header-only file — is an error naming the file, the line and the column.
+// time; rejecting the whole log for it would be useless). A row whose every field but t_s is
+// `nan` is a dropout: the device sent a sample without valid data (a tracker that lost its fix,
+// a glove packet that failed its checksum). It is skipped and counted, like the sample gate
+// rejects such a sample on the topic. Everything else that is wrong — a non-numeric field, a
+// NaN/Inf among numbers, time not increasing, a short or truncated line, an empty or
+// header-only file, a log of dropouts only — is an error naming the file, the line and the column.
 
 #include <cstdio>
 #include <stdexcept>
@@ -42,6 +45,8 @@ struct GloveLog {
   std::string first_clamp;                  // "file:line: column ..." of the first, for the log
   // what reading did to the values: `clamped` joint values, `missing_columns` (= missing_joints)
   InputCounts counts;
+  int dropped_samples = 0;                  // all-`nan` rows (dropouts), skipped
+  std::string first_dropout;                // "file:line: ..." of the first, for the log
 };
 
 // Reads and validates a whole log. Throws GloveLogError.
@@ -65,6 +70,8 @@ class GloveLogWriter {
   GloveLogWriter(const std::string& path, bool left_hand, const std::vector<std::string>& comments);
 
   void append(const GloveSample& sample);
+  // A dropout row: t_s, then `nan` in every other column (read back as a skipped, counted row).
+  void append_dropout(int64_t t_ns);
   void commit();  // throws GloveLogError on failure
   std::size_t count() const { return count_; }
 

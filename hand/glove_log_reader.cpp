@@ -1,3 +1,4 @@
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -83,6 +84,10 @@ class Reader {
       read_row(text, ends_with_newline);
     }
     if (!have_header) throw GloveLogError(path_ + ": empty log (no header line)");
+    if (log_.samples.empty() && log_.dropped_samples > 0) {
+      throw GloveLogError(path_ + ": every one of the " + std::to_string(log_.dropped_samples) +
+                          " samples is a dropout (all nan), the log has no valid sample");
+    }
     if (log_.samples.empty()) {
       throw GloveLogError(path_ + ":" + std::to_string(header_line_) +
                           ": header only, the log has no samples");
@@ -196,6 +201,10 @@ class Reader {
       fail("", "expected " + std::to_string(columns_.size()) + " fields, found " +
                    std::to_string(fields.size()));
     }
+    if (is_dropout(fields)) {
+      read_dropout(fields);
+      return;
+    }
     GloveSample s;
     s.joints_rad = hand_.rest_pose();
     double q[4] = {1, 0, 0, 0};
@@ -220,10 +229,9 @@ class Reader {
       }
     }
     s.t_ns = log_seconds_to_ns(t_s);
-    if (!log_.samples.empty() && s.t_ns <= log_.samples.back().t_ns) {
-      fail("t_s", "time does not increase (" + fields[time_column()] + " after " +
-                      std::to_string(ns_to_log_seconds(log_.samples.back().t_ns)) + " s)");
-    }
+    check_time_increases(s.t_ns, fields);
+    last_t_ns_ = s.t_ns;
+    have_time_ = true;
     if (quaternion_) {
       s.q_MT = Eigen::Quaterniond(q[0], q[1], q[2], q[3]);
       // kept exactly as written (a replay publishes what the log says); only checked
@@ -233,6 +241,40 @@ class Reader {
           rotation_from_euler(hand_.tracker.euler_axes, euler[0], euler[1], euler[2]));
     }
     log_.samples.push_back(s);
+  }
+
+  // Every field but t_s is "nan" (any case): the device's sample without valid data.
+  bool is_dropout(const std::vector<std::string>& fields) const {
+    auto lower = [](char c) { return std::tolower(static_cast<unsigned char>(c)); };
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+      if (columns_[i].field == Field::kTime) continue;
+      const std::string& f = fields[i];
+      if (f.size() != 3 || lower(f[0]) != 'n' || lower(f[1]) != 'a' || lower(f[2]) != 'n') {
+        return false;
+      }
+    }
+    return fields.size() > 1;
+  }
+
+  void read_dropout(const std::vector<std::string>& fields) {
+    const std::size_t t = time_column();
+    const int64_t t_ns = log_seconds_to_ns(parse_number(fields[t], columns_[t].name));
+    check_time_increases(t_ns, fields);
+    last_t_ns_ = t_ns;
+    have_time_ = true;
+    ++log_.counts.rejected_nonfinite;  // as the sample gate counts such a sample on the topic
+    if (log_.dropped_samples++ == 0) {
+      log_.first_dropout = path_ + ":" + std::to_string(line_no_) +
+                           ": a dropout (every value nan), skipped";
+    }
+  }
+
+  // Dropout rows keep their stamps, so time must increase over them too.
+  void check_time_increases(int64_t t_ns, const std::vector<std::string>& fields) const {
+    if (have_time_ && t_ns <= last_t_ns_) {
+      fail("t_s", "time does not increase (" + fields[time_column()] + " after " +
+                      std::to_string(ns_to_log_seconds(last_t_ns_)) + " s)");
+    }
   }
 
   std::size_t time_column() const {
@@ -259,6 +301,8 @@ class Reader {
   bool quaternion_ = true;
   int line_no_ = 0;
   int header_line_ = 0;
+  int64_t last_t_ns_ = 0;  // the previous row's stamp, dropouts included
+  bool have_time_ = false;
 };
 
 }  // namespace

@@ -45,6 +45,13 @@ void GloveLogWriter::append(const GloveSample& sample) {
   ++count_;
 }
 
+void GloveLogWriter::append_dropout(int64_t t_ns) {
+  std::fprintf(file_.get(), "%.17g", ns_to_log_seconds(t_ns));
+  for (int i = 0; i < 7 + hand::kJointCount; ++i) std::fputs(",nan", file_.get());
+  std::fputc('\n', file_.get());
+  ++count_;
+}
+
 void GloveLogWriter::commit() {
   try {
     file_.commit();

@@ -56,12 +56,22 @@ std::map<std::string, JointAngles> builtin_shapes(const hand::HandModel& hand) {
   return shapes;
 }
 
+Eigen::Vector3d grasp_point_H(const hand::HandModel& hand, const hand::JointAngles& q,
+                              const std::vector<hand::Finger>& fingers) {
+  hand::HandLinkPoses poses;
+  hand::forward_kinematics(hand, q, poses);
+  Eigen::Vector3d fingers_mean = Eigen::Vector3d::Zero();
+  for (hand::Finger f : fingers) fingers_mean += poses.p_H_tip[static_cast<int>(f)];
+  fingers_mean /= static_cast<double>(fingers.size());
+  return 0.5 * (poses.p_H_tip[static_cast<int>(hand::Finger::kThumb)] + fingers_mean);
+}
+
 GestureScript GestureScript::load(const std::string& path, const hand::HandModel& hand) {
   return parse(ConfigNode::load_file(path), hand);
 }
 
 GestureScript GestureScript::parse(const ConfigNode& root, const hand::HandModel& hand) {
-  root.expect_keys({"rate_hz", "shapes", "keyframes"});
+  root.expect_keys({"rate_hz", "shapes", "grasp_point", "keyframes"});
   GestureScript script(hand);
   if (auto rate = root.find("rate_hz")) {
     script.rate_hz_ = rate->as_double();
@@ -81,10 +91,32 @@ GestureScript GestureScript::parse(const ConfigNode& root, const hand::HandModel
       shapes[name] = q;
     }
   }
+  if (auto grasp = root.find("grasp_point")) {
+    grasp->expect_keys({"shape", "fingers"});
+    const std::string shape = grasp->get_string("shape");
+    auto it = shapes.find(shape);
+    if (it == shapes.end()) (*grasp)["shape"].fail("unknown hand shape '" + shape + "'");
+    const ConfigNode names = (*grasp)["fingers"];
+    std::vector<hand::Finger> fingers;
+    for (const ConfigNode& name : names.elements()) {
+      const std::string text = name.as_string();
+      bool found = false;
+      for (int f = 1; f < hand::kFingerCount; ++f) {  // the thumb is always one side
+        if (hand::finger_name(static_cast<hand::Finger>(f)) == text) {
+          fingers.push_back(static_cast<hand::Finger>(f));
+          found = true;
+        }
+      }
+      if (!found) name.fail("expected index, middle, ring or little, found '" + text + "'");
+    }
+    if (fingers.empty()) names.fail("name at least one finger to oppose the thumb");
+    script.has_grasp_point_ = true;
+    script.p_H_grasp_ = grasp_point_H(hand, it->second, fingers);
+  }
   const ConfigNode frames = root["keyframes"];
   if (frames.size() < 1) frames.fail("needs at least one keyframe");
   for (const ConfigNode& frame : frames.elements()) {
-    frame.expect_keys({"t_s", "position", "rpy_deg", "shape"});
+    frame.expect_keys({"t_s", "position", "grasp_at", "rpy_deg", "shape"});
     Keyframe k;
     const double t_s = frame.get_double("t_s");
     k.t_ns = hand::log_seconds_to_ns(t_s);
@@ -93,13 +125,27 @@ GestureScript GestureScript::parse(const ConfigNode& root, const hand::HandModel
     }
     const Keyframe* previous = script.keyframes_.empty() ? nullptr : &script.keyframes_.back();
     auto position = frame.find("position");
+    auto grasp_at = frame.find("grasp_at");
     auto rpy = frame.find("rpy_deg");
-    if (!previous && (!position || !rpy)) frame.fail("the first keyframe needs position and rpy_deg");
-    const Eigen::Vector3d p =
-        position ? Eigen::Vector3d(position->as_doubles<3>().data()) : previous->X_GH.translation();
+    if (position && grasp_at) frame.fail("give position (the wrist) or grasp_at, not both");
+    if (grasp_at && !script.has_grasp_point_) {
+      grasp_at->fail("grasp_at needs the script's grasp_point: {shape, fingers}");
+    }
+    if (!previous && (!(position || grasp_at) || !rpy)) {
+      frame.fail("the first keyframe needs position (or grasp_at) and rpy_deg");
+    }
     const Eigen::Matrix3d R = rpy ? pose_from_position_rpy_deg({0, 0, 0}, rpy->as_doubles<3>()).linear()
                                   : Eigen::Matrix3d(previous->X_GH.linear());
-    k.X_GH = make_pose(p, R);
+    if (grasp_at || (!position && previous->by_grasp_point)) {
+      k.by_grasp_point = true;
+      k.p_G_grasp = grasp_at ? Eigen::Vector3d(grasp_at->as_doubles<3>().data())
+                             : previous->p_G_grasp;
+      k.X_GH = make_pose(k.p_G_grasp - R * script.p_H_grasp_, R);
+    } else {
+      const Eigen::Vector3d p = position ? Eigen::Vector3d(position->as_doubles<3>().data())
+                                         : previous->X_GH.translation();
+      k.X_GH = make_pose(p, R);
+    }
     k.shape = frame.get_string("shape", previous ? previous->shape : "rest");
     auto it = shapes.find(k.shape);
     if (it == shapes.end()) frame["shape"].fail("unknown hand shape '" + k.shape + "'");
@@ -124,8 +170,13 @@ void GestureScript::evaluate(int64_t t_ns, Eigen::Isometry3d& X_GH,
   const double s = min_jerk(static_cast<double>(t_ns - a.t_ns) / static_cast<double>(b.t_ns - a.t_ns));
   const Eigen::Quaterniond qa(a.X_GH.linear());
   const Eigen::Quaterniond qb(b.X_GH.linear());
-  X_GH = make_pose(a.X_GH.translation() + s * (b.X_GH.translation() - a.X_GH.translation()),
-                   qa.slerp(s, qb).toRotationMatrix());
+  const Eigen::Matrix3d R = qa.slerp(s, qb).toRotationMatrix();
+  if (a.by_grasp_point && b.by_grasp_point) {
+    // the grasp point moves straight and the hand turns about it
+    X_GH = make_pose(a.p_G_grasp + s * (b.p_G_grasp - a.p_G_grasp) - R * p_H_grasp_, R);
+  } else {
+    X_GH = make_pose(a.X_GH.translation() + s * (b.X_GH.translation() - a.X_GH.translation()), R);
+  }
   for (int j = 0; j < hand::kJointCount; ++j) {
     joints_rad[j] = a.joints_rad[j] + s * (b.joints_rad[j] - a.joints_rad[j]);
   }

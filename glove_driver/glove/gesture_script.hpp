@@ -8,10 +8,23 @@
 //   rate_hz: 1000                      # optional, samples per second
 //   shapes:                            # optional extra shapes: joint angles in degrees,
 //     grip: {index_mcp: 50, ...}       #   joints not named take the hand's rest pose
+//   grasp_point: {shape: grip, fingers: [index, middle]}   # optional, see below
 //   keyframes:
 //     - {t_s: 0.0, position: [x, y, z], rpy_deg: [r, p, y], shape: open}
 //     - {t_s: 1.2, position: [...], shape: power}   # omitted position/rpy_deg: as before
+//     - {t_s: 2.0, grasp_at: [x, y, z]}             # the grasp point there, not the wrist
 // Built-in shapes: rest (hand.yaml rest pose), open, pinch, power.
+//
+// Placing the hand by its grasp point, so one script fits hands of every size: `position` puts
+// the wrist (the origin of H) at a point, which suits one hand only — a smaller hand's fingers
+// would close short of an object a larger hand's reach round. `grasp_at` puts the script's grasp
+// point there instead: the point midway between the thumb tip and the mean of the named
+// fingertips when the hand takes `shape` (the shape the grip closes to), computed from the
+// loaded hand model. A script places that point at the object's centre, and each hand's wrist
+// follows from its own size. The point is fixed in H (one shape for the whole script), so the
+// wrist does not move as the fingers close. A keyframe that gives neither position nor grasp_at
+// keeps the previous keyframe's: its wrist if that gave `position`, its grasp point if it gave
+// `grasp_at` (turning the hand then turns it about that point).
 
 #include <map>
 #include <string>
@@ -29,6 +42,8 @@ namespace vcockpit::glove {
 struct Keyframe {
   int64_t t_ns = 0;
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
+  bool by_grasp_point = false;  // placed by grasp_at: p_G_grasp is where the grasp point is
+  Eigen::Vector3d p_G_grasp = Eigen::Vector3d::Zero();
   hand::JointAngles joints_rad{};
   std::string shape;
 };
@@ -40,6 +55,8 @@ class GestureScript {
   static GestureScript parse(const ConfigNode& root, const hand::HandModel& hand);
 
   double rate_hz() const { return rate_hz_; }
+  // The grasp point in H for this hand (zero when the script has none).
+  const Eigen::Vector3d& p_H_grasp() const { return p_H_grasp_; }
   int64_t duration_ns() const { return keyframes_.back().t_ns; }
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
 
@@ -54,10 +71,17 @@ class GestureScript {
 
   const hand::HandModel* hand_;
   double rate_hz_ = 1000.0;
+  bool has_grasp_point_ = false;
+  Eigen::Vector3d p_H_grasp_ = Eigen::Vector3d::Zero();
   std::vector<Keyframe> keyframes_;
 };
 
 // The built-in hand shapes (degrees by joint name) for a hand model.
 std::map<std::string, hand::JointAngles> builtin_shapes(const hand::HandModel& hand);
+
+// Midway between the thumb tip and the mean of `fingers`' tips (not the thumb), in H, for the
+// hand in shape q.
+Eigen::Vector3d grasp_point_H(const hand::HandModel& hand, const hand::JointAngles& q,
+                              const std::vector<hand::Finger>& fingers);
 
 }  // namespace vcockpit::glove

@@ -93,5 +93,105 @@ TEST(GestureScript, BadScriptsNameFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(error_of("rate_hz: 0\nkeyframes: []\n").find("rate_hz: must be in"), std::string::npos);
 }
+
+constexpr const char* kGraspScript = R"(shapes:
+  grip: {thumb_rotation: 50, thumb_ip: 30, index_mcp: 40, index_pip: 40, middle_mcp: 40, middle_pip: 40}
+grasp_point: {shape: grip, fingers: [index, middle]}
+keyframes:
+  - {t_s: 0.0, position: [0.2, -0.4, 0.9], rpy_deg: [0, 0, 0], shape: open}
+  - {t_s: 1.0, grasp_at: [0.45, -0.35, 0.76], rpy_deg: [0, 0, -10], shape: open}
+  - {t_s: 2.0, shape: grip}
+  - {t_s: 3.0, rpy_deg: [0, 0, 80]}
+  - {t_s: 4.0, grasp_at: [0.35, -0.40, 0.86]}
+)";
+
+hand::HandModel scaled(hand::HandModel h, double s) {
+  for (auto& f : h.fingers) {
+    f.X_HB.translation() *= s;
+    for (auto& row : f.rows) row.a_m *= s;
+  }
+  for (auto& c : h.capsules) c.length_m *= s;
+  h.X_HP.translation() *= s;
+  h.palm_size_m *= s;
+  return h;
+}
+
+TEST(GestureScript, GraspPointIsMidwayBetweenThumbAndFingers) {
+  const auto hand = default_hand();
+  const auto script = GestureScript::parse(ConfigNode::load_string(kGraspScript, "g.yaml"), hand);
+  hand::JointAngles grip = script.keyframes()[2].joints_rad;
+  hand::HandLinkPoses poses;
+  hand::forward_kinematics(hand, grip, poses);
+  const Eigen::Vector3d expected =
+      0.5 * (poses.p_H_tip[0] + 0.5 * (poses.p_H_tip[1] + poses.p_H_tip[2]));
+  EXPECT_TRUE(script.p_H_grasp().isApprox(expected, 1e-12));
+  EXPECT_TRUE(grasp_point_H(hand, grip, {hand::Finger::kIndex, hand::Finger::kMiddle})
+                  .isApprox(expected, 1e-12));
+}
+
+TEST(GestureScript, GraspAtPutsTheGraspPointThereForEveryHandSize) {
+  const auto hand = default_hand();
+  Eigen::Vector3d wrist_at_1s[2];
+  int i = 0;
+  for (const auto& h : {hand, scaled(hand, 0.85)}) {
+    const auto script = GestureScript::parse(ConfigNode::load_string(kGraspScript, "g.yaml"), h);
+    Eigen::Isometry3d X_GH;
+    hand::JointAngles q;
+    // at every keyframe given by grasp_at, and while the hand only turns (3 s): the point stays
+    for (int64_t t_ns : {1'000'000'000LL, 2'000'000'000LL, 2'500'000'000LL, 3'000'000'000LL}) {
+      script.evaluate(t_ns, X_GH, q);
+      EXPECT_TRUE((X_GH * script.p_H_grasp()).isApprox(Eigen::Vector3d(0.45, -0.35, 0.76), 1e-9))
+          << t_ns;
+    }
+    // between two grasp_at keyframes the point moves on the straight line (min-jerk halfway)
+    script.evaluate(3'500'000'000, X_GH, q);
+    EXPECT_TRUE((X_GH * script.p_H_grasp()).isApprox(Eigen::Vector3d(0.40, -0.375, 0.81), 1e-9));
+    script.evaluate(1'000'000'000, X_GH, q);
+    wrist_at_1s[i++] = X_GH.translation();
+  }
+  // the smaller hand's wrist comes closer to the object: the wrist follows from the hand's size
+  EXPECT_GT((wrist_at_1s[0] - wrist_at_1s[1]).norm(), 0.01);
+}
+
+TEST(GestureScript, BadGraspPointsAreNamed) {
+  const auto hand = default_hand();
+  auto error_of = [&](const std::string& text) -> std::string {
+    try {
+      GestureScript::parse(ConfigNode::load_string(text, "bad.yaml"), hand);
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  const std::string first = "keyframes:\n  - {t_s: 0, grasp_at: [0,0,0], rpy_deg: [0,0,0]}\n";
+  EXPECT_NE(error_of(first).find("grasp_at needs the script's grasp_point"), std::string::npos);
+  EXPECT_NE(error_of("grasp_point: {shape: power, fingers: [thumb]}\n" + first)
+                .find("expected index, middle, ring or little, found 'thumb'"),
+            std::string::npos);
+  EXPECT_NE(error_of("grasp_point: {shape: fist, fingers: [index]}\n" + first)
+                .find("unknown hand shape 'fist'"),
+            std::string::npos);
+  EXPECT_NE(error_of("grasp_point: {shape: power, fingers: []}\n" + first)
+                .find("name at least one finger"),
+            std::string::npos);
+  EXPECT_NE(error_of("grasp_point: {shape: power, fingers: [index]}\nkeyframes:\n"
+                     "  - {t_s: 0, position: [0,0,0], grasp_at: [0,0,0], rpy_deg: [0,0,0]}\n")
+                .find("give position (the wrist) or grasp_at, not both"),
+            std::string::npos);
+}
+
+TEST(GestureScript, BundledGestureScriptsLoadForEveryHandSize) {
+  const std::string dir = std::string(std::getenv("VCOCKPIT_SOURCE_DIR")) + "/config/";
+  for (const char* hand_file : {"hand.yaml", "hand_small.yaml", "hand_large.yaml"}) {
+    const auto hand = load_hand_model(dir + hand_file);
+    for (const char* script : {"reach_grasp_lift_release", "open_hand_sweep", "cup_pick_place",
+                               "ball_pick_place", "flashlight_pick_place",
+                               "checklist_pick_place"}) {
+      EXPECT_NO_THROW(GestureScript::load(dir + "gestures/" + script + ".yaml", hand))
+          << script << " with " << hand_file;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace vcockpit::glove

@@ -161,6 +161,16 @@ TEST_F(GloveLogTest, EveryBadInputNamesFileLineAndColumn) {
       {"empty", "", "empty.csv: empty log"},
       {"comments_only", "# hand: right\n\n", "comments_only.csv: empty log"},
       {"header_only", "# hand: right\n" + std::string(kHeader), "header_only.csv:2: header only"},
+      {"partly_nan", std::string(kHeader) + "0,0,0,0,1,0,0,0,1\n0.01,nan,nan,nan,nan,nan,nan,nan,1\n",
+       "partly_nan.csv:3: column 'x_m': not a finite number"},
+      {"dropouts_only", std::string(kHeader) + "0,nan,nan,nan,nan,nan,nan,nan,nan\n",
+       "dropouts_only.csv: every one of the 1 samples is a dropout"},
+      {"dropout_backwards",
+       std::string(kHeader) + "0.02,0,0,0,1,0,0,0,1\n0.01,nan,nan,nan,nan,nan,nan,nan,nan\n",
+       "dropout_backwards.csv:3: column 't_s': time does not increase"},
+      {"after_dropout_backwards",
+       std::string(kHeader) + "0.01,nan,nan,nan,nan,nan,nan,nan,nan\n0.01,0,0,0,1,0,0,0,1\n",
+       "after_dropout_backwards.csv:3: column 't_s': time does not increase"},
   };
   for (const auto& c : cases) {
     const auto path = write(std::string(c.name) + ".csv", c.text);
@@ -169,6 +179,35 @@ TEST_F(GloveLogTest, EveryBadInputNamesFileLineAndColumn) {
         << c.name << ": expected '" << c.expected << "' in: " << msg;
   }
   EXPECT_NE(error_of(dir_ + "/does_not_exist.csv").find("cannot open"), std::string::npos);
+}
+
+TEST_F(GloveLogTest, DropoutRowsAreSkippedAndCounted) {
+  const auto path = write("dropouts.csv", std::string(kHeader) +
+                                              "0,0,0,0,1,0,0,0,1\n"
+                                              "0.01,nan,NaN,nan,nan,nan,nan,nan,nan\n"
+                                              "0.02,0,0,0,1,0,0,0,2\n"
+                                              "0.03,nan,nan,nan,nan,nan,nan,nan,nan\n");
+  const GloveLog log = read_glove_log(path, hand_);
+  ASSERT_EQ(log.samples.size(), 2u);
+  EXPECT_EQ(log.samples[1].t_ns, 20'000'000);
+  EXPECT_EQ(log.dropped_samples, 2);
+  EXPECT_NE(log.first_dropout.find("dropouts.csv:3: a dropout"), std::string::npos)
+      << log.first_dropout;
+}
+
+TEST_F(GloveLogTest, WrittenDropoutsReadBackAsDropouts) {
+  const std::string path = dir_ + "/written_dropouts.csv";
+  GloveLogWriter writer(path, false, {});
+  GloveSample s;
+  s.joints_rad = hand_.rest_pose();
+  writer.append(s);
+  writer.append_dropout(1'000'000);
+  s.t_ns = 2'000'000;
+  writer.append(s);
+  writer.commit();
+  const GloveLog log = read_glove_log(path, hand_);
+  EXPECT_EQ(log.samples.size(), 2u);
+  EXPECT_EQ(log.dropped_samples, 1);
 }
 
 TEST_F(GloveLogTest, UncommittedWriterLeavesNoLogAndNoPartialFile) {

@@ -140,6 +140,40 @@ TEST(HandConfig, ShippedHandHasAdultAnthropometry) {
   EXPECT_GT(poses.p_H_tip[idx(Finger::kThumb)].y(), 0.03);  // right hand: thumb on +y
 }
 
+// The 5th-percentile woman's and 95th-percentile man's hands: hand.yaml with every length along
+// the hand scaled by hand length / 190 mm and every size across it by hand breadth / 85 mm
+// (the files' sources), the same joints, ranges and tracker.
+TEST(HandConfig, SmallAndLargeHandsScaleTheShippedHand) {
+  const std::string dir = shipped_path().substr(0, shipped_path().rfind('/') + 1);
+  const HandModel mid = load_hand_model(shipped_path());
+  struct Size {
+    const char* file;
+    double length_m;
+    double breadth_m;
+  };
+  for (const Size& size : {Size{"hand_small.yaml", 0.159, 0.069}, Size{"hand_large.yaml", 0.205, 0.095}}) {
+    const HandModel model = load_hand_model(dir + size.file);
+    const double s_length = size.length_m / 0.190, s_breadth = size.breadth_m / 0.085;
+    EXPECT_FALSE(model.left) << size.file;
+    hand::HandLinkPoses poses;
+    hand::forward_kinematics(model, hand::JointAngles{}, poses);
+    // hand length: wrist to the middle fingertip of the flat hand (0.19 m for hand.yaml)
+    EXPECT_NEAR(poses.p_H_tip[idx(Finger::kMiddle)].x(), size.length_m, 0.002) << size.file;
+    EXPECT_NEAR(model.palm_size_m.y(), s_breadth * mid.palm_size_m.y(), 1e-4) << size.file;
+    for (int l = 1; l < hand::kLinkCount; ++l) {
+      const auto name = hand::link_name(static_cast<Link>(l));
+      EXPECT_NEAR(model.capsules[l].length_m, s_length * mid.capsules[l].length_m, 1e-4) << name;
+      EXPECT_NEAR(model.capsules[l].radius_m, s_breadth * mid.capsules[l].radius_m, 1e-4) << name;
+    }
+    for (int j = 0; j < hand::kJointCount; ++j) {
+      EXPECT_EQ(model.joints[j].min_rad, mid.joints[j].min_rad);
+      EXPECT_EQ(model.joints[j].max_rad, mid.joints[j].max_rad);
+      EXPECT_EQ(model.joints[j].rest_rad, mid.joints[j].rest_rad);
+    }
+    EXPECT_TRUE(model.tracker.X_GM.isApprox(mid.tracker.X_GM, 0));
+  }
+}
+
 TEST(HandConfig, ShippedHandAsLeftIsItsMirrorImage) {
   std::string text = read_text(shipped_path());
   const auto at = text.find("\nside: right");

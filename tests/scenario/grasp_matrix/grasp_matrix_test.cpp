@@ -1,0 +1,298 @@
+// The grasp matrix: every loose object of the default cockpit, picked up and set down elsewhere by
+// its gesture (config/gestures/<object>_pick_place.yaml), by hands of three sizes, from glove input
+// degraded the ways real devices degrade it (glove_driver/degrade). Each cell is its own test and
+// checks, over the whole run (grasp_scenario.hpp):
+//   1. the object is grasped and released (at least one GRASP and one RELEASE, the last event a
+//      RELEASE), and nothing else is;
+//   2. it was carried: while held it rose at least 5 cm above where it lay;
+//   3. it ends within 3 cm of where the gesture sets it down;
+//   4. it never moves faster than 0.5 m/s before the grasp (the closing fingers do not knock it);
+//   5. no link of the drawn hand is ever more than 1 mm inside a static object (computed here with
+//      FCL, independently of the physics, which has no hand-static contacts at all).
+//
+// The matrix: every object x size with the clean gesture and the presets `typical` and `harsh`;
+// every object with the 50th-percentile hand under each single degradation (degradations()).
+// Cells that fail with today's penalty hand are listed in known_failing() with the reason, and
+// skipped; set
+// VCOCKPIT_GRASP_MATRIX_ALL=1 to run them too (they are expected to pass once the proxy hand
+// and the interpolating replay land). A cell that starts to pass should leave the list.
+//
+// Also: the recorded logs in config/glove_logs/ are exactly what their scripts produce.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "hand/glove_log.hpp"
+#include "hand/hand_yaml.hpp"
+#include "physics_node/config/scene_config.hpp"
+#include "tests/scenario/grasp_matrix/grasp_scenario.hpp"
+
+namespace vcockpit::test {
+namespace {
+
+std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
+
+// Where each gesture sets its object down (the centre; see the script's comment).
+const std::vector<GraspCase>& objects() {
+  static const std::vector<GraspCase> kObjects = {
+      {"cup", "cup_pick_place.yaml", {0.36, -0.43, 0.75}},
+      {"ball", "ball_pick_place.yaml", {0.55, -0.42, 0.73}},
+      {"flashlight", "flashlight_pick_place.yaml", {0.565, -0.30, 0.718}},
+      {"checklist", "checklist_pick_place.yaml", {0.31, -0.228, 0.704}},
+  };
+  return kObjects;
+}
+
+const std::map<std::string, std::string>& hand_sizes() {
+  static const std::map<std::string, std::string> kSizes = {
+      {"small", "hand_small.yaml"}, {"medium", "hand.yaml"}, {"large", "hand_large.yaml"}};
+  return kSizes;
+}
+
+// Degradations by name: presets of glove_driver/degrade (every one with the same seed). Noise is
+// added at a device's rate, not at the scripts' 1 kHz: white jitter of 0.5 mm at 1 kHz would be a
+// tracker far noisier than any real one (its finite-difference velocity alone is ~0.7 m/s).
+// The gaps come where they hurt: one while the grip closes, one while the object is carried.
+struct Degradation {
+  std::string name;
+  std::vector<std::string> presets;
+  std::vector<double> gap_at_s;
+};
+constexpr uint64_t kSeed = 7;
+const std::vector<Degradation>& degradations() {
+  static const std::vector<Degradation> kDegradations = {
+      {"clean", {}, {}},
+      {"typical", {"typical"}, {}},                 // 60 Hz, jitter, glove noise, 1 % dropouts
+      {"harsh", {"harsh"}, {}},                     // 30 Hz, all of it, grips in 0.25 s
+      {"30hz", {"30hz"}, {}},
+      {"120hz", {"120hz"}, {}},
+      {"jitter", {"120hz", "jitter"}, {}},          // a 120 Hz tracker's jitter
+      {"glove_noise", {"100hz", "glove_noise"}, {}},  // a 100 Hz glove's noise and 8 bits
+      {"overrange", {"overrange"}, {}},
+      {"dropouts", {"60hz", "dropouts"}, {}},
+      {"gaps", {"gaps"}, {2.4, 4.8}},
+      {"grip500ms", {"grip500ms"}, {}},
+      {"grip250ms", {"grip250ms"}, {}},
+  };
+  return kDegradations;
+}
+
+const Degradation& degradation(const std::string& name) {
+  for (const auto& d : degradations()) {
+    if (d.name == name) return d;
+  }
+  throw std::invalid_argument("no degradation " + name);
+}
+
+// ---- the cells that fail today, and why ----------------------------------------------------
+// Measured with the penalty hand and the zero-order-hold replay (each sample holds until the
+// next). The causes, in the order they bite:
+//   knocked    penalty fingers sink into the object: whatever moves a fingertip far inside it
+//              within a step — a 30/60 Hz sample step, the jump after a gap, jitter, glove noise,
+//              a small hand closing the same angles round a smaller span, a calibration gain —
+//              makes a penalty force that throws the object before the grasp test can hold it.
+//              The proxy hand (fingers stop at the surface) and interpolation between samples
+//              remove both halves.
+//   no grasp / not carried   mostly the object knocked away first; else the grasp breaks on the
+//              way up (|sum F| of a held object grows as the attached fingers keep closing).
+//   ends off   the ball rolls on after its release (no rolling resistance yet).
+//   overrange  a calibration offset of up to 5 deg opens some fingers short of the surface: the
+//              gesture itself no longer closes on the object; that may stay a failure.
+// Each entry: the checks that fail, with the figures measured (seed 7).
+const std::map<std::string, std::string>& known_failing() {
+  static const std::map<std::string, std::string> kCells = {
+      {"cup_large_typical", "knocked at 1.07 m/s, no grasp, ends 124 mm off"},
+      {"cup_large_harsh", "knocked at 3.69 m/s, no grasp, ends 1.2 m off"},
+      {"cup_medium_typical", "knocked at 0.77 m/s, no grasp, ends 201 mm off"},
+      {"cup_medium_harsh", "knocked at 3.58 m/s, no grasp, ends 727 mm off"},
+      {"cup_small_clean", "knocked at 1.66 m/s"},
+      {"cup_small_typical", "knocked at 1.95 m/s, not carried (lift 0 mm), ends 1.2 m off"},
+      {"cup_small_harsh", "knocked at 3.53 m/s, no grasp, ends 713 mm off"},
+      {"cup_medium_jitter", "knocked at 0.60 m/s, no grasp, ends 158 mm off"},
+      {"cup_medium_glove_noise", "knocked at 0.53 m/s, no grasp, ends 148 mm off"},
+      {"cup_medium_overrange", "knocked at 2.49 m/s, no grasp, ends 98 mm off"},
+      {"cup_medium_dropouts", "no grasp, ends 134 mm off"},
+      {"cup_medium_gaps", "knocked at 1.90 m/s"},
+      {"ball_large_typical", "knocked at 3.65 m/s, no grasp, ends 1.1 m off"},
+      {"ball_large_harsh", "knocked at 54.81 m/s, no grasp, ends 153.9 m off"},
+      {"ball_medium_typical", "knocked at 1.95 m/s, not carried (lift 10 mm), ends 725 mm off"},
+      {"ball_medium_harsh", "knocked at 1.82 m/s, not carried (lift 0 mm), ends 156.0 m off"},
+      {"ball_small_clean", "knocked at 1.05 m/s, no grasp, ends 105 mm off"},
+      {"ball_small_typical", "knocked at 2.37 m/s, not carried (lift 27 mm), ends 866 mm off"},
+      {"ball_small_harsh", "knocked at 3.56 m/s, no grasp, ends 895 mm off"},
+      {"ball_medium_jitter", "knocked at 2.80 m/s, ends 738 mm off"},
+      {"ball_medium_glove_noise", "knocked at 0.55 m/s, not carried (lift 18 mm), ends 128 mm off"},
+      {"ball_medium_overrange", "knocked at 0.88 m/s, ends 59 mm off"},
+      {"ball_medium_gaps", "knocked at 40.30 m/s, no grasp, ends 1.6 m off"},
+      {"flashlight_large_typical", "knocked at 1.01 m/s, not carried (lift 2 mm), ends 91 mm off"},
+      {"flashlight_large_harsh", "knocked at 3.64 m/s, no grasp, ends 740 mm off"},
+      {"flashlight_medium_typical", "not carried (lift 0 mm), ends 797 mm off"},
+      {"flashlight_medium_harsh", "knocked at 3.80 m/s, no grasp, ends 816 mm off"},
+      {"flashlight_small_typical", "knocked at 3.62 m/s, no grasp, ends 1.1 m off"},
+      {"flashlight_small_harsh", "knocked at 3.58 m/s, no grasp, ends 725 mm off"},
+      {"flashlight_medium_30hz", "knocked at 0.90 m/s, no grasp, ends 93 mm off"},
+      {"flashlight_medium_jitter", "knocked at 1.05 m/s, not carried (lift 0 mm), ends 870 mm off"},
+      {"flashlight_medium_glove_noise", "not carried (lift 2 mm), ends 916 mm off"},
+      {"flashlight_medium_overrange", "knocked at 1.29 m/s, no grasp, ends 255 mm off"},
+      {"flashlight_medium_gaps", "knocked at 1.51 m/s"},
+      {"checklist_large_typical", "knocked at 0.70 m/s"},
+      {"checklist_large_harsh", "knocked at 0.97 m/s, not carried (lift 7 mm), ends 780 mm off"},
+      {"checklist_medium_harsh", "knocked at 0.99 m/s, not carried (lift 6 mm), ends 866 mm off"},
+      {"checklist_small_harsh", "knocked at 1.21 m/s, not carried (lift 26 mm), ends 757 mm off"},
+      {"checklist_medium_glove_noise", "knocked at 0.55 m/s, ends 51 mm off"},
+      {"checklist_medium_overrange", "not carried (lift 2 mm), ends 911 mm off"},
+  };
+  return kCells;
+}
+
+struct Cell {
+  std::string object;
+  std::string size;
+  std::string degradation;
+  std::string name() const { return object + "_" + size + "_" + degradation; }
+};
+
+// Printed by gtest for a failing cell.
+void PrintTo(const Cell& cell, std::ostream* os) { *os << cell.name(); }
+
+std::vector<Cell> cells() {
+  std::vector<Cell> out;
+  for (const auto& o : objects()) {
+    for (const auto& [size, file] : hand_sizes()) {
+      for (const char* d : {"clean", "typical", "harsh"}) out.push_back({o.object, size, d});
+    }
+    for (const auto& d : degradations()) {
+      if (d.name != "clean" && d.name != "typical" && d.name != "harsh") {
+        out.push_back({o.object, "medium", d.name});
+      }
+    }
+  }
+  return out;
+}
+
+class GraspMatrix : public ::testing::TestWithParam<Cell> {};
+
+TEST_P(GraspMatrix, GraspedCarriedPlacedWithoutKnockingOrSinkingIntoThePanels) {
+  const Cell& cell = GetParam();
+  const char* all = std::getenv("VCOCKPIT_GRASP_MATRIX_ALL");
+  const auto failing = known_failing().find(cell.name());
+  if (failing != known_failing().end() && !(all && std::string(all) == "1")) {
+    GTEST_SKIP() << "known to fail today: " << failing->second;
+  }
+  const GraspCase* grasp_case = nullptr;
+  for (const auto& o : objects()) {
+    if (o.object == cell.object) grasp_case = &o;
+  }
+  ASSERT_NE(grasp_case, nullptr);
+  degrade::DegradeSpec spec;
+  const Degradation& d = degradation(cell.degradation);
+  for (const auto& preset : d.presets) degrade::apply_preset(preset, spec);
+  if (!d.gap_at_s.empty()) spec.gaps.at_s = d.gap_at_s;
+  spec.seed = kSeed;
+  const ScenarioResult r =
+      run_grasp_scenario(source_dir(), *grasp_case, hand_sizes().at(cell.size), spec);
+  // one line per cell, for the table of results
+  std::printf("CELL %s grasps %d releases %d other %d lift %.3f m | err %.4f m | v_before %.3f m/s "
+              "| static %.4f m (link %d, object %d, %.2f s)\n",
+              cell.name().c_str(), r.grasps, r.releases, r.other_events, r.max_lift_held_m,
+              r.place_error_m, r.max_speed_before_grasp_mps, r.deepest_static.depth_m,
+              r.deepest_static.link, r.deepest_static.object,
+              static_cast<double>(r.deepest_static_ns) * 1e-9);
+  EXPECT_GE(r.grasps, 1) << r.events;
+  EXPECT_GE(r.releases, 1) << r.events;
+  EXPECT_GT(r.first_release_ns, r.first_grasp_ns) << r.events;
+  EXPECT_EQ(r.grasps, r.releases) << "the object must end released\n" << r.events;
+  EXPECT_EQ(r.other_events, 0) << r.events;
+  EXPECT_GE(r.max_lift_held_m, 0.05) << "carried, not left where it lay";
+  EXPECT_LE(r.place_error_m, 0.03) << "ends at " << r.final_p_G.transpose();
+  EXPECT_LE(r.max_speed_before_grasp_mps, 0.5) << "knocked while the fingers closed";
+  EXPECT_LE(r.deepest_static.depth_m, 1e-3)
+      << "link " << r.deepest_static.link << " inside object " << r.deepest_static.object
+      << " at " << static_cast<double>(r.deepest_static_ns) * 1e-9 << " s";
+}
+
+INSTANTIATE_TEST_SUITE_P(Cells, GraspMatrix, ::testing::ValuesIn(cells()),
+                         [](const ::testing::TestParamInfo<Cell>& info) {
+                           return info.param.name();
+                         });
+
+// The clearance check measures what it claims: a flat hand whose lowest point is 2 mm into the
+// console's top reads 2 mm, in the console, by that link; 1 cm above it reads nothing.
+TEST(GraspMatrixClearance, MeasuresHowDeepTheHandIsInAStaticObject) {
+  physics::Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
+  const hand::HandModel hand = *scene.hand;
+  HandStaticClearance clearance(scene, hand);
+  hand::HandLinkPoses poses;
+  hand::forward_kinematics(hand, hand::JointAngles{}, poses);
+  // the lowest point of the flat, level hand in H, and its link
+  double lowest_H = hand.X_HP.translation().z() - 0.5 * hand.palm_size_m.z();
+  int lowest_link = static_cast<int>(hand::Link::kPalm);
+  for (int l = 1; l < hand::kLinkCount; ++l) {
+    const auto& X = poses.X_HL[l];
+    const double z = std::min(X.translation().z(),
+                              (X * Eigen::Vector3d(hand.capsules[l].length_m, 0, 0)).z()) -
+                     hand.capsules[l].radius_m;
+    if (z < lowest_H) {
+      lowest_H = z;
+      lowest_link = l;
+    }
+  }
+  for (double gap_m : {-0.002, 0.01}) {
+    Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
+    X_GH.translation() = Eigen::Vector3d(0.30, -0.45, 0.70 + gap_m - lowest_H);
+    std::array<Eigen::Isometry3d, hand::kLinkCount> X_GL;
+    for (int l = 0; l < hand::kLinkCount; ++l) X_GL[l] = X_GH * poses.X_HL[l];
+    const Penetration p = clearance.deepest(X_GL);
+    if (gap_m < 0) {
+      EXPECT_NEAR(p.depth_m, 0.002, 1e-4);
+      EXPECT_EQ(p.link, lowest_link);
+      EXPECT_EQ(p.object, scene.find_object("centre_console"));
+    } else {
+      EXPECT_EQ(p.depth_m, 0.0);
+    }
+  }
+}
+
+// Every cell in the list is a cell of the matrix (a renamed cell must not hide a failure).
+TEST(GraspMatrixList, KnownFailingCellsExist) {
+  std::map<std::string, int> names;
+  for (const Cell& c : cells()) names[c.name()] = 1;
+  for (const auto& [name, why] : known_failing()) {
+    EXPECT_TRUE(names.count(name)) << name << " is not a cell of the matrix";
+    EXPECT_FALSE(why.empty()) << name;
+  }
+}
+
+// The bundled recordings are what their scripts publish: a script edited without re-recording
+// its log (glove_driver --record, README "Glove logs") fails here.
+TEST(GraspMatrixLogs, RecordedLogsMatchTheirScripts) {
+  const hand::HandModel hand = load_hand_model(source_dir() + "/config/hand.yaml");
+  for (const auto& o : objects()) {
+    const std::string stem = o.script.substr(0, o.script.size() - 5);
+    const auto log =
+        hand::read_glove_log(source_dir() + "/config/glove_logs/" + stem + ".csv", hand);
+    const auto expected = script_samples(source_dir() + "/config/gestures/" + o.script, hand);
+    ASSERT_EQ(log.samples.size(), expected.size()) << stem;
+    EXPECT_EQ(log.clamped_values, 0) << stem;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      const auto& a = log.samples[i];
+      const auto& b = expected[i];
+      ASSERT_EQ(a.t_ns, b.t_ns) << stem << " row " << i;
+      ASSERT_LT((a.p_MT_m - b.p_MT_m).norm(), 1e-12) << stem << " row " << i;
+      ASSERT_LT(a.q_MT.angularDistance(b.q_MT), 1e-9) << stem << " row " << i;
+      for (int j = 0; j < hand::kJointCount; ++j) {
+        ASSERT_NEAR(a.joints_rad[j], b.joints_rad[j], 1e-12) << stem << " row " << i;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vcockpit::test
