@@ -48,11 +48,11 @@ TEST_F(GloveDegradeCli, WritesALogTheReaderAcceptsAndCounts) {
   // 60 Hz over 4 s: 241 rows, 1 % of the 240 after the first are dropouts
   EXPECT_EQ(log.samples.size() + static_cast<std::size_t>(log.dropped_samples), 241u);
   EXPECT_EQ(log.dropped_samples, 2);
-  EXPECT_GT(log.clamped_values, 0);
+  EXPECT_GT(log.counts.clamped, 0);
   EXPECT_NE(output("typical").find("2 dropouts"), std::string::npos) << output("typical");
-  EXPECT_NE(output("typical").find(std::to_string(log.clamped_values) + " joint values past range"),
+  EXPECT_NE(output("typical").find(std::to_string(log.counts.clamped) + " joint values past range"),
             std::string::npos)
-      << output("typical") << " vs the reader's " << log.clamped_values;
+      << output("typical") << " vs the reader's " << log.counts.clamped;
   bool described = false, source_kept = false;
   for (const auto& c : log.comments) {
     described = described || c.find("degraded from clean.csv: resampled to 60 Hz") == 0;
