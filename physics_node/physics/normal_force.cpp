@@ -8,7 +8,7 @@ namespace vcockpit::physics {
 NormalPair normal_pair(const ContactBody& A, const ContactBody& B, int point_count) {
   const Material& ma = *A.material;
   const Material& mb = *B.material;
-  const double k_pair = ma.stiffness_Npm * mb.stiffness_Npm / (ma.stiffness_Npm + mb.stiffness_Npm);
+  const double k_pair = pair_stiffness(ma, mb);
   // effective mass of the relative motion: a body that does not move counts as infinitely heavy
   double m_eff = 0.0;
   if (A.mass_for_damping > 0 && B.mass_for_damping > 0) {

@@ -18,10 +18,6 @@ constexpr double kShiftTolerance_m = 1e-7;  // a pass that corrects less than th
 constexpr double kTinyDepth_m = 1e-12;
 constexpr double kStandardGravity_mps2 = 9.80665;
 
-double series_stiffness(const Material& a, const Material& b) {
-  return a.stiffness_Npm * b.stiffness_Npm / (a.stiffness_Npm + b.stiffness_Npm);
-}
-
 // Removes the contacts that no longer overlap, keeping the order of the rest.
 void drop_separated(std::vector<ContactPoint>& contacts) {
   contacts.erase(std::remove_if(contacts.begin(), contacts.end(),
@@ -46,7 +42,7 @@ ProxyHand::ProxyHand(const Scene& scene)
     // weightless scene grips alike): a finger that arrives first nudges a 60 g bar, not flings it
     const double force_N =
         std::min(params_.grip_force_N, params_.grip_weight_ratio * o.mass_kg * kStandardGravity_mps2);
-    depth_limit_m_[i] = o.dynamic ? force_N / series_stiffness(scene.hand_material, o.material)
+    depth_limit_m_[i] = o.dynamic ? force_N / pair_stiffness(scene.hand_material, o.material)
                                   : params_.static_depth_m;
   }
   for (int f = 0; f < kFingerCount; ++f)

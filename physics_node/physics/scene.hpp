@@ -55,6 +55,11 @@ struct Material {
   double mu_spin_m = 5.0e-4;
 };
 
+// A pair's stiffness: the two materials as springs in series, k1 k2 / (k1 + k2).
+inline double pair_stiffness(const Material& a, const Material& b) {
+  return a.stiffness_Npm * b.stiffness_Npm / (a.stiffness_Npm + b.stiffness_Npm);
+}
+
 struct ObjectSpec {
   std::string name;
   bool dynamic = false;

@@ -8,10 +8,6 @@
 namespace vcockpit::physics {
 namespace {
 
-double series_stiffness(const Material& a, const Material& b) {
-  return a.stiffness_Npm * b.stiffness_Npm / (a.stiffness_Npm + b.stiffness_Npm);
-}
-
 // The reach broadphase's bodies: the objects, then the hand's links.
 std::vector<BroadphaseBody> reach_kinds(const Scene& scene) {
   std::vector<BroadphaseBody> kinds;
@@ -116,7 +112,7 @@ int SubstepChoice::choose(const std::vector<BodyState>& bodies,
                                                  : scene_.hand_material;
     const double inv_m = (a_free ? 1.0 / contact_mass_[pair.lo] : 0.0) +
                          (b_free ? 1.0 / contact_mass_[pair.hi] : 0.0);
-    const double k = series_stiffness(ma, mb);
+    const double k = pair_stiffness(ma, mb);
     if (k > 0) dt_max = std::min(dt_max, scene_.contact.substep_safety * std::sqrt(1.0 / (inv_m * k)));
   }
   const int n = static_cast<int>(std::ceil(scene_.step_s / dt_max - 1e-9));

@@ -20,16 +20,13 @@
 #include "hand/hand_yaml.hpp"
 #include "physics_node/physics/world.hpp"
 #include "tests/support/scene_builder.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace vcockpit::physics {
 namespace {
 
 using test::at;
-
-std::string source_dir() {
-  const char* dir = std::getenv("VCOCKPIT_SOURCE_DIR");
-  return dir ? dir : ".";
-}
+using test::source_dir;
 
 constexpr double kConsoleTop_m = 0.70;
 
