@@ -256,9 +256,9 @@ void parse_hand(const ConfigNode& node, const std::string& base_dir, Scene& scen
 }
 
 GraspParams parse_grasp(const ConfigNode& node) {
-  node.expect_keys({"xi_N", "eta_Nm", "alpha0_deg", "min_contacts", "exit_scale",
+  node.expect_keys({"xi_N", "eta_Nm", "alpha0_deg", "min_contacts", "exit_min_contacts", "exit_scale",
                     "exit_alpha_margin_deg", "min_hold_s", "release_delay_s", "regrab_cooldown_s",
-                    "velocity_window_s"});
+                    "velocity_window_s", "release_opening_deg"});
   GraspParams g;
   auto pos = [](const ConfigNode& n) { return positive(n); };
   read_optional(node, "xi_N", g.xi_N, pos);
@@ -267,6 +267,14 @@ GraspParams parse_grasp(const ConfigNode& node) {
                 [](const ConfigNode& n) { return in_open(n, 0.0, 180.0); });
   read_optional(node, "min_contacts", g.min_contacts,
                 [](const ConfigNode& n) { return int_in_range(n, 1, hand::kLinkCount); });
+  read_optional(node, "exit_min_contacts", g.exit_min_contacts,
+                [](const ConfigNode& n) { return int_in_range(n, 1, hand::kLinkCount); });
+  if (!node.has("exit_min_contacts")) g.exit_min_contacts = std::min(g.exit_min_contacts, g.min_contacts);
+  if (g.exit_min_contacts > g.min_contacts) {
+    node["exit_min_contacts"].fail("exit_min_contacts " + std::to_string(g.exit_min_contacts) +
+            " must not exceed min_contacts " + std::to_string(g.min_contacts) +
+            " (a held object would need more links than a grasp: chatter, not hysteresis)");
+  }
   // below 1 the exit thresholds would be tighter than the entry ones: chatter, not hysteresis
   read_optional(node, "exit_scale", g.exit_scale,
                 [](const ConfigNode& n) { return at_least(n, 1.0); });
@@ -275,6 +283,7 @@ GraspParams parse_grasp(const ConfigNode& node) {
   read_optional(node, "release_delay_s", g.release_delay_s, non_negative);
   read_optional(node, "regrab_cooldown_s", g.regrab_cooldown_s, non_negative);
   read_optional(node, "velocity_window_s", g.velocity_window_s, pos);
+  read_optional(node, "release_opening_deg", g.release_opening_deg, non_negative);
   if (g.exit_alpha_margin_deg >= g.alpha0_deg) {
     const ConfigNode at =
         node.has("exit_alpha_margin_deg") ? node["exit_alpha_margin_deg"] : node["alpha0_deg"];

@@ -15,6 +15,7 @@
 #include "common/assert.hpp"
 #include "physics_node/physics/broadphase.hpp"
 #include "physics_node/physics/manifold_clipper.hpp"
+#include "physics_node/physics/segment_contact.hpp"
 
 // What FCL 0.7.0 (Debian, libccd solver) does, measured here (tests/unit/collision_test.cpp
 // keeps the measurements honest):
@@ -28,7 +29,9 @@
 //   but for sphere-capsule's point (corrected below, see contact_point). Sphere-sphere and
 //   sphere-capsule give a zero normal for a sphere centred on the other's centre or axis: such
 //   points are dropped and counted (skipped_contacts).
-//   Every other pair goes through libccd's MPR (ccdMPRPenetration), not EPA: the normal is that
+//   A capsule against a cylinder or capsule is exact from closest points while its segment stays
+//   outside the other body (segment_contact.hpp): MPR's normal swings on elongated bodies.
+//   Every other pair (and those deeper) goes through libccd's MPR (ccdMPRPenetration), not EPA: the normal is that
 //   of the Minkowski-difference face crossed by the ray between the two centres, and the depth
 //   that face's distance from the origin. That is exact for a flat face (a capsule or cylinder
 //   on a box) and sensible, if not minimal, for deep overlaps.
@@ -158,6 +161,11 @@ struct CollisionWorld::Impl {
         return;
       }
     }
+    // a capsule and a cylinder or capsule: exact from closest points while the capsule's segment
+    // stays outside the other body (segment_contact.hpp); deeper, MPR decides
+    if (segment_pair(pair)) {
+      if (segment_narrowphase(pair, first, out)) return;
+    }
     result.clear();
     fcl::collide(objects[static_cast<std::size_t>(pair.lo)].get(),
                  objects[static_cast<std::size_t>(pair.hi)].get(), request, result);
@@ -187,6 +195,46 @@ struct CollisionWorld::Impl {
       }
     }
     finish_manifold(pair, first, out);
+  }
+
+  bool segment_pair(const BodyPair& pair) const {
+    const ShapeKind a = bodies[static_cast<std::size_t>(pair.lo)].shape;
+    const ShapeKind b = bodies[static_cast<std::size_t>(pair.hi)].shape;
+    const auto round = [](ShapeKind k) {
+      return k == ShapeKind::kCylinder || k == ShapeKind::kCapsule;
+    };
+    return (a == ShapeKind::kCapsule && round(b)) || (b == ShapeKind::kCapsule && round(a));
+  }
+
+  RoundBody round_body(int body) const {
+    const Body& b = bodies[static_cast<std::size_t>(body)];
+    RoundBody r;
+    r.kind = b.shape == ShapeKind::kCapsule ? RoundBody::Kind::kCapsule : RoundBody::Kind::kCylinder;
+    r.X_GB = objects[static_cast<std::size_t>(body)]->getTransform();
+    r.radius_m = b.radius_m;
+    r.half_length_m = b.half_length_m;
+    return r;
+  }
+
+  // True when decided here (a point appended, or apart); false leaves the pair to MPR.
+  bool segment_narrowphase(const BodyPair& pair, std::size_t first, std::vector<ContactPoint>& out) {
+    // the capsule is the first capsule of the pair; the other body its round partner
+    const bool lo_capsule = bodies[static_cast<std::size_t>(pair.lo)].shape == ShapeKind::kCapsule;
+    const int capsule = lo_capsule ? pair.lo : pair.hi;
+    const int other = lo_capsule ? pair.hi : pair.lo;
+    const Body& c = bodies[static_cast<std::size_t>(capsule)];
+    const Eigen::Isometry3d& X_GC = objects[static_cast<std::size_t>(capsule)]->getTransform();
+    const Eigen::Vector3d axis_G = X_GC.linear().col(2) * c.half_length_m;
+    const SegmentContact s = segment_contact(X_GC.translation() - axis_G,
+                                             X_GC.translation() + axis_G, c.radius_m,
+                                             round_body(other));
+    if (!s.resolved) return false;
+    if (s.depth_m <= kMprTolerance_m) return true;  // apart or only touching
+    // n from body lo to body hi; s.n_G points out of `other` toward the capsule
+    const Eigen::Vector3d n_ab = other == pair.lo ? s.n_G : Eigen::Vector3d(-s.n_G);
+    out.push_back({pair.lo, pair.hi, s.p_G, n_ab, s.depth_m});
+    finish_manifold(pair, first, out);
+    return true;
   }
 
   // MPR's (or the face test's) single point of a flat contact becomes a manifold (see the header

@@ -16,6 +16,7 @@ const char* grasp_reason_name(GraspReason reason) {
     case GraspReason::kForceResidual: return "force residual too large";
     case GraspReason::kTorqueResidual: return "torque residual too large";
     case GraspReason::kGloveLost: return "glove lost";
+    case GraspReason::kHandOpened: return "hand opened";
   }
   return "unknown";
 }
@@ -54,6 +55,8 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
     }
   }
   for (bool t : touching) check.links_in_contact += t ? 1 : 0;
+  for (int f = 0; f < kFingerCount; ++f)
+    if (finger_touching[f]) check.fingers |= static_cast<uint8_t>(1u << f);
   check.thumb = finger_touching[static_cast<int>(Finger::kThumb)];
 
   check.min_thumb_angle_deg = 180.0;
@@ -70,7 +73,8 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
 
   const double scale = held ? params.exit_scale : 1.0;
   const double alpha0 = params.alpha0_deg - (held ? params.exit_alpha_margin_deg : 0.0);
-  if (check.links_in_contact < params.min_contacts) {
+  const int min_contacts = held ? params.exit_min_contacts : params.min_contacts;
+  if (check.links_in_contact < min_contacts) {
     check.verdict = GraspReason::kTooFewContacts;
   } else if (!check.thumb) {
     check.verdict = GraspReason::kNoThumb;

@@ -6,8 +6,11 @@
 //                the angle between the thumb's contact normal and each other finger's above
 //                alpha0 (the palm counts as a contact but has no normal test).
 // A link with several contact points counts once, with its force-weighted mean normal. While the
-// object is held the test is looser (exit_scale, exit_alpha_margin_deg): hysteresis against the
-// chatter the paper describes.
+// object is held the test is looser (exit_scale, exit_alpha_margin_deg, exit_min_contacts):
+// hysteresis against the chatter the paper describes. A held object needs fewer links than a
+// grasp does (by default the thumb and one opposed finger): a real hand's grip loosens a finger as
+// it carries, and a pinch that lifted an object goes on holding it; the equilibrium test (eqs.
+// 30-31) still decides whether those links carry it.
 
 #include <Eigen/Core>
 
@@ -22,12 +25,13 @@ namespace vcockpit::physics {
 
 enum class GraspReason : uint8_t {
   kStableGrasp,        // GRASP: every condition held
-  kTooFewContacts,     // RELEASE (or no grasp): fewer than min_contacts links touch
+  kTooFewContacts,     // RELEASE (or no grasp): fewer than min_contacts (held: exit_min_contacts)
   kNoThumb,            // the thumb does not touch
   kFingersNotOpposed,  // no finger opposes the thumb, or one's normal is within alpha0 of it
   kForceResidual,      // eq. 30 fails
   kTorqueResidual,     // eq. 31 fails
   kGloveLost,          // RELEASE: the hand is not tracked any more
+  kHandOpened,         // RELEASE: the tracked fingers opened from their grip (release_opening_deg)
 };
 
 const char* grasp_reason_name(GraspReason reason);
@@ -43,6 +47,7 @@ struct HandContact {
 struct GraspCheck {
   int links_in_contact = 0;
   bool thumb = false;
+  uint8_t fingers = 0;               // bit f: finger f touches
   double min_thumb_angle_deg = 0.0;  // smallest thumb-finger normal angle (180: no finger)
   double residual_force_N = 0.0;
   double residual_torque_Nm = 0.0;

@@ -4,9 +4,24 @@
 #include <cmath>
 
 #include "common/assert.hpp"
+#include "common/pose.hpp"
 #include "physics_node/physics/integrator.hpp"
 
 namespace vcockpit::physics {
+
+double finger_flexion_rad(const JointAngles& q_rad, Finger finger) {
+  const auto at = [&](hand::Joint j) { return q_rad[static_cast<std::size_t>(j)]; };
+  switch (finger) {
+    case Finger::kThumb: return at(hand::Joint::kThumbMcp) + at(hand::Joint::kThumbIp);
+    case Finger::kIndex: return at(hand::Joint::kIndexMcp) + at(hand::Joint::kIndexPip) + at(hand::Joint::kIndexDip);
+    case Finger::kMiddle:
+      return at(hand::Joint::kMiddleMcp) + at(hand::Joint::kMiddlePip) + at(hand::Joint::kMiddleDip);
+    case Finger::kRing: return at(hand::Joint::kRingMcp) + at(hand::Joint::kRingPip) + at(hand::Joint::kRingDip);
+    case Finger::kLittle:
+      return at(hand::Joint::kLittleMcp) + at(hand::Joint::kLittlePip) + at(hand::Joint::kLittleDip);
+  }
+  return 0.0;
+}
 
 GraspTracker::GraspTracker(const GraspParams& params, double step_s,
                            const Eigen::Vector3d& gravity_mps2, int hand_id)
@@ -51,7 +66,11 @@ void GraspTracker::decide(int object, const GraspCheck& check, const HandNow& ha
     release(object, GraspReason::kGloveLost, check, hand, hold, body, events);
     return;
   }
-  if (check.holds()) {
+  GraspReason verdict = check.verdict;
+  if (params_.release_opening_deg > 0.0 &&
+      grip_opening_rad(hand, hold) > deg_to_rad(params_.release_opening_deg))
+    verdict = GraspReason::kHandOpened;
+  if (verdict == GraspReason::kStableGrasp) {
     hold.failing_since_ns = -1;
     return;
   }
@@ -59,7 +78,22 @@ void GraspTracker::decide(int object, const GraspCheck& check, const HandNow& ha
   const bool failed_long_enough = hand.t_ns - hold.failing_since_ns >= release_delay_ns_;
   const bool held_long_enough = hand.t_ns - hold.held_since_ns >= min_hold_ns_;
   if (failed_long_enough && held_long_enough)
-    release(object, check.verdict, check, hand, hold, body, events);
+    release(object, verdict, check, hand, hold, body, events);
+}
+
+double GraspTracker::grip_opening_rad(const HandNow& hand, GraspHold& hold) const {
+  if (hand.tracked_q_rad == nullptr || hold.grip_fingers == 0) return 0.0;
+  double opening_rad = 0.0;
+  int fingers = 0;
+  for (int f = 0; f < kFingerCount; ++f) {
+    if ((hold.grip_fingers & (1u << f)) == 0) continue;
+    double& tightest = hold.grip_flexion_rad[static_cast<std::size_t>(f)];
+    const double now = finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f));
+    tightest = std::max(tightest, now);
+    opening_rad += tightest - now;
+    ++fingers;
+  }
+  return opening_rad / fingers;
 }
 
 void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
@@ -69,6 +103,11 @@ void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& ha
   hold.failing_since_ns = -1;
   hold.history_next = 0;
   hold.history_count = 0;
+  hold.grip_fingers = check.fingers;
+  for (int f = 0; f < kFingerCount; ++f)
+    hold.grip_flexion_rad[static_cast<std::size_t>(f)] =
+        hand.tracked_q_rad != nullptr ? finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f))
+                                      : 0.0;
   body.held_by = hand_id_;
   events.push_back(event(object, true, GraspReason::kStableGrasp, check, hand));
 }

@@ -12,6 +12,7 @@
 // (physics_node/io/grasp_event_text.hpp).
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -45,6 +46,9 @@ struct GraspHold {
   std::vector<Eigen::Isometry3d> history;  // pose at the last steps while held (ring)
   std::size_t history_next = 0;
   std::size_t history_count = 0;
+  // the tracked fingers that gripped it (bit f) and each one's tightest flexion while held (rad)
+  uint8_t grip_fingers = 0;
+  std::array<double, kFingerCount> grip_flexion_rad{};
 };
 
 // The hand at the end of a step, as the decisions see it.
@@ -52,7 +56,11 @@ struct HandNow {
   int64_t t_ns = 0;
   bool tracking = true;
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
+  const JointAngles* tracked_q_rad = nullptr;  // the glove's joints (null: not known)
 };
+
+// A finger's flexion: the sum of its flexion joints' angles (rad), abduction left out.
+double finger_flexion_rad(const JointAngles& q_rad, Finger finger);
 
 class GraspTracker {
  public:
@@ -83,6 +91,8 @@ class GraspTracker {
               BodyState& body, std::vector<GraspEvent>& events) const;
   void release(int object, GraspReason reason, const GraspCheck& check, const HandNow& hand,
                GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events) const;
+  // How far the gripping fingers opened (rad, mean over them), raising their tightest closure.
+  double grip_opening_rad(const HandNow& hand, GraspHold& hold) const;
   GraspEvent event(int object, bool grasp, GraspReason reason, const GraspCheck& check,
                    const HandNow& hand) const;
 

@@ -79,12 +79,18 @@ struct GraspParams {
   double eta_Nm = 0.3;         // eq. 31: |sum M| about the centroid
   double alpha0_deg = 120.0;   // thumb vs each finger contact-normal angle must exceed this
   int min_contacts = 3;        // hand links touching the object ("more than 2")
+  int exit_min_contacts = 2;   // while held, this many suffice (a pinch holds what it lifted)
   double exit_scale = 4.0;     // while held, xi and eta are this much looser (hysteresis)
   double exit_alpha_margin_deg = 15.0;  // while held, the angle may drop this far below alpha0
   double min_hold_s = 0.2;     // no release (but for a lost glove) before this
   double release_delay_s = 0.03;  // the condition must fail this long before a release
   double regrab_cooldown_s = 0.3;  // no new grasp of the same object for this long after release
   double velocity_window_s = 0.02;  // released object takes the hand's velocity over this window
+  // A held object is let go when the tracked fingers that gripped it have opened this far from
+  // their tightest closure while holding it (the sum of each finger's flexion angles, averaged
+  // over those fingers): the pilot's own hand opening, which the proxy's fingers, resting on the
+  // object's surface, do not show. 0: off.
+  double release_opening_deg = 25.0;
 };
 
 // Contact model details beyond the paper's equations.

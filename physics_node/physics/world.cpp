@@ -364,7 +364,7 @@ void World::grasp_stage() {
   StageTimer timer(stage_times_, Stage::kGrasp);
   penetration_ = PenetrationStats{};
   if (!scene_.hand) return;
-  const HandNow hand{state_.time_ns, state_.hand_to.tracking, state_.X_GH};
+  const HandNow hand{state_.time_ns, state_.hand_to.tracking, state_.X_GH, &state_.hand_to.q_rad};
   const auto grasp_object = [&](int object, const HandContact* contacts, std::size_t count) {
     grasp_tracker_.update(object, scene_.objects[object], contacts, count, hand,
                           state_.grasp[object], state_.bodies[object], events_);

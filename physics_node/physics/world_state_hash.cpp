@@ -53,6 +53,9 @@ void hash_hold(Fnv1a64& h, const GraspHold& g) {
   h.size(g.history.size());
   for (const Eigen::Isometry3d& X : g.history)
     h.pose(X);
+  h.size(g.grip_fingers);
+  for (double q : g.grip_flexion_rad)
+    h.f64(q);
 }
 
 }  // namespace

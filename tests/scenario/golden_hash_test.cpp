@@ -56,13 +56,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0xebb094b75dc266bd") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0xa0e5499c6278da6c") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0x2e2060df006f77bf") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0xbc0768e3dc64205c") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x30b2acccb925cd38") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0x9936974477aff478") << "final state";
 }
 
 }  // namespace

@@ -137,6 +137,7 @@ struct Squeeze {
   double cup_sink_m = 0.0;   // deepest the cup's base went below the console's top
   double max_spin_radps = 0.0;
   int reversals = 0;         // steps whose spin (> 0.05 rad/s) turned by more than 90 degrees
+  double wobble_deg = 0.0;   // the most the cup turned from its attitude at 0.4 s
   double drift_m = 0.0;
 };
 
@@ -157,6 +158,7 @@ Squeeze squeeze_cup(bool proxy) {
   const double cup_top = kConsoleTop_m + height_m;
   Squeeze s;
   Eigen::Vector3d w_before = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond q_held = Eigen::Quaterniond::Identity();
   for (int step = 0; step < 1000; ++step) {
     const double t_s = step * 1e-3;
     const double palm_bottom = lerp(cup_top + 0.02, cup_top - 0.03, t_s / 0.3);
@@ -167,6 +169,11 @@ Squeeze squeeze_cup(bool proxy) {
     world.step();
     const BodyState& b = world.bodies()[cup];
     s.cup_sink_m = std::max(s.cup_sink_m, kConsoleTop_m - (b.X_GO.translation().z() - 0.5 * height_m));
+    if (step == 400) q_held = Eigen::Quaterniond(b.X_GO.linear());
+    if (step > 400) {
+      s.wobble_deg = std::max(s.wobble_deg,
+                              q_held.angularDistance(Eigen::Quaterniond(b.X_GO.linear())) * 180.0 / M_PI);
+    }
     if (t_s > 0.4) {
       s.max_spin_radps = std::max(s.max_spin_radps, b.w_G.norm());
       if (b.w_G.norm() > 0.05 && w_before.norm() > 0.05 && b.w_G.dot(w_before) < 0.0) ++s.reversals;
@@ -182,15 +189,19 @@ TEST(ProxyHand, ACupSqueezedAgainstTheConsoleIsNotCrushed) {
   const Squeeze kinematic = squeeze_cup(false);
   // resting, the cup sinks m g / k (0.07 mm); the palm adds at most grip_force_N / k_pair
   EXPECT_LT(proxy.cup_sink_m, 1.5e-3) << "the cup was pressed " << proxy.cup_sink_m * 1e3 << " mm in";
-  // chatter: the spin reversing from step to step (the kinematic palm's symptom)
-  EXPECT_LT(proxy.reversals, 120) << "the squeezed cup chatters (of 600 steps; the kinematic palm: all)";
-  EXPECT_LT(proxy.max_spin_radps, 3.0);
+  // chatter: the cup shaking under the palm. Measured as what can be seen, the spin and how far
+  // the cup turns while held; the spin's reversals are printed only: with exact finger normals
+  // (segment_contact.hpp) a cup at rest reverses a spin of a few tenths of a rad/s, turning it
+  // by hundredths of a degree
+  EXPECT_LT(proxy.max_spin_radps, 1.0) << "the squeezed cup chatters";
+  EXPECT_LT(proxy.wobble_deg, 0.1) << "the squeezed cup chatters";
   EXPECT_LT(proxy.drift_m, 0.01);
   EXPECT_GT(kinematic.cup_sink_m, 4e-3) << "without the proxy the palm crushes the cup in";
-  std::printf("squeezed cup: proxy sink %.2f mm, %d reversals, max spin %.2f rad/s; "
-              "kinematic sink %.2f mm, %d reversals, max spin %.2f rad/s\n",
-              proxy.cup_sink_m * 1e3, proxy.reversals, proxy.max_spin_radps,
-              kinematic.cup_sink_m * 1e3, kinematic.reversals, kinematic.max_spin_radps);
+  std::printf("squeezed cup: proxy sink %.2f mm, %d reversals, max spin %.2f rad/s, turned %.3f deg; "
+              "kinematic sink %.2f mm, %d reversals, max spin %.2f rad/s, turned %.3f deg\n",
+              proxy.cup_sink_m * 1e3, proxy.reversals, proxy.max_spin_radps, proxy.wobble_deg,
+              kinematic.cup_sink_m * 1e3, kinematic.reversals, kinematic.max_spin_radps,
+              kinematic.wobble_deg);
 }
 
 TEST(ProxyHand, TheWristApproachesAFarTrackedPoseAtItsMaximumSpeed) {

@@ -53,6 +53,24 @@ TEST(GraspRule, TwoContactsAreNoGrasp) {
   EXPECT_EQ(check(contacts).verdict, GraspReason::kTooFewContacts);
 }
 
+TEST(GraspRule, AHeldObjectStaysHeldByAnOpposedPinchButNotByOneLink) {
+  // thumb and index opposed, carrying the weight: no grasp, but it goes on holding (exit_min_contacts)
+  const double w = kMass * 9.81;
+  const std::vector<HandContact> pinch = {
+      touch(Link::kThumbDistal, {-0.04, 0, 0}, {1, 0, 0}, 3.0, w / 2),
+      touch(Link::kIndexDistal, {0.04, 0, 0}, {-1, 0, 0}, 3.0, w / 2)};
+  EXPECT_EQ(check(pinch).verdict, GraspReason::kTooFewContacts);
+  EXPECT_EQ(check(pinch, /*held=*/true).verdict, GraspReason::kStableGrasp);
+  // the thumb alone does not hold
+  const std::vector<HandContact> thumb = {pinch[0]};
+  EXPECT_EQ(check(thumb, /*held=*/true).verdict, GraspReason::kTooFewContacts);
+  // and a pinch that does not carry the weight lets go (eq. 30 at the held scale)
+  std::vector<HandContact> slipping = pinch;
+  for (auto& c : slipping) c.F_G.z() = 0.0;
+  slipping[0].F_G.z() -= 15.0;  // |sum F| 17 N, above exit_scale * xi (12 N)
+  EXPECT_EQ(check(slipping, /*held=*/true).verdict, GraspReason::kForceResidual);
+}
+
 TEST(GraspRule, SeveralPointsOnOneLinkCountOnce) {
   auto contacts = balanced_three_point();
   contacts[2].link = Link::kIndexDistal;  // two points on the index tip

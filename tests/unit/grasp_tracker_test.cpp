@@ -56,6 +56,7 @@ struct Rig {
   int64_t t_ns = 0;
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
   Eigen::Vector3d hand_v_G = Eigen::Vector3d::Zero();
+  JointAngles glove_q_rad{};  // the tracked (glove) joints the decisions see
 
   Rig() {
     cup.dynamic = true;
@@ -72,7 +73,7 @@ struct Rig {
       X_GH.translation() += hand_v_G * kStep_s;
       if (body.held_by == kHand) body.X_GO = X_GH * hold.X_HO;  // eq. 29
       events.clear();
-      tracker.decide(0, check, HandNow{t_ns, tracking, X_GH}, hold, body, events);
+      tracker.decide(0, check, HandNow{t_ns, tracking, X_GH, &glove_q_rad}, hold, body, events);
       if (body.held_by != kNotHeld) tracker.record_held_pose(hold, body);
       out.insert(out.end(), events.begin(), events.end());
     }
@@ -180,6 +181,36 @@ TEST(GraspTracker, StaticObjectsAndUntouchedFreeOnesAreLeftAlone) {
   rig.tracker.update(1, panel, nullptr, 0, HandNow{}, panel_hold, panel_body, events);
   rig.tracker.update(0, rig.cup, nullptr, 0, HandNow{}, rig.hold, rig.body, events);
   EXPECT_TRUE(events.empty());
+  EXPECT_EQ(rig.body.held_by, kNotHeld);
+}
+
+// The glove opening releases a held object that the proxy's fingers still touch (the test holds
+// on): when the gripping fingers' flexion, averaged, falls release_opening_deg below its tightest
+// while held; closing tighter after the grasp raises that mark, and opening less keeps the hold.
+TEST(GraspTracker, TheGloveOpeningReleasesWhatTheFingersStillTouch) {
+  Rig rig;
+  const auto set_flexion_deg = [&](double index_deg, double thumb_deg) {
+    for (hand::Joint j : {hand::Joint::kIndexMcp, hand::Joint::kIndexPip, hand::Joint::kIndexDip})
+      rig.glove_q_rad[static_cast<std::size_t>(j)] = index_deg / 3.0 * M_PI / 180.0;
+    for (hand::Joint j : {hand::Joint::kThumbMcp, hand::Joint::kThumbIp})
+      rig.glove_q_rad[static_cast<std::size_t>(j)] = thumb_deg / 2.0 * M_PI / 180.0;
+  };
+  GraspCheck grip = holding();
+  grip.fingers = (1u << static_cast<int>(Finger::kThumb)) | (1u << static_cast<int>(Finger::kIndex));
+  set_flexion_deg(120.0, 80.0);
+  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // GRASP
+  set_flexion_deg(140.0, 90.0);                      // closing tighter: the mark rises
+  EXPECT_TRUE(rig.run_until(0.3, grip).empty());
+  set_flexion_deg(125.0, 80.0);                      // opened 12.5 deg on average: still held
+  EXPECT_TRUE(rig.run_until(0.5, grip).empty());
+  set_flexion_deg(110.0, 70.0);                      // opened 25 deg on average: not yet beyond
+  EXPECT_TRUE(rig.run_until(0.6, grip).empty());
+  set_flexion_deg(105.0, 70.0);                      // 27.5 deg: let go after the release delay
+  const auto events = rig.run_until(0.7, grip);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_FALSE(events[0].grasp);
+  EXPECT_EQ(events[0].reason, GraspReason::kHandOpened);
+  EXPECT_NEAR(static_cast<double>(events[0].t_ns) * 1e-9, 0.6 + 0.03, 1.5e-3);
   EXPECT_EQ(rig.body.held_by, kNotHeld);
 }
 

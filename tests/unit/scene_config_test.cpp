@@ -232,6 +232,7 @@ TEST_F(ShippedCockpit, GraspAndContactBlocks) {
   EXPECT_EQ(scene_->grasp.eta_Nm, 0.3);
   EXPECT_EQ(scene_->grasp.alpha0_deg, 120.0);
   EXPECT_EQ(scene_->grasp.min_contacts, 3);
+  EXPECT_EQ(scene_->grasp.exit_min_contacts, 2);
   EXPECT_EQ(scene_->contact.max_points_per_pair, 4);
 }
 
@@ -521,6 +522,8 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
       {"exit_margin_above_alpha0", "min_contacts: 3}",
        "min_contacts: 3, exit_alpha_margin_deg: 120}", "grasp:", "grasp.exit_alpha_margin_deg",
        "must be below alpha0_deg 110"},
+      {"exit_contacts_above_entry", "min_contacts: 3}", "min_contacts: 3, exit_min_contacts: 4}",
+       "grasp:", "grasp.exit_min_contacts", "must not exceed min_contacts 3"},
       {"negative_hold", "min_contacts: 3}", "min_contacts: 3, min_hold_s: -1}",
        "grasp:", "grasp.min_hold_s", "must be >= 0"},
       {"unknown_grasp_key", "min_contacts: 3}", "min_contacts: 3, xi: 1}", "grasp:", "grasp.xi",

@@ -91,54 +91,43 @@ const Degradation& degradation(const std::string& name) {
 
 // ---- the cells that fail today, and why ----------------------------------------------------
 // Measured (seed 7) with the proxy hand, the interpolating replay, the implicit gyroscopic term,
-// rolling resistance and the closed shell. No cell sinks a link into a panel any more, and no
-// object is thrown by the hand (the 3.56 m/s flashlight cells are the flashlight rolling off the
-// console and falling to the floor). What is left:
-//   no grasp / not carried   the grasp test (eqs. 30-31 and the gesture: every finger opposed
-//              to the thumb by more than alpha0) does not hold, or not for the lift, mostly
-//              because a finger lies on the round object at less than alpha0 from the thumb;
-//   ends off   the object dropped or rolled on after its release.
+// rolling resistance, the closed shell, exact capsule contacts (segment_contact.hpp), the held
+// object kept by an opposed pinch (exit_min_contacts) and let go when the glove opens
+// (release_opening_deg). No cell sinks a link into a panel, and no object is knocked while the
+// fingers close. What is left:
+//   no grasp / not carried   the grasp test does not hold, or not through the lift;
+//   ends off   the object was not let go where it was set down: the scripted open shapes were
+//              solved to clear the object by 3 mm for the 50th-percentile hand, so another hand
+//              (or a degraded log) can still touch it with three links, and the glove opens by
+//              less than release_opening_deg; the hand then carries it away as it withdraws.
 // Each entry: the checks that fail, with the figures measured.
 const std::map<std::string, std::string>& known_failing() {
   static const std::map<std::string, std::string> kCells = {
-      {"ball_large_harsh", "not carried (lift 1 mm), ends 718 mm off"},
-      {"ball_large_typical", "not carried (lift 1 mm), ends 108 mm off"},
-      {"ball_medium_gaps", "ends 76 mm off"},
-      {"ball_medium_harsh", "ends 125 mm off"},
-      {"ball_medium_overrange", "not carried (lift 0 mm), ends 71 mm off"},
-      {"ball_small_clean", "ends 268 mm off"},
-      {"ball_small_harsh", "ends 61 mm off"},
-      {"ball_small_typical", "ends 108 mm off"},
+      {"ball_large_harsh", "ends 76 mm off"},
+      {"ball_large_typical", "not carried (lift 1 mm), ends 718 mm off"},
+      {"ball_medium_gaps", "ends 78 mm off"},
+      {"ball_medium_harsh", "ends 64 mm off"},
+      {"ball_medium_overrange", "ends 800 mm off"},
+      {"ball_small_clean", "ends 740 mm off"},
+      {"ball_small_harsh", "ends 90 mm off"},
+      {"ball_small_typical", "ends 172 mm off"},
       {"checklist_large_harsh", "ends 38 mm off"},
       {"checklist_medium_harsh", "ends 43 mm off"},
-      {"cup_large_clean", "no grasp, ends 124 mm off"},
-      {"cup_large_harsh", "not carried (lift 4 mm), ends 118 mm off"},
-      {"cup_large_typical", "not carried (lift 2 mm), ends 126 mm off"},
-      {"cup_medium_gaps", "no grasp, ends 108 mm off"},
-      {"cup_medium_harsh", "no grasp, ends 103 mm off"},
-      {"cup_medium_jitter", "no grasp, ends 145 mm off"},
-      {"cup_medium_overrange", "not carried (lift 0 mm), ends 125 mm off"},
-      {"cup_small_clean", "ends 32 mm off"},
-      {"cup_small_harsh", "no grasp, ends 93 mm off"},
-      {"cup_small_typical", "not carried (lift 0 mm), ends 91 mm off"},
-      {"flashlight_large_clean", "knocked at 3.57 m/s, no grasp, ends 754 mm off"},
-      {"flashlight_large_harsh", "not carried (lift 1 mm), ends 59 mm off"},
-      {"flashlight_large_typical", "not carried (lift 1 mm)"},
-      {"flashlight_medium_120hz", "knocked at 3.56 m/s, no grasp, ends 752 mm off"},
-      {"flashlight_medium_30hz", "knocked at 3.56 m/s, no grasp, ends 755 mm off"},
-      {"flashlight_medium_clean", "knocked at 3.56 m/s, no grasp, ends 753 mm off"},
-      {"flashlight_medium_dropouts", "knocked at 3.56 m/s, no grasp, ends 755 mm off"},
-      {"flashlight_medium_gaps", "not carried (lift 0 mm), ends 61 mm off"},
-      {"flashlight_medium_glove_noise", "not carried (lift 23 mm), ends 55 mm off"},
-      {"flashlight_medium_grip250ms", "not carried (lift 19 mm), ends 762 mm off"},
-      {"flashlight_medium_grip500ms", "knocked at 3.56 m/s, no grasp, ends 754 mm off"},
-      {"flashlight_medium_harsh", "no grasp, ends 120 mm off"},
-      {"flashlight_medium_jitter", "not carried (lift 14 mm), ends 756 mm off"},
-      {"flashlight_medium_overrange", "no grasp, ends 47 mm off"},
-      {"flashlight_medium_typical", "not carried (lift 15 mm), ends 34 mm off"},
-      {"flashlight_small_clean", "no grasp, ends 58 mm off"},
-      {"flashlight_small_harsh", "not carried (lift 0 mm), ends 114 mm off"},
-      {"flashlight_small_typical", "not carried (lift 1 mm), ends 92 mm off"},
+      {"cup_large_harsh", "not carried (lift 7 mm), ends 132 mm off"},
+      {"cup_large_typical", "not carried (lift 2 mm), ends 124 mm off"},
+      {"cup_medium_gaps", "ends 749 mm off"},
+      {"cup_medium_harsh", "ends 32 mm off"},
+      {"cup_small_harsh", "not carried (lift 1 mm), ends 96 mm off"},
+      {"cup_small_typical", "ends 81 mm off"},
+      {"flashlight_large_clean", "ends 65 mm off"},
+      {"flashlight_large_harsh", "not carried (lift 1 mm), ends 140 mm off"},
+      {"flashlight_medium_glove_noise", "not carried (lift 0 mm)"},
+      {"flashlight_medium_grip500ms", "ends 93 mm off"},
+      {"flashlight_medium_harsh", "not carried (lift 1 mm), ends 151 mm off"},
+      {"flashlight_medium_overrange", "not carried (lift 0 mm), ends 120 mm off"},
+      {"flashlight_small_clean", "no grasp, ends 77 mm off"},
+      {"flashlight_small_harsh", "not carried (lift 1 mm), ends 121 mm off"},
+      {"flashlight_small_typical", "not carried (lift 2 mm), ends 86 mm off"},
   };
   return kCells;
 }
