@@ -11,41 +11,52 @@ namespace {
 constexpr double kBracket_m = 1e-9;
 constexpr int kMaxIterations = 80;
 
-}  // namespace
-
-double signed_distance(const RoundBody& body, const Eigen::Vector3d& p_G, Eigen::Vector3d& grad_G) {
-  const Eigen::Vector3d p = body.X_GB.inverse() * p_G;
-  const Eigen::Matrix3d& R = body.X_GB.linear();
+// The signed distance of p_B (body frame) and, if asked, its gradient in the body frame.
+double local_distance(const RoundBody& body, const Eigen::Vector3d& p, Eigen::Vector3d* grad) {
   if (body.kind == RoundBody::Kind::kCapsule) {
     const double z = std::clamp(p.z(), -body.half_length_m, body.half_length_m);
     const Eigen::Vector3d d = p - Eigen::Vector3d(0.0, 0.0, z);
     const double norm = d.norm();
-    grad_G = norm > 0.0 ? Eigen::Vector3d(R * (d / norm)) : Eigen::Vector3d(R.col(0));
+    if (grad) *grad = norm > 0.0 ? Eigen::Vector3d(d / norm) : Eigen::Vector3d::UnitX();
     return norm - body.radius_m;
   }
-  const double rho = std::hypot(p.x(), p.y());
-  const Eigen::Vector3d radial =
-      rho > 0.0 ? Eigen::Vector3d(p.x() / rho, p.y() / rho, 0.0) : Eigen::Vector3d::UnitX();
-  const Eigen::Vector3d axial(0.0, 0.0, p.z() >= 0.0 ? 1.0 : -1.0);
+  const double rho = std::sqrt(p.x() * p.x() + p.y() * p.y());
   const double dr = rho - body.radius_m;
   const double dh = std::abs(p.z()) - body.half_length_m;
-  if (dr > 0.0 && dh > 0.0) {  // nearest the rim
-    const double d = std::hypot(dr, dh);
-    grad_G = R * ((dr / d) * radial + (dh / d) * axial);
-    return d;
+  if (grad) {
+    const Eigen::Vector3d radial =
+        rho > 0.0 ? Eigen::Vector3d(p.x() / rho, p.y() / rho, 0.0) : Eigen::Vector3d::UnitX();
+    const Eigen::Vector3d axial(0.0, 0.0, p.z() >= 0.0 ? 1.0 : -1.0);
+    if (dr > 0.0 && dh > 0.0) {
+      const double d = std::sqrt(dr * dr + dh * dh);
+      *grad = (dr / d) * radial + (dh / d) * axial;
+    } else {
+      *grad = dr >= dh ? radial : axial;
+    }
   }
+  if (dr > 0.0 && dh > 0.0) return std::sqrt(dr * dr + dh * dh);  // nearest the rim
   // beside the side, above a cap, or inside (the nearer face): the larger of the two
-  grad_G = R * (dr >= dh ? radial : axial);
   return std::max(dr, dh);
+}
+
+}  // namespace
+
+double signed_distance(const RoundBody& body, const Eigen::Vector3d& p_G, Eigen::Vector3d& grad_G) {
+  Eigen::Vector3d grad_B;
+  const double d = local_distance(body, body.X_GB.inverse() * p_G, &grad_B);
+  grad_G = body.X_GB.linear() * grad_B;
+  return d;
 }
 
 SegmentContact segment_contact(const Eigen::Vector3d& a_G, const Eigen::Vector3d& b_G,
                                double radius_m, const RoundBody& body) {
   SegmentContact out;
-  const Eigen::Vector3d ab = b_G - a_G;
-  const double length_m = ab.norm();
-  Eigen::Vector3d grad;
-  const auto distance_at = [&](double t) { return signed_distance(body, a_G + t * ab, grad); };
+  // in the body's frame: one transform, not one per evaluation
+  const Eigen::Isometry3d X_BG = body.X_GB.inverse();
+  const Eigen::Vector3d a_B = X_BG * a_G;
+  const Eigen::Vector3d ab_B = X_BG.linear() * (b_G - a_G);
+  const double length_m = ab_B.norm();
+  const auto distance_at = [&](double t) { return local_distance(body, a_B + t * ab_B, nullptr); };
   // golden-section search for the least signed distance over t in [0, 1] (a convex function)
   constexpr double kInvPhi = 0.6180339887498949;
   double lo = 0.0;
@@ -80,7 +91,8 @@ SegmentContact segment_contact(const Eigen::Vector3d& a_G, const Eigen::Vector3d
     }
   }
   if (best <= 0.0) return out;  // the segment reaches into the body
-  const Eigen::Vector3d p_G = a_G + best_t * ab;
+  const Eigen::Vector3d p_G = a_G + best_t * (b_G - a_G);
+  Eigen::Vector3d grad;
   signed_distance(body, p_G, grad);
   out.resolved = true;
   out.depth_m = radius_m - best;

@@ -56,8 +56,8 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0x2e2060df006f77bf") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0xbc0768e3dc64205c") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0x4aa4b1d139d8b50f") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0xf7bb7ddd13e5b1d9") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
