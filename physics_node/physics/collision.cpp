@@ -200,10 +200,7 @@ struct CollisionWorld::Impl {
   bool segment_pair(const BodyPair& pair) const {
     const ShapeKind a = bodies[static_cast<std::size_t>(pair.lo)].shape;
     const ShapeKind b = bodies[static_cast<std::size_t>(pair.hi)].shape;
-    const auto round = [](ShapeKind k) {
-      return k == ShapeKind::kCylinder || k == ShapeKind::kCapsule;
-    };
-    return (a == ShapeKind::kCapsule && round(b)) || (b == ShapeKind::kCapsule && round(a));
+    return (a == ShapeKind::kCapsule && is_round(b)) || (b == ShapeKind::kCapsule && is_round(a));
   }
 
   RoundBody round_body(int body) const {
@@ -313,13 +310,12 @@ struct CollisionWorld::Impl {
     return c;
   }
 
+  static bool is_round(ShapeKind k) { return k == ShapeKind::kCylinder || k == ShapeKind::kCapsule; }
+
   bool box_and_round(const BodyPair& pair) const {
     const ShapeKind a = bodies[static_cast<std::size_t>(pair.lo)].shape;
     const ShapeKind b = bodies[static_cast<std::size_t>(pair.hi)].shape;
-    const auto round = [](ShapeKind k) {
-      return k == ShapeKind::kCylinder || k == ShapeKind::kCapsule;
-    };
-    return (a == ShapeKind::kBox && round(b)) || (b == ShapeKind::kBox && round(a));
+    return (a == ShapeKind::kBox && is_round(b)) || (b == ShapeKind::kBox && is_round(a));
   }
 
   // The farthest point of a body along d (world), for the shapes the collision world holds.

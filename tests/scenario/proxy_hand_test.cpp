@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "common/pose.hpp"
 #include "hand/hand_yaml.hpp"
 #include "physics_node/physics/world.hpp"
 #include "tests/support/scene_builder.hpp"
@@ -172,7 +173,7 @@ Squeeze squeeze_cup(bool proxy) {
     if (step == 400) q_held = Eigen::Quaterniond(b.X_GO.linear());
     if (step > 400) {
       s.wobble_deg = std::max(s.wobble_deg,
-                              q_held.angularDistance(Eigen::Quaterniond(b.X_GO.linear())) * 180.0 / M_PI);
+                              rad_to_deg(q_held.angularDistance(Eigen::Quaterniond(b.X_GO.linear()))));
     }
     if (t_s > 0.4) {
       s.max_spin_radps = std::max(s.max_spin_radps, b.w_G.norm());

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "physics_node/config/scene_config.hpp"
@@ -19,25 +20,33 @@ std::string source_dir() {
   return std::getenv("VCOCKPIT_SOURCE_DIR");
 }
 
+// Writes the crafted log into a fresh directory, runs the offline runner on the default cockpit
+// and returns its summary.json.
+nlohmann::json run_crafted(const test::CraftedGloveLog& craft, const std::string& name,
+                           RunSummary* summary = nullptr) {
+  const std::string dir = test::make_temp_dir(name);
+  const std::string log = dir + "/crafted.csv";
+  std::ofstream(log) << craft.text();
+  OfflineOptions options;
+  options.scene_path = source_dir() + "/config/cockpit.yaml";
+  options.log_path = log;
+  options.out_dir = dir + "/out";
+  const RunSummary run = run_offline(load_scene(options.scene_path), options);
+  if (summary) *summary = run;
+  std::ifstream in(options.out_dir + "/summary.json");
+  return nlohmann::json::parse(in);
+}
+
 TEST(OfflineCounts, ACraftedLogsClampsMissingColumnGapsAndGloveLostLandInTheSummary) {
   test::CraftedGloveLog craft;
   craft.run(0, 100, 3);   // 3 values clamped
   craft.run(200, 300);    // after a 0.1 s gap: bridged
   craft.run(600, 700);    // after 0.3 s: not bridged (max gap 0.25 s)
   craft.run(1400, 1500);  // after 0.7 s: not bridged, the glove lost from 1.2 s
-  const std::string dir = test::make_temp_dir("offline_counts");
-  const std::string log = dir + "/crafted.csv";
-  std::ofstream(log) << craft.text();
-
-  OfflineOptions options;
-  options.scene_path = source_dir() + "/config/cockpit.yaml";
-  options.log_path = log;
-  options.out_dir = dir + "/out";
-  const RunSummary summary = run_offline(load_scene(options.scene_path), options);
+  RunSummary summary;
+  const auto j = run_crafted(craft, "offline_counts", &summary);
   EXPECT_EQ(summary.steps, 1500u);
 
-  std::ifstream in(options.out_dir + "/summary.json");
-  const auto j = nlohmann::json::parse(in);
   const auto& input = j.at("input");
   EXPECT_EQ(input.at("accepted"), craft.rows());
   EXPECT_EQ(input.at("rejected"), 0);
@@ -64,16 +73,7 @@ TEST(OfflineCounts, BridgingEveryGapLeavesTheRecordedSpeed) {
   test::CraftedGloveLog craft;
   craft.run(0, 100);
   craft.run(200, 300);
-  const std::string dir = test::make_temp_dir("offline_counts_bridged");
-  const std::string log = dir + "/crafted.csv";
-  std::ofstream(log) << craft.text();
-  OfflineOptions options;
-  options.scene_path = source_dir() + "/config/cockpit.yaml";
-  options.log_path = log;
-  options.out_dir = dir + "/out";
-  run_offline(load_scene(options.scene_path), options);
-  std::ifstream in(options.out_dir + "/summary.json");
-  const auto j = nlohmann::json::parse(in);
+  const auto j = run_crafted(craft, "offline_counts_bridged");
   EXPECT_NEAR(j.at("hand_peak_wrist_speed_mps").get<double>(), 0.2, 1e-9);
   EXPECT_EQ(j.at("input").at("gaps_bridged"), 1);
   EXPECT_EQ(j.at("input").at("glove_lost"), 0);
