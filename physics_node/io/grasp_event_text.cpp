@@ -9,8 +9,8 @@ std::string grasp_event_text(const physics::GraspEvent& e) {
   std::array<char, 128> text{};
   if (e.grasp) {
     std::snprintf(text.data(), text.size(),
-                  "stable grasp: %d links, thumb opposed at %.0f deg, |F| %.2f N, |M| %.3f N m",
-                  e.contacts, e.min_thumb_angle_deg, e.residual_force_N, e.residual_torque_Nm);
+                  "stable grasp: %d links, %s opposed at %.0f deg, |F| %.2f N, |M| %.3f N m",
+                  e.contacts, e.palm_opposes ? "palm" : "thumb", e.min_thumb_angle_deg, e.residual_force_N, e.residual_torque_Nm);
   } else if (e.reason == physics::GraspReason::kGloveLost) {
     std::snprintf(text.data(), text.size(), "glove lost");
   } else {

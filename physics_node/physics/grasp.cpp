@@ -58,11 +58,16 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
   for (int f = 0; f < kFingerCount; ++f)
     if (finger_touching[f]) check.fingers |= static_cast<uint8_t>(1u << f);
   check.thumb = finger_touching[static_cast<int>(Finger::kThumb)];
-
+  // a power grasp: the palm opposes the fingers when the thumb does not touch (Iberall's
+  // palm opposition; the thumb then usually lies on the fingers)
+  const bool palm = touching[static_cast<int>(Link::kPalm)];
+  check.palm_opposes = !check.thumb && palm && params.palm_opposition;
   check.min_thumb_angle_deg = 180.0;
   bool any_finger = false;
-  if (check.thumb) {
-    const Eigen::Vector3d n_thumb = finger_normal[0].normalized();
+  if (check.thumb || check.palm_opposes) {
+    const Eigen::Vector3d n_thumb =
+        check.thumb ? Eigen::Vector3d(finger_normal[0].normalized())
+                    : Eigen::Vector3d(normal_sum[static_cast<int>(Link::kPalm)].normalized());
     for (int f = 1; f < kFingerCount; ++f) {
       if (!finger_touching[f]) continue;
       any_finger = true;
@@ -76,7 +81,7 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
   const int min_contacts = held ? params.exit_min_contacts : params.min_contacts;
   if (check.links_in_contact < min_contacts) {
     check.verdict = GraspReason::kTooFewContacts;
-  } else if (!check.thumb) {
+  } else if (!check.thumb && !check.palm_opposes) {
     check.verdict = GraspReason::kNoThumb;
   } else if (!any_finger || check.min_thumb_angle_deg <= alpha0) {
     check.verdict = GraspReason::kFingersNotOpposed;

@@ -49,6 +49,7 @@ struct GraspCheck {
   bool thumb = false;
   uint8_t fingers = 0;               // bit f: finger f touches
   double min_thumb_angle_deg = 0.0;  // smallest thumb-finger normal angle (180: no finger)
+  bool palm_opposes = false;         // no thumb: the palm's normal stood for it (power grasp)
   double residual_force_N = 0.0;
   double residual_torque_Nm = 0.0;
   GraspReason verdict = GraspReason::kTooFewContacts;  // kStableGrasp when it holds

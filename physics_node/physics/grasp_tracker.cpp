@@ -46,11 +46,16 @@ void GraspTracker::update(int object, const ObjectSpec& o, const HandContact* co
                           std::size_t count, const HandNow& hand, GraspHold& hold, BodyState& body,
                           std::vector<GraspEvent>& events) const {
   if (!o.dynamic) return;
+  uint32_t touching_links = 0;
+  for (std::size_t i = 0; i < count; ++i) touching_links |= 1u << static_cast<int>(contacts[i].link);
   const bool held = body.held_by == hand_id_;
+  if (hold.resting_links != 0 && hand.t_ns - hold.released_at_ns >= regrab_cooldown_ns_)
+    hold.resting_links = 0;
   if (!held && count == 0) return;
   const GraspCheck check = evaluate_grasp(contacts, count, body.X_GO.translation(), o.mass_kg,
                                           gravity_mps2_, params_, held);
   decide(object, check, hand, hold, body, events);
+  if (held && body.held_by == kNotHeld) hold.resting_links = touching_links;
 }
 
 void GraspTracker::decide(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
@@ -83,10 +88,15 @@ void GraspTracker::decide(int object, const GraspCheck& check, const HandNow& ha
 
 double GraspTracker::grip_opening_rad(const HandNow& hand, GraspHold& hold) const {
   if (hand.tracked_q_rad == nullptr || hold.grip_fingers == 0) return 0.0;
+  // The thumb opens a grip mostly by rotation and abduction, which its flexion does not show:
+  // it counts only when it is the one gripping finger.
+  const unsigned thumb = 1u << static_cast<int>(Finger::kThumb);
+  const unsigned opening_fingers =
+      (hold.grip_fingers & ~thumb) != 0 ? (hold.grip_fingers & ~thumb) : hold.grip_fingers;
   double opening_rad = 0.0;
   int fingers = 0;
   for (int f = 0; f < kFingerCount; ++f) {
-    if ((hold.grip_fingers & (1u << f)) == 0) continue;
+    if ((opening_fingers & (1u << f)) == 0) continue;
     double& tightest = hold.grip_flexion_rad[static_cast<std::size_t>(f)];
     const double now = finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f));
     tightest = std::max(tightest, now);
@@ -104,6 +114,7 @@ void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& ha
   hold.history_next = 0;
   hold.history_count = 0;
   hold.grip_fingers = check.fingers;
+  hold.resting_links = 0;
   for (int f = 0; f < kFingerCount; ++f)
     hold.grip_flexion_rad[static_cast<std::size_t>(f)] =
         hand.tracked_q_rad != nullptr ? finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f))
@@ -140,6 +151,7 @@ GraspEvent GraspTracker::event(int object, bool grasp, GraspReason reason, const
   e.reason = reason;
   e.contacts = check.links_in_contact;
   e.thumb_touching = check.thumb;
+  e.palm_opposes = check.palm_opposes;
   e.min_thumb_angle_deg = check.min_thumb_angle_deg;
   e.residual_force_N = check.residual_force_N;
   e.residual_torque_Nm = check.residual_torque_Nm;

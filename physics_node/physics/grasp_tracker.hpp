@@ -32,6 +32,7 @@ struct GraspEvent {
   // the stable-grasp test at the decision (for a lost glove: of the last contacts)
   int contacts = 0;  // hand links touching the object
   bool thumb_touching = false;
+  bool palm_opposes = false;         // no thumb: the palm opposed the fingers (power grasp)
   double min_thumb_angle_deg = 0.0;  // smallest thumb-finger normal angle (180: no finger)
   double residual_force_N = 0.0;     // eq. 30's |sum F|
   double residual_torque_Nm = 0.0;   // eq. 31's |sum M|
@@ -49,6 +50,11 @@ struct GraspHold {
   // the tracked fingers that gripped it (bit f) and each one's tightest flexion while held (rad)
   uint8_t grip_fingers = 0;
   std::array<double, kFingerCount> grip_flexion_rad{};
+  // The links (bit l) that touched it when it was let go: the proxy keeps them a hair off it
+  // (ProxyHand::depth_limit_m) until the regrab cooldown ends. The grip's squeeze is the
+  // pilot's, and it goes when the hand lets go: kept, the penalty depth of the last finger
+  // would shove the released object away (a set-down ball rolled off the console).
+  uint32_t resting_links = 0;
 };
 
 // The hand at the end of a step, as the decisions see it.

@@ -71,7 +71,53 @@ ProxyPose ProxyHand::step_goal(const ProxyPose& now, const HandInput& tracked, b
   const double turn_max_rad = w_max * step_s;
   const double share = turn_rad > turn_max_rad ? turn_max_rad / turn_rad : 1.0;
   goal.X_GH.linear() = q_now.slerp(share, q_to).normalized().toRotationMatrix();
+  limit_finger_speed(now.q_rad, params_.max_speed_mps * step_s, goal.q_rad);
   return goal;
+}
+
+void ProxyHand::limit_finger_speed(const JointAngles& now_rad, double reach_m,
+                                   JointAngles& goal_rad) const {
+  // The shares are found from how far each finger's links and tip would move (in the hand's
+  // frame); a share is exact only to first order (a curling finger's tip moves along an arc
+  // longer than its chord), so the scaled step is measured again, a few times.
+  constexpr int kPasses = 4;
+  HandLinkPoses from;
+  HandLinkPoses to;
+  forward_kinematics(hand_, now_rad, from);
+  for (int pass = 0; pass < kPasses; ++pass) {
+    forward_kinematics(hand_, goal_rad, to);
+    std::array<double, kFingerCount> moved_m{};
+    for (int f = 0; f < kFingerCount; ++f)
+      moved_m[static_cast<std::size_t>(f)] =
+          (to.p_H_tip[static_cast<std::size_t>(f)] - from.p_H_tip[static_cast<std::size_t>(f)]).norm();
+    for (int l = 0; l < kLinkCount; ++l) {
+      Finger finger;
+      if (!finger_of(static_cast<Link>(l), finger)) continue;
+      double& m = moved_m[static_cast<std::size_t>(finger)];
+      m = std::max(m, (to.X_HL[static_cast<std::size_t>(l)].translation() -
+                       from.X_HL[static_cast<std::size_t>(l)].translation()).norm());
+    }
+    // a joint moving several fingers takes the least of their shares, and one in no finger's
+    // chain (the wrist's pitch and yaw move the whole hand in its frame) the least of all
+    double least = 1.0;
+    std::array<double, kFingerCount> share{};
+    for (int f = 0; f < kFingerCount; ++f) {
+      const double m = moved_m[static_cast<std::size_t>(f)];
+      share[static_cast<std::size_t>(f)] = m > reach_m ? reach_m / m : 1.0;
+      least = std::min(least, share[static_cast<std::size_t>(f)]);
+    }
+    if (least >= 1.0) return;
+    for (int j = 0; j < kJointCount; ++j) {
+      double s = 1.0;
+      bool in_a_finger = false;
+      for (int f = 0; f < kFingerCount; ++f) {
+        if (!finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(j)]) continue;
+        in_a_finger = true;
+        s = std::min(s, share[static_cast<std::size_t>(f)]);
+      }
+      goal_rad[j] = now_rad[j] + (in_a_finger ? s : least) * (goal_rad[j] - now_rad[j]);
+    }
+  }
 }
 
 ProxyPose ProxyHand::advance(const ProxyPose& prev, const ProxyPose& goal, int remaining) {
@@ -159,7 +205,7 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
     if (deepened_m <= kTinyDepth_m) return;
     const int other = c.body_a;
     const double depth_before_m = c.depth_m - deepened_m;
-    double allowed_m = depth_limit_m(other) - depth_before_m;
+    double allowed_m = depth_limit_m(other, c.body_b) - depth_before_m;
     const auto o = static_cast<std::size_t>(other);
     if (dynamic_[o] != 0 && held[o] == 0) {
       // into a free object no faster than the pushing speed (from where it first touches)
@@ -217,9 +263,11 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
   constexpr double kDamping_m2 = 1e-8;  // keeps the step finite near a singular finger
   bool moved = false;
   // how far a contact is beyond its limit, and the depth to bring it to
-  const auto excess_of = [&](const ContactPoint& c) { return c.depth_m - depth_limit_m(c.body_a); };
+  const auto excess_of = [&](const ContactPoint& c) {
+    return c.depth_m - depth_limit_m(c.body_a, c.body_b);
+  };
   const auto target_of = [&](const ContactPoint& c) {
-    const double limit_m = depth_limit_m(c.body_a);
+    const double limit_m = depth_limit_m(c.body_a, c.body_b);
     return dynamic_[static_cast<std::size_t>(c.body_a)] != 0 ? limit_m : 0.5 * limit_m;
   };
   ProxyPose bent = pose;
@@ -299,7 +347,8 @@ void ProxyHand::shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, Proxy
       const bool b = moves(c.body_b);
       if (a == b) continue;
       const int other = a ? c.body_b : c.body_a;  // static or free: never a link
-      planes_.push_back({b ? c.n_G : Eigen::Vector3d(-c.n_G), c.depth_m, depth_limit_m(other)});
+      planes_.push_back({b ? c.n_G : Eigen::Vector3d(-c.n_G), c.depth_m,
+                         depth_limit_m(other, a ? c.body_a : c.body_b)});
     }
   };
   collect(hand_static);

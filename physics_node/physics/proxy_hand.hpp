@@ -46,6 +46,9 @@ namespace vcockpit::physics {
 
 struct HandInput;
 
+// How far a link that has let go of an object stands off it until the regrab cooldown ends.
+inline constexpr double kLetGoClearance_m = 5e-4;
+
 struct ProxyPose {
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
   JointAngles q_rad{};
@@ -98,9 +101,25 @@ class ProxyHand {
   // How deep a link may go into object `object` (m): static_depth_m for a static one, d_grip
   // for a dynamic one.
   double depth_limit_m(int object) const { return depth_limit_m_[static_cast<std::size_t>(object)]; }
+  // ... and link body `link_body` (a link or not: a held object): a link that has just let go
+  // of an object (GraspHold::resting_links) stands off it by kLetGoClearance_m, so neither the
+  // grip's penalty depth nor a contact's damping follows the released object.
+  double depth_limit_m(int object, int link_body) const {
+    if (resting_links_ != nullptr && is_link(link_body) &&
+        ((*resting_links_)[static_cast<std::size_t>(object)] >> (link_body - object_count_) & 1u) != 0)
+      return -kLetGoClearance_m;
+    return depth_limit_m(object);
+  }
+  // The links resting on each object (bit l), per object; null: none. Kept by the caller.
+  void set_resting_links(const std::vector<uint32_t>* resting_links) { resting_links_ = resting_links; }
 
  private:
   bool is_link(int body) const { return body >= object_count_; }
+  // Scales each finger's joint motion from `now_rad` to `goal_rad` so that none of its links'
+  // origins and its tip moves farther than `reach_m` (in the hand's frame): a finger catches up
+  // with the tracked one at bounded speed, as the wrist does, so a finger that the world held
+  // back and then lets go does not jump through a panel in one step.
+  void limit_finger_speed(const JointAngles& now_rad, double reach_m, JointAngles& goal_rad) const;
   Link link_of(int body) const { return static_cast<Link>(body - object_count_); }
   void hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& prev_links, ProxyPose& pose,
                          HandLinkPoses& links, std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
@@ -124,6 +143,7 @@ class ProxyHand {
   const ProxyParams& params_;
   int object_count_;
   std::vector<double> depth_limit_m_;                        // per object
+  const std::vector<uint32_t>* resting_links_ = nullptr;     // per object
   std::vector<uint8_t> dynamic_;                             // per object
   std::array<std::array<bool, kJointCount>, kFingerCount> finger_joints_{};  // joints moving a finger
 

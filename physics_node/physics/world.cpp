@@ -69,13 +69,17 @@ World::World(Scene scene)
   if (scene_.contact.max_substeps < 1 || !(scene_.step_s > 0.0))
     throw std::invalid_argument("World: the step and max_substeps must be positive");
   hand_id_ = grasp_tracker_.hand_id();
-  if (scene_.hand && scene_.proxy.enabled) proxy_.emplace(scene_);
+  if (scene_.hand && scene_.proxy.enabled) {
+    proxy_.emplace(scene_);
+    proxy_->set_resting_links(&resting_links_);
+  }
   state_.bodies.resize(object_count_);
   X_GO_.resize(object_count_);
   X_GO_before_.resize(object_count_);
   state_.grasp.resize(object_count_);
   I_O_inv_.resize(object_count_);
   held_mask_.assign(object_count_, 0);
+  resting_links_.assign(object_count_, 0);
   start_bodies_.resize(object_count_);
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
@@ -166,6 +170,7 @@ void World::step() {
   bool any_held = false;
   for (int i = 0; i < object_count_; ++i) {
     held_mask_[i] = state_.bodies[i].held_by != kNotHeld ? 1 : 0;
+    resting_links_[i] = state_.grasp[i].resting_links;
     any_held = any_held || held_mask_[i] != 0;
   }
   if (proxy_ && state_.hand_active && !proxy_prev_links_valid_) {

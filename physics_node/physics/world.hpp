@@ -139,6 +139,7 @@ class World {
   std::vector<Eigen::Isometry3d> X_GO_;         // collision input, all objects
   std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
   std::vector<uint8_t> held_mask_;              // 1 for the objects held at the start of this step
+  std::vector<uint32_t> resting_links_;         // GraspHold::resting_links at the start of this step
   std::vector<BodyState> start_bodies_;         // the bodies at the start of this step
   std::array<Eigen::Isometry3d, kLinkCount> X_GL_before_;  // the links one substep ago
   HandLinkPoses link_poses_;

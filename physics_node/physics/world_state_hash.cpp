@@ -56,6 +56,7 @@ void hash_hold(Fnv1a64& h, const GraspHold& g) {
   h.size(g.grip_fingers);
   for (double q : g.grip_flexion_rad)
     h.f64(q);
+  h.u64(g.resting_links);
 }
 
 }  // namespace

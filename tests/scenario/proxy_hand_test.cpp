@@ -217,5 +217,34 @@ TEST(ProxyHand, TheWristApproachesAFarTrackedPoseAtItsMaximumSpeed) {
   EXPECT_NEAR(world.tracked_offset_m(), 1.0 - moved_m, 1e-6);
 }
 
+// The fingers catch up with a far tracked shape no faster than the wrist: a glove that jumps from
+// an open hand to a fist (a glitch, or a finger the world held back and let go) moves no fingertip
+// more than max_speed_mps * step per step, and the fist is reached in the end.
+TEST(ProxyHand, TheFingersApproachAFarTrackedShapeAtTheMaximumSpeed) {
+  World world(console_scene(true));
+  const HandModel& hand = *world.scene().hand;
+  HandInput open = hand_at(hand, {0.2, 0.0, 1.2});
+  world.set_hand_input(open);
+  world.step();
+  HandInput fist = open;
+  for (int j = 0; j < kJointCount; ++j) fist.q_rad[j] = hand.joints[j].max_rad;
+  world.set_hand_input(fist);
+  const double reach_m = world.scene().proxy.max_speed_mps * world.scene().step_s;
+  HandLinkPoses before;
+  HandLinkPoses now;
+  forward_kinematics(hand, world.state().q_rad, before);
+  double fastest_m = 0.0;
+  for (int step = 0; step < 200; ++step) {
+    world.step();
+    forward_kinematics(hand, world.state().q_rad, now);
+    for (int f = 0; f < kFingerCount; ++f)
+      fastest_m = std::max(fastest_m, (now.p_H_tip[f] - before.p_H_tip[f]).norm());
+    before = now;
+  }
+  EXPECT_LE(fastest_m, reach_m * 1.01);  // the shares are measured again to within this
+  EXPECT_GT(fastest_m, 0.9 * reach_m);  // and it does move at that speed
+  for (int j = 0; j < kJointCount; ++j) EXPECT_NEAR(world.state().q_rad[j], fist.q_rad[j], 1e-9) << j;
+}
+
 }  // namespace
 }  // namespace vcockpit::physics

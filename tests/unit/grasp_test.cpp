@@ -83,6 +83,38 @@ TEST(GraspRule, NoThumbIsNoGrasp) {
   EXPECT_EQ(check(contacts).verdict, GraspReason::kNoThumb);
 }
 
+// A power grasp: the fingers wrap the object against the palm, the thumb elsewhere. The palm's
+// normal stands for the thumb's (alpha0 applies to it), unless palm_opposition is off.
+TEST(GraspRule, ThePalmOpposesTheFingersWhenTheThumbIsOff) {
+  auto contacts = balanced_three_point();
+  contacts[0].link = Link::kPalm;
+  GraspCheck c = check(contacts);
+  EXPECT_EQ(c.verdict, GraspReason::kStableGrasp) << grasp_reason_name(c.verdict);
+  EXPECT_FALSE(c.thumb);
+  EXPECT_TRUE(c.palm_opposes);
+  EXPECT_NEAR(c.min_thumb_angle_deg, 180.0, 1e-9);
+  // a finger beside the palm, not opposite it, is no grasp
+  const double a = 100.0 * M_PI / 180.0;
+  contacts[2] = touch(Link::kMiddleDistal, {0, 0.04, 0}, {std::cos(a), std::sin(a), 0}, 2.0, 0.5);
+  EXPECT_EQ(check(contacts).verdict, GraspReason::kFingersNotOpposed);
+  // with the thumb on as well, the thumb is the one that must oppose
+  contacts = balanced_three_point();
+  contacts.push_back(touch(Link::kPalm, {0, 0, 0.04}, {0, 0, -1}, 0.0, 0.0));
+  c = check(contacts);
+  EXPECT_TRUE(c.thumb);
+  EXPECT_FALSE(c.palm_opposes);
+  EXPECT_EQ(c.verdict, GraspReason::kStableGrasp);
+  // palm opposition off: the paper's rule, the thumb or nothing
+  contacts = balanced_three_point();
+  contacts[0].link = Link::kPalm;
+  GraspParams paper;
+  paper.palm_opposition = false;
+  EXPECT_EQ(evaluate_grasp(contacts.data(), contacts.size(), kCentroid, kMass, kGravity, paper,
+                           false)
+                .verdict,
+            GraspReason::kNoThumb);
+}
+
 TEST(GraspRule, ThumbFingerAngleUnderAlpha0IsNoGrasp) {
   auto contacts = balanced_three_point();
   // the middle finger presses at 100 deg from the thumb's normal (alpha0 is 120)

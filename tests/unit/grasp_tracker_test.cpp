@@ -187,6 +187,8 @@ TEST(GraspTracker, StaticObjectsAndUntouchedFreeOnesAreLeftAlone) {
 // The glove opening releases a held object that the proxy's fingers still touch (the test holds
 // on): when the gripping fingers' flexion, averaged, falls release_opening_deg below its tightest
 // while held; closing tighter after the grasp raises that mark, and opening less keeps the hold.
+// The thumb counts only when it grips alone: it opens by rotation and abduction, and a thumb
+// curling further while the fingers open wide must not keep the hold.
 TEST(GraspTracker, TheGloveOpeningReleasesWhatTheFingersStillTouch) {
   Rig rig;
   const auto set_flexion_deg = [&](double index_deg, double thumb_deg) {
@@ -201,17 +203,85 @@ TEST(GraspTracker, TheGloveOpeningReleasesWhatTheFingersStillTouch) {
   ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // GRASP
   set_flexion_deg(140.0, 90.0);                      // closing tighter: the mark rises
   EXPECT_TRUE(rig.run_until(0.3, grip).empty());
-  set_flexion_deg(125.0, 80.0);                      // opened 12.5 deg on average: still held
+  set_flexion_deg(125.0, 60.0);                      // the index opened 15 deg: still held
   EXPECT_TRUE(rig.run_until(0.5, grip).empty());
-  set_flexion_deg(110.0, 70.0);                      // opened 25 deg on average: not yet beyond
+  set_flexion_deg(115.0, 60.0);                      // 25 deg: not yet beyond
   EXPECT_TRUE(rig.run_until(0.6, grip).empty());
-  set_flexion_deg(105.0, 70.0);                      // 27.5 deg: let go after the release delay
+  set_flexion_deg(112.0, 130.0);                     // 28 deg, the thumb curled: let go after the
+                                                     // release delay
   const auto events = rig.run_until(0.7, grip);
   ASSERT_EQ(events.size(), 1u);
   EXPECT_FALSE(events[0].grasp);
   EXPECT_EQ(events[0].reason, GraspReason::kHandOpened);
   EXPECT_NEAR(static_cast<double>(events[0].t_ns) * 1e-9, 0.6 + 0.03, 1.5e-3);
   EXPECT_EQ(rig.body.held_by, kNotHeld);
+}
+
+// A thumb gripping alone (with the palm, say) is the finger whose opening counts.
+TEST(GraspTracker, AThumbGrippingAloneIsWatchedForOpening) {
+  Rig rig;
+  GraspCheck grip = holding();
+  grip.fingers = 1u << static_cast<int>(Finger::kThumb);
+  for (hand::Joint j : {hand::Joint::kThumbMcp, hand::Joint::kThumbIp})
+    rig.glove_q_rad[static_cast<std::size_t>(j)] = 40.0 * M_PI / 180.0;
+  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // GRASP
+  EXPECT_TRUE(rig.run_until(0.3, grip).empty());
+  for (hand::Joint j : {hand::Joint::kThumbMcp, hand::Joint::kThumbIp})
+    rig.glove_q_rad[static_cast<std::size_t>(j)] = 25.0 * M_PI / 180.0;  // opened 30 deg
+  const auto events = rig.run_until(0.4, grip);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].reason, GraspReason::kHandOpened);
+}
+
+// The links that touched an object when it was let go stand off it until the regrab cooldown
+// ends (GraspHold::resting_links; the proxy reads them), whatever touches it afterwards.
+TEST(GraspTracker, TheLinksThatLetGoAreNamedUntilTheCooldownEnds) {
+  GraspTracker tracker(params(), kStep_s, {0.0, 0.0, -9.81}, kHand);
+  ObjectSpec cup;
+  cup.dynamic = true;
+  cup.mass_kg = 0.2;
+  GraspHold hold = tracker.initial_hold(cup);
+  BodyState body;
+  const Eigen::Vector3d c_G(0.1, 0.0, 0.05);
+  body.X_GO.translation() = c_G;
+  // thumb behind, index and middle in front, squeezing along x (|sum F| = the weight, 1.96 N)
+  const auto contact = [&](Link link, double x, double y, double F_x) {
+    HandContact c;
+    c.link = link;
+    c.p_G = c_G + Eigen::Vector3d(x, y, 0.0);
+    c.n_G = Eigen::Vector3d(F_x > 0 ? 1.0 : -1.0, 0.0, 0.0);
+    c.F_G = Eigen::Vector3d(F_x, 0.0, 0.0);
+    return c;
+  };
+  const std::vector<HandContact> grip = {contact(Link::kThumbDistal, -0.03, 0.0, 2.0),
+                                         contact(Link::kIndexDistal, 0.03, 0.01, -1.0),
+                                         contact(Link::kMiddleDistal, 0.03, -0.01, -1.0)};
+  const std::vector<HandContact> thumb_only = {grip[0]};
+  const JointAngles glove{};
+  std::vector<GraspEvent> events;
+  int64_t t_ns = 0;
+  const auto run_until = [&](double t_s, const std::vector<HandContact>& contacts) {
+    while (t_ns < std::llround(t_s * 1e9)) {
+      t_ns += kStep_ns;
+      tracker.update(0, cup, contacts.data(), contacts.size(),
+                     HandNow{t_ns, true, Eigen::Isometry3d::Identity(), &glove}, hold, body, events);
+    }
+  };
+  run_until(0.3, grip);
+  ASSERT_EQ(body.held_by, kHand);
+  EXPECT_EQ(hold.resting_links, 0u);
+  run_until(0.4, thumb_only);  // too few contacts: let go after the release delay
+  ASSERT_EQ(body.held_by, kNotHeld);
+  ASSERT_EQ(events.size(), 2u);
+  const int64_t released_ns = events[1].t_ns;
+  EXPECT_EQ(hold.resting_links, 1u << static_cast<int>(Link::kThumbDistal));
+  run_until(static_cast<double>(released_ns) * 1e-9 + 0.29, grip);  // back on it: no grasp yet
+  EXPECT_EQ(hold.resting_links, 1u << static_cast<int>(Link::kThumbDistal));
+  EXPECT_EQ(events.size(), 2u);
+  run_until(static_cast<double>(released_ns) * 1e-9 + 0.31, grip);  // the cooldown is over
+  EXPECT_EQ(hold.resting_links, 0u);
+  EXPECT_EQ(events.size(), 3u);  // grasped again
+  EXPECT_TRUE(events[2].grasp);
 }
 
 }  // namespace

@@ -93,9 +93,12 @@ const Degradation& degradation(const std::string& name) {
 // Measured (seed 7) with the proxy hand, the interpolating replay, the implicit gyroscopic term,
 // rolling resistance, the closed shell, exact capsule contacts (segment_contact.hpp), the held
 // object kept by an opposed pinch (exit_min_contacts) and let go when the glove opens
-// (release_opening_deg). No cell sinks a link into a panel, and no object is knocked while the
-// fingers close. What is left:
-//   no grasp / not carried   the grasp test does not hold, or not through the lift;
+// (release_opening_deg, the thumb left out of it), fingers that catch up with the glove at
+// bounded speed, links that stand off what they let go, and the palm opposing the fingers of a
+// power grasp. No cell sinks a link into a panel. What is left:
+//   no grasp / not carried   the grasp test does not hold, or not through the lift; the cup's
+//              grip with the 50th-percentile hand pinches it between thumb and middle finger
+//              (the index misses it), lifts it by friction and knocks it past 0.5 m/s;
 //   ends off   the object was not let go where it was set down: the scripted open shapes were
 //              solved to clear the object by 3 mm for the 50th-percentile hand, so another hand
 //              (or a degraded log) can still touch it with three links, and the glove opens by
@@ -103,31 +106,28 @@ const Degradation& degradation(const std::string& name) {
 // Each entry: the checks that fail, with the figures measured.
 const std::map<std::string, std::string>& known_failing() {
   static const std::map<std::string, std::string> kCells = {
-      {"ball_large_harsh", "ends 76 mm off"},
-      {"ball_large_typical", "not carried (lift 1 mm), ends 718 mm off"},
-      {"ball_medium_gaps", "ends 84 mm off"},
-      {"ball_medium_harsh", "ends 64 mm off"},
-      {"ball_medium_overrange", "ends 800 mm off"},
-      {"ball_small_clean", "ends 740 mm off"},
-      {"ball_small_harsh", "ends 90 mm off"},
-      {"ball_small_typical", "ends 172 mm off"},
-      {"checklist_large_harsh", "ends 38 mm off"},
-      {"checklist_medium_harsh", "ends 43 mm off"},
-      {"cup_large_harsh", "not carried (lift 7 mm), ends 132 mm off"},
-      {"cup_large_typical", "not carried (lift 2 mm), ends 124 mm off"},
-      {"cup_medium_gaps", "ends 749 mm off"},
-      {"cup_medium_harsh", "ends 32 mm off"},
-      {"cup_small_harsh", "not carried (lift 1 mm), ends 95 mm off"},
-      {"cup_small_typical", "ends 81 mm off"},
-      {"flashlight_large_clean", "not carried (lift 31 mm), ends 40 mm off"},
-      {"flashlight_large_harsh", "not carried (lift 1 mm), ends 144 mm off"},
-      {"flashlight_medium_glove_noise", "not carried (lift 0 mm)"},
-      {"flashlight_medium_grip500ms", "ends 120 mm off"},
-      {"flashlight_medium_harsh", "not carried (lift 1 mm), ends 151 mm off"},
-      {"flashlight_medium_overrange", "not carried (lift 0 mm), ends 120 mm off"},
-      {"flashlight_small_clean", "no grasp, ends 77 mm off"},
-      {"flashlight_small_harsh", "not carried (lift 1 mm), ends 121 mm off"},
-      {"flashlight_small_typical", "not carried (lift 2 mm), ends 86 mm off"},
+      {"ball_large_harsh", "ends 720 mm off"},
+      {"ball_large_typical", "not carried (lift 10 mm), ends 722 mm off"},
+      {"ball_medium_harsh", "ends 720 mm off"},
+      {"ball_medium_overrange", "ends 956 mm off"},
+      {"ball_small_harsh", "ends 94 mm off"},
+      {"ball_small_typical", "ends 853 mm off"},
+      {"cup_large_harsh", "no grasp, ends 126 mm off"},
+      {"cup_large_typical", "not carried (lift 2 mm), ends 128 mm off"},
+      {"cup_medium_120hz", "knocked at 0.59 m/s, no grasp, ends 36 mm off"},
+      {"cup_medium_30hz", "knocked at 0.60 m/s, no grasp, ends 38 mm off"},
+      {"cup_medium_clean", "knocked at 0.58 m/s, no grasp, ends 35 mm off"},
+      {"cup_medium_dropouts", "knocked at 0.59 m/s, no grasp, ends 37 mm off"},
+      {"cup_medium_gaps", "ends 62 mm off"},
+      {"cup_medium_grip250ms", "knocked at 0.61 m/s, no grasp, ends 41 mm off"},
+      {"cup_medium_grip500ms", "knocked at 0.60 m/s, no grasp, ends 44 mm off"},
+      {"cup_medium_harsh", "no grasp, ends 127 mm off"},
+      {"cup_medium_overrange", "no grasp, ends 125 mm off"},
+      {"cup_small_clean", "ends 75 mm off"},
+      {"cup_small_harsh", "no grasp, ends 123 mm off"},
+      {"cup_small_typical", "ends 71 mm off"},
+      {"flashlight_medium_harsh", "not carried (lift 20 mm)"},
+      {"flashlight_small_clean", "not carried (lift 10 mm)"},
   };
   return kCells;
 }
