@@ -65,13 +65,13 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
   check.min_thumb_angle_deg = 180.0;
   bool any_finger = false;
   if (check.thumb || check.palm_opposes) {
-    const Eigen::Vector3d n_thumb =
+    const Eigen::Vector3d n_opposer =
         check.thumb ? Eigen::Vector3d(finger_normal[0].normalized())
                     : Eigen::Vector3d(normal_sum[static_cast<int>(Link::kPalm)].normalized());
     for (int f = 1; f < kFingerCount; ++f) {
       if (!finger_touching[f]) continue;
       any_finger = true;
-      const double cosine = std::clamp(n_thumb.dot(finger_normal[f].normalized()), -1.0, 1.0);
+      const double cosine = std::clamp(n_opposer.dot(finger_normal[f].normalized()), -1.0, 1.0);
       check.min_thumb_angle_deg = std::min(check.min_thumb_angle_deg, rad_to_deg(std::acos(cosine)));
     }
   }

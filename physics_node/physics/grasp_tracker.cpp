@@ -46,8 +46,6 @@ void GraspTracker::update(int object, const ObjectSpec& o, const HandContact* co
                           std::size_t count, const HandNow& hand, GraspHold& hold, BodyState& body,
                           std::vector<GraspEvent>& events) const {
   if (!o.dynamic) return;
-  uint32_t touching_links = 0;
-  for (std::size_t i = 0; i < count; ++i) touching_links |= 1u << static_cast<int>(contacts[i].link);
   const bool held = body.held_by == hand_id_;
   if (hold.resting_links != 0 && hand.t_ns - hold.released_at_ns >= regrab_cooldown_ns_)
     hold.resting_links = 0;
@@ -55,7 +53,11 @@ void GraspTracker::update(int object, const ObjectSpec& o, const HandContact* co
   const GraspCheck check = evaluate_grasp(contacts, count, body.X_GO.translation(), o.mass_kg,
                                           gravity_mps2_, params_, held);
   decide(object, check, hand, hold, body, events);
-  if (held && body.held_by == kNotHeld) hold.resting_links = touching_links;
+  if (held && body.held_by == kNotHeld) {  // let go this step: name the links that touched it
+    hold.resting_links = 0;
+    for (std::size_t i = 0; i < count; ++i)
+      hold.resting_links |= 1u << static_cast<int>(contacts[i].link);
+  }
 }
 
 void GraspTracker::decide(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
