@@ -13,6 +13,12 @@ std::string grasp_event_text(const physics::GraspEvent& e) {
                   e.contacts, e.palm_opposes ? "palm" : "thumb", e.min_thumb_angle_deg, e.residual_force_N, e.residual_torque_Nm);
   } else if (e.reason == physics::GraspReason::kGloveLost) {
     std::snprintf(text.data(), text.size(), "glove lost");
+  } else if (e.reason == physics::GraspReason::kFingersNotOpposed) {
+    std::snprintf(text.data(), text.size(),
+                  "%s: %d links, thumb %s, best opposition %.0f deg, |F| %.2f N, |M| %.3f N m",
+                  physics::grasp_reason_name(e.reason), e.contacts,
+                  e.thumb_touching ? "touching" : "off", e.best_opposition_deg, e.residual_force_N,
+                  e.residual_torque_Nm);
   } else {
     std::snprintf(text.data(), text.size(),
                   "%s: %d links, thumb %s, min thumb angle %.0f deg, |F| %.2f N, |M| %.3f N m",

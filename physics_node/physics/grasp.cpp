@@ -63,17 +63,30 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
   const bool palm = touching[static_cast<int>(Link::kPalm)];
   check.palm_opposes = !check.thumb && palm && params.palm_opposition;
   check.min_thumb_angle_deg = 180.0;
+  check.best_opposition_deg = 0.0;
   bool any_finger = false;
+  const auto angle_deg = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return rad_to_deg(std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)));
+  };
   if (check.thumb || check.palm_opposes) {
     const Eigen::Vector3d n_opposer =
-        check.thumb ? Eigen::Vector3d(finger_normal[0].normalized())
-                    : Eigen::Vector3d(normal_sum[static_cast<int>(Link::kPalm)].normalized());
+        check.thumb ? finger_normal[0] : normal_sum[static_cast<int>(Link::kPalm)];
     for (int f = 1; f < kFingerCount; ++f) {
       if (!finger_touching[f]) continue;
       any_finger = true;
-      const double cosine = std::clamp(n_opposer.dot(finger_normal[f].normalized()), -1.0, 1.0);
-      check.min_thumb_angle_deg = std::min(check.min_thumb_angle_deg, rad_to_deg(std::acos(cosine)));
+      check.min_thumb_angle_deg = std::min(check.min_thumb_angle_deg, angle_deg(n_opposer, finger_normal[f]));
     }
+  }
+  // a held object stays held while any finger is opposed, by the thumb or (with palm
+  // opposition) the palm: a finger that wraps round the object's end does not undo a hold
+  const bool palm_may_oppose = palm && params.palm_opposition;
+  for (int f = 1; f < kFingerCount; ++f) {
+    if (!finger_touching[f]) continue;
+    if (check.thumb)
+      check.best_opposition_deg = std::max(check.best_opposition_deg, angle_deg(finger_normal[0], finger_normal[f]));
+    if (palm_may_oppose)
+      check.best_opposition_deg = std::max(
+          check.best_opposition_deg, angle_deg(normal_sum[static_cast<int>(Link::kPalm)], finger_normal[f]));
   }
 
   const double scale = held ? params.exit_scale : 1.0;
@@ -81,9 +94,10 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
   const int min_contacts = held ? params.exit_min_contacts : params.min_contacts;
   if (check.links_in_contact < min_contacts) {
     check.verdict = GraspReason::kTooFewContacts;
-  } else if (!check.thumb && !check.palm_opposes) {
+  } else if (!check.thumb && !check.palm_opposes && !(held && palm_may_oppose)) {
     check.verdict = GraspReason::kNoThumb;
-  } else if (!any_finger || check.min_thumb_angle_deg <= alpha0) {
+  } else if (held ? check.best_opposition_deg <= alpha0
+                  : (!any_finger || check.min_thumb_angle_deg <= alpha0)) {
     check.verdict = GraspReason::kFingersNotOpposed;
   } else if (check.residual_force_N > params.xi_N * scale) {
     check.verdict = GraspReason::kForceResidual;

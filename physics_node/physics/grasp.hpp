@@ -49,6 +49,9 @@ struct GraspCheck {
   bool thumb = false;
   uint8_t fingers = 0;               // bit f: finger f touches
   double min_thumb_angle_deg = 0.0;  // smallest thumb-finger normal angle (180: no finger)
+  // the largest angle between a finger's normal and the thumb's or (palm_opposition) the palm's:
+  // the hold's test once an object is held (0: no such pair)
+  double best_opposition_deg = 0.0;
   bool palm_opposes = false;         // no thumb: the palm's normal stood for it (power grasp)
   double residual_force_N = 0.0;
   double residual_torque_Nm = 0.0;

@@ -155,6 +155,7 @@ GraspEvent GraspTracker::event(int object, bool grasp, GraspReason reason, const
   e.thumb_touching = check.thumb;
   e.palm_opposes = check.palm_opposes;
   e.min_thumb_angle_deg = check.min_thumb_angle_deg;
+  e.best_opposition_deg = check.best_opposition_deg;
   e.residual_force_N = check.residual_force_N;
   e.residual_torque_Nm = check.residual_torque_Nm;
   return e;

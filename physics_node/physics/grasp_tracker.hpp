@@ -34,6 +34,7 @@ struct GraspEvent {
   bool thumb_touching = false;
   bool palm_opposes = false;         // no thumb: the palm opposed the fingers (power grasp)
   double min_thumb_angle_deg = 0.0;  // smallest thumb-finger normal angle (180: no finger)
+  double best_opposition_deg = 0.0;  // largest thumb- or palm-finger normal angle
   double residual_force_N = 0.0;     // eq. 30's |sum F|
   double residual_torque_Nm = 0.0;   // eq. 31's |sum M|
 };

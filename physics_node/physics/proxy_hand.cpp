@@ -52,15 +52,42 @@ ProxyHand::ProxyHand(const Scene& scene)
   planes_.reserve(64);
 }
 
-ProxyPose ProxyHand::step_goal(const ProxyPose& now, const HandInput& tracked, bool pushing,
+ProxyPose ProxyHand::step_goal(const ProxyPose& now, const HandInput& tracked_from,
+                               const HandInput& tracked, bool pushing, bool holding,
+                               const std::vector<Eigen::Vector3d>& blocking_out_G,
                                double step_s) const {
-  const double v_max = pushing ? params_.push_speed_mps : params_.max_speed_mps;
-  const double w_max =
+  double v_max = pushing ? params_.push_speed_mps : params_.max_speed_mps;
+  double w_max =
       pushing ? std::min(params_.max_spin_radps, params_.push_speed_mps / kHandReach_m)
               : params_.max_spin_radps;
+  if (holding) {
+    // a held object moves as the tracked hand moves, and the proxy's lag behind it (where the
+    // world held the hand back) closes no faster than the pushing speed: catching up at the
+    // free speed would fling what the hand carries
+    const double tracked_mps =
+        (tracked.X_GH.translation() - tracked_from.X_GH.translation()).norm() / step_s;
+    const double tracked_radps = Eigen::Quaterniond(tracked_from.X_GH.linear())
+                                     .angularDistance(Eigen::Quaterniond(tracked.X_GH.linear())) /
+                                 step_s;
+    // (half the pushing speed each to the wrist's shift and its turn, at the hand's reach)
+    v_max = std::min(v_max, tracked_mps + 0.5 * params_.push_speed_mps);
+    w_max = std::min(w_max, tracked_radps + 0.5 * params_.push_speed_mps / kHandReach_m);
+  }
   ProxyPose goal;
   goal.q_rad = tracked.q_rad;
-  const Eigen::Vector3d dp = tracked.X_GH.translation() - now.X_GH.translation();
+  Eigen::Vector3d dp = tracked.X_GH.translation() - now.X_GH.translation();
+  // off the surfaces it rests on (sequential projection: exact for one plane and for two at a
+  // right angle, and never into any of them after the last pass for an edge or a corner)
+  for (int pass = 0; pass < kMaxBlockingPlanes; ++pass) {
+    bool projected = false;
+    for (const Eigen::Vector3d& out : blocking_out_G) {
+      const double into_m = -out.dot(dp);
+      if (into_m <= 0.0) continue;
+      dp += into_m * out;
+      projected = true;
+    }
+    if (!projected) break;
+  }
   const double reach_m = v_max * step_s;
   const double dp_m = dp.norm();
   goal.X_GH.translation() =
@@ -189,6 +216,7 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
                                   ProxyConstraint& result) {
   std::array<double, kFingerCount> share;
   share.fill(1.0);
+  limits_.clear();
   // Each contact of a phalanx: the depth its finger's own joints added over this substep (the
   // contact point carried from the previous joint angles, the wrist as it is now), and the share
   // of that motion the limits allow, to first order.
@@ -202,7 +230,6 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
     const Eigen::Vector3d p_before_G = pose.X_GH * (prev_links.X_HL[l] * p_L);
     // the link is body_b and n points into it: moving it by u deepens the contact by -n.u
     const double deepened_m = c.n_G.dot(p_before_G - c.p_G);
-    if (deepened_m <= kTinyDepth_m) return;
     const int other = c.body_a;
     const double depth_before_m = c.depth_m - deepened_m;
     double allowed_m = depth_limit_m(other, c.body_b) - depth_before_m;
@@ -211,6 +238,8 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
       // into a free object no faster than the pushing speed (from where it first touches)
       allowed_m = std::min(allowed_m, params_.push_speed_mps * dt_s + std::max(0.0, -depth_before_m));
     }
+    limits_.push_back({&c, link, finger, p_L, deepened_m, allowed_m});
+    if (deepened_m <= kTinyDepth_m) return;
     const auto f = static_cast<std::size_t>(finger);
     share[f] = std::min(share[f], std::clamp(allowed_m / deepened_m, 0.0, 1.0));
   };
@@ -219,6 +248,7 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
   if (std::all_of(share.begin(), share.end(), [](double s) { return s >= 1.0; })) return;
 
   // a joint moving several fingers takes the least of their shares
+  const JointAngles q_goal_rad = pose.q_rad;
   for (int j = 0; j < kJointCount; ++j) {
     double s = 1.0;
     for (int f = 0; f < kFingerCount; ++f)
@@ -226,8 +256,100 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
         s = std::min(s, share[static_cast<std::size_t>(f)]);
     pose.q_rad[j] = prev.q_rad[j] + s * (pose.q_rad[j] - prev.q_rad[j]);
   }
+  for (int f = 0; f < kFingerCount; ++f)
+    if (share[static_cast<std::size_t>(f)] < 1.0)
+      slide_finger(static_cast<Finger>(f), share[static_cast<std::size_t>(f)], q_goal_rad, pose);
   result.fingers_held = true;
   move_links(pose, links, X_GL, contacts, hand_static);
+}
+
+void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_goal_rad,
+                             ProxyPose& pose) {
+  constexpr int kMaxRows = 4;       // the binding contacts that steer the slide
+  constexpr int kMaxJoints = 6;     // joints of one finger
+  constexpr double kProbe_rad = 1e-4;
+  constexpr double kDamping_m2 = 1e-8;
+  constexpr double kBinding_m = 1e-6;  // a contact this close to its limit binds the slide
+  constexpr int kActiveSetPasses = 3;
+  const auto f = static_cast<std::size_t>(finger);
+  std::array<int, kMaxJoints> joints{};
+  int joint_count = 0;
+  for (int j = 0; j < kJointCount && joint_count < kMaxJoints; ++j)
+    if (finger_joints_[f][static_cast<std::size_t>(j)]) joints[static_cast<std::size_t>(joint_count++)] = j;
+  if (joint_count == 0) return;
+  // what the share left of the finger's step
+  Eigen::Matrix<double, kMaxJoints, 1> rest = Eigen::Matrix<double, kMaxJoints, 1>::Zero();
+  for (int k = 0; k < joint_count; ++k) {
+    const int j = joints[static_cast<std::size_t>(k)];
+    rest(k) = q_goal_rad[j] - pose.q_rad[j];
+  }
+  if (rest.squaredNorm() <= 0.0) return;
+
+  // the depth each of the finger's contacts gains per radian of each joint, at the held-back pose
+  slide_rows_.clear();
+  forward_kinematics(hand_, pose.q_rad, slide_links_);
+  for (std::size_t i = 0; i < limits_.size(); ++i)
+    if (limits_[i].finger == finger) slide_rows_.push_back({i, Eigen::Matrix<double, 6, 1>::Zero(), 0.0});
+  if (slide_rows_.empty()) return;
+  for (int k = 0; k < joint_count; ++k) {
+    JointAngles probe = pose.q_rad;
+    probe[joints[static_cast<std::size_t>(k)]] += kProbe_rad;
+    forward_kinematics(hand_, probe, probe_links_);
+    for (SlideRow& row : slide_rows_) {
+      const ContactLimit& cl = limits_[row.limit];
+      const auto l = static_cast<std::size_t>(cl.link);
+      const Eigen::Vector3d u_H =
+          probe_links_.X_HL[l] * cl.p_L - slide_links_.X_HL[l] * cl.p_L;
+      row.gradient_m(k) = -cl.contact->n_G.dot(pose.X_GH.linear() * u_H) / kProbe_rad;
+    }
+  }
+  for (SlideRow& row : slide_rows_) {
+    const ContactLimit& cl = limits_[row.limit];
+    row.room_m = cl.allowed_m - share * cl.deepened_m;  // how much deeper it may still go
+    // a finger that an object stopped stays on it (it grips or pushes it); only a panel's
+    // surface is slid along
+    if (row.room_m <= kBinding_m && row.gradient_m.dot(rest) > kTinyDepth_m &&
+        dynamic_[static_cast<std::size_t>(cl.contact->body_a)] != 0)
+      return;
+  }
+
+  // the rest projected off the gradients of the binding contacts it would deepen (an active
+  // set, grown a few times): the finger slides along the surfaces that stopped it
+  Eigen::Matrix<double, kMaxJoints, 1> slide = rest;
+  std::array<const SlideRow*, kMaxRows> active{};
+  int active_count = 0;
+  for (int pass = 0; pass < kActiveSetPasses; ++pass) {
+    bool grew = false;
+    for (const SlideRow& row : slide_rows_) {
+      if (row.room_m > kBinding_m || row.gradient_m.dot(slide) <= kTinyDepth_m) continue;
+      if (std::find(active.begin(), active.begin() + active_count, &row) != active.begin() + active_count) continue;
+      if (active_count == kMaxRows) break;
+      active[static_cast<std::size_t>(active_count++)] = &row;
+      grew = true;
+    }
+    if (!grew) break;
+    Eigen::Matrix<double, kMaxRows, kMaxJoints> G = Eigen::Matrix<double, kMaxRows, kMaxJoints>::Zero();
+    for (int i = 0; i < active_count; ++i) G.row(i) = active[static_cast<std::size_t>(i)]->gradient_m.transpose();
+    const auto Ga = G.topRows(active_count);
+    const Eigen::MatrixXd GGt =
+        Ga * Ga.transpose() + kDamping_m2 * Eigen::MatrixXd::Identity(active_count, active_count);
+    slide = rest - Ga.transpose() * GGt.ldlt().solve(Ga * rest);
+  }
+  // ... and as far along it as every contact of the finger allows (first order)
+  double along = 1.0;
+  for (const SlideRow& row : slide_rows_) {
+    // the active rows are projected off (to within the damping's trace): they do not deepen
+    if (std::find(active.begin(), active.begin() + active_count, &row) != active.begin() + active_count) continue;
+    const double deepens_m = row.gradient_m.dot(slide);
+    if (deepens_m <= kTinyDepth_m) continue;
+    along = std::min(along, std::max(0.0, row.room_m) / deepens_m);
+  }
+  if (!(along > 0.0)) return;
+  for (int k = 0; k < joint_count; ++k) {
+    const int j = joints[static_cast<std::size_t>(k)];
+    const hand::JointRange& range = hand_.joints[static_cast<std::size_t>(j)];
+    pose.q_rad[j] = std::clamp(pose.q_rad[j] + along * slide(k), range.min_rad, range.max_rad);
+  }
 }
 
 void ProxyHand::move_links(const ProxyPose& pose, HandLinkPoses& links,
@@ -260,7 +382,8 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
   constexpr int kRows = 3;          // the deepest contacts of a finger that steer its joints
   constexpr int kMaxJoints = 6;     // joints of one finger
   constexpr double kProbe_rad = 1e-4;
-  constexpr double kDamping_m2 = 1e-8;  // keeps the step finite near a singular finger
+  constexpr double kDamping_m2 = 1e-6;  // (1 mm/rad)^2: keeps the step small near a singular finger
+  constexpr double kMaxBend_rad = 0.05;  // per substep: ~4 mm at a fingertip
   bool moved = false;
   // how far a contact is beyond its limit, and the depth to bring it to
   const auto excess_of = [&](const ContactPoint& c) {
@@ -319,7 +442,11 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
     const auto Jr = J.topLeftCorner(row_count, joint_count);
     const Eigen::MatrixXd JJt = Jr * Jr.transpose() +
                                 kDamping_m2 * Eigen::MatrixXd::Identity(row_count, row_count);
-    const Eigen::VectorXd dq = -Jr.transpose() * JJt.ldlt().solve(excess.head(row_count));
+    Eigen::VectorXd dq = -Jr.transpose() * JJt.ldlt().solve(excess.head(row_count));
+    // a first-order step, trusted only so far: near a singular finger (a contact close to a
+    // joint's axis) it would swing a phalanx through the object it is leaving
+    const double largest_rad = dq.cwiseAbs().maxCoeff();
+    if (largest_rad > kMaxBend_rad) dq *= kMaxBend_rad / largest_rad;
     for (int k = 0; k < joint_count; ++k) {
       const int j = joints[static_cast<std::size_t>(k)];
       const hand::JointRange& range = hand_.joints[static_cast<std::size_t>(j)];
@@ -348,7 +475,8 @@ void ProxyHand::shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, Proxy
       if (a == b) continue;
       const int other = a ? c.body_b : c.body_a;  // static or free: never a link
       planes_.push_back({b ? c.n_G : Eigen::Vector3d(-c.n_G), c.depth_m,
-                         depth_limit_m(other, a ? c.body_a : c.body_b)});
+                         depth_limit_m(other, a ? c.body_a : c.body_b),
+                         dynamic_[static_cast<std::size_t>(other)] == 0});
     }
   };
   collect(hand_static);
@@ -367,6 +495,16 @@ void ProxyHand::shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, Proxy
     if (largest_m < kShiftTolerance_m) break;
   }
   result.shift_G = shift;
+  // the static surfaces it ends on: a plane at its limit (within kRestingBand_m)
+  constexpr double kRestingBand_m = 5e-5;
+  constexpr double kAlikeCos = 0.995;  // ~6 deg
+  for (const Plane& p : planes_) {
+    if (!p.blocking || p.depth_m - p.out_G.dot(shift) - p.limit_m < -kRestingBand_m) continue;
+    bool alike = false;
+    for (const Eigen::Vector3d& n : result.blocking_out_G) alike = alike || n.dot(p.out_G) > kAlikeCos;
+    if (!alike && static_cast<int>(result.blocking_out_G.size()) < kMaxBlockingPlanes)
+      result.blocking_out_G.push_back(p.out_G);
+  }
 
   const bool shifted = shift.squaredNorm() > 0.0;
   if (shifted) {

@@ -55,8 +55,13 @@ struct ProxyPose {
 };
 
 // What constrain() did in one substep.
+inline constexpr int kMaxBlockingPlanes = 4;
+
 struct ProxyConstraint {
   Eigen::Vector3d shift_G = Eigen::Vector3d::Zero();  // the proxy's translation out of contact
+  // the directions out of the static surfaces the proxy (or an object it holds) ends on, at its
+  // depth limit: the deepest first, at most kMaxBlockingPlanes, no two alike
+  std::vector<Eigen::Vector3d> blocking_out_G;
   bool pushing = false;         // a hand link or held object touches a free object
   bool fingers_held = false;    // some finger moved less than its step
 };
@@ -68,8 +73,13 @@ class ProxyHand {
 
   // The pose the proxy heads for over the coming step of `step_s`: the tracked hand, approached
   // at the free speeds, or the pushing speed when `pushing`.
-  ProxyPose step_goal(const ProxyPose& now, const HandInput& tracked, bool pushing,
-                      double step_s) const;
+  // The wrist's motion goes along, never into, the static surfaces in `blocking_out_G` (the last
+  // step's ProxyConstraint::blocking_out_G). While `holding`, the wrist moves as the tracked
+  // hand does over the step (`tracked_from` to `tracked`) and closes its lag behind it at no
+  // more than the pushing speed.
+  ProxyPose step_goal(const ProxyPose& now, const HandInput& tracked_from,
+                      const HandInput& tracked, bool pushing, bool holding,
+                      const std::vector<Eigen::Vector3d>& blocking_out_G, double step_s) const;
 
   // The tentative pose one substep on: the share 1 / remaining of what is left to `goal`.
   static ProxyPose advance(const ProxyPose& prev, const ProxyPose& goal, int remaining);
@@ -126,6 +136,11 @@ class ProxyHand {
                          const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
                          std::vector<ContactPoint>& hand_static, double dt_s,
                          ProxyConstraint& result);
+  // Moves a held-back finger (at `share` of its step to `q_goal_rad`) on by what is left of its
+  // step with the part that would take its binding contacts deeper taken out: the finger slides
+  // along what stopped it toward the tracked one, as a god-object slides along a surface,
+  // instead of sticking where it first touched.
+  void slide_finger(Finger finger, double share, const JointAngles& q_goal_rad, ProxyPose& pose);
   void bend_out(ProxyPose& pose, HandLinkPoses& links,
                           std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
                           std::vector<ContactPoint>& contacts,
@@ -152,9 +167,26 @@ class ProxyHand {
     Eigen::Vector3d out_G;  // the direction that takes the proxy out
     double depth_m;         // at zero shift
     double limit_m;
+    bool blocking;          // a static surface: it blocks the wrist's next motion
   };
   std::vector<Plane> planes_;
   HandLinkPoses probe_links_;
+  struct ContactLimit {  // a finger contact as hold_back_fingers saw it
+    const ContactPoint* contact;
+    Link link;
+    Finger finger;
+    Eigen::Vector3d p_L;  // the contact point on its link
+    double deepened_m;    // by the finger's step
+    double allowed_m;     // how much deeper than before the step it may go
+  };
+  std::vector<ContactLimit> limits_;
+  struct SlideRow {
+    std::size_t limit;                      // in limits_
+    Eigen::Matrix<double, 6, 1> gradient_m;  // depth gained per radian of each finger joint
+    double room_m;                          // how much deeper it may go from the held-back pose
+  };
+  std::vector<SlideRow> slide_rows_;
+  HandLinkPoses slide_links_;
 };
 
 }  // namespace vcockpit::physics

@@ -112,8 +112,10 @@ World::~World() = default;
 // latest input, or the proxy to where it heads (never farther than its speeds allow).
 int World::choose_substeps() {
   if (proxy_ && state_.hand_active) {
-    proxy_goal_ = proxy_->step_goal({state_.X_GH, state_.q_rad}, state_.hand_to, state_.pushing,
-                                    scene_.step_s);
+    bool holding = false;
+    for (const BodyState& body : state_.bodies) holding = holding || body.held_by != kNotHeld;
+    proxy_goal_ = proxy_->step_goal({state_.X_GH, state_.q_rad}, state_.hand_from, state_.hand_to,
+                                    state_.pushing, holding, state_.blocking_out_G, scene_.step_s);
     return substep_choice_.choose(state_.bodies, &state_.X_GL, proxy_goal_.X_GH,
                                   proxy_goal_.q_rad);
   }
@@ -181,6 +183,13 @@ void World::step() {
   for (int s = 1; s <= state_.substeps; ++s)
     substep(dt_s, static_cast<double>(s) / state_.substeps, state_.substeps - s + 1,
             any_held && s < state_.substeps);
+  // a held object's velocity is the hand's over the whole step: within it the proxy can go
+  // into a panel and be shifted back out substep by substep, which is no motion of the object
+  for (int i = 0; i < object_count_; ++i) {
+    BodyState& body = state_.bodies[i];
+    if (held_mask_[i] == 0 || body.held_by == kNotHeld) continue;
+    finite_difference_velocity(start_bodies_[i].X_GO, body.X_GO, scene_.step_s, body.v_G, body.w_G);
+  }
   state_.time_ns += step_ns_;
   ++state_.steps;
   {
@@ -268,6 +277,7 @@ void World::constrain_proxy(double dt_s) {
   state_.X_GH = pose.X_GH;
   state_.q_rad = pose.q_rad;
   state_.pushing = r.pushing;
+  state_.blocking_out_G = r.blocking_out_G;
   if (!held_pairs_skipped_) state_.fingers_on_held = proxy_->fingers_touching(contacts_, held_mask_);
   proxy_prev_links_ = link_poses_;
   if (r.shift_G.squaredNorm() == 0.0) return;

@@ -43,6 +43,11 @@ struct WorldState {
   // bit f: finger f touched a held object in the last substep. Such a finger stays put on the
   // substeps that leave held pairs out, and its step is limited on the last one.
   uint8_t fingers_on_held = 0;
+  // The static surfaces the proxy rested on at the end of the last step (the directions that take
+  // it out, at most kMaxBlockingPlanes): the next step's wrist motion is projected off them, so
+  // the proxy slides along a panel it touches (a god-object) instead of going in and being
+  // shifted back out every step.
+  std::vector<Eigen::Vector3d> blocking_out_G;
 
   std::vector<StickAnchor> anchors;  // friction stick anchors of the last substep, by pair
 };

@@ -85,6 +85,9 @@ uint64_t hash_world_state(const WorldState& s) {
     h.pose(X);
   h.flag(s.pushing);
   h.u64(s.fingers_on_held);
+  h.size(s.blocking_out_G.size());
+  for (const Eigen::Vector3d& n : s.blocking_out_G)
+    h.vec(n);
   h.size(s.grasp.size());
   for (const GraspHold& g : s.grasp)
     hash_hold(h, g);

@@ -94,8 +94,10 @@ const Degradation& degradation(const std::string& name) {
 // rolling resistance, the closed shell, exact capsule contacts (segment_contact.hpp), the held
 // object kept by an opposed pinch (exit_min_contacts) and let go when the glove opens
 // (release_opening_deg, the thumb left out of it), fingers that catch up with the glove at
-// bounded speed, links that stand off what they let go, and the palm opposing the fingers of a
-// power grasp. No cell sinks a link into a panel. What is left:
+// bounded speed, links that stand off what they let go, the palm opposing the fingers of a
+// power grasp, fingers that slide along a panel that stops them, a wrist that slides along the
+// panels it rests on, and a carried object whose hand closes its lag at the pushing speed. No
+// cell sinks a link into a panel. What is left:
 //   no grasp / not carried   the grasp test does not hold, or not through the lift; the cup's
 //              grip with the 50th-percentile hand pinches it between thumb and middle finger
 //              (the index misses it), lifts it by friction and knocks it past 0.5 m/s;
@@ -108,26 +110,27 @@ const std::map<std::string, std::string>& known_failing() {
   static const std::map<std::string, std::string> kCells = {
       {"ball_large_harsh", "ends 720 mm off"},
       {"ball_large_typical", "not carried (lift 10 mm), ends 722 mm off"},
-      {"ball_medium_harsh", "ends 720 mm off"},
-      {"ball_medium_overrange", "ends 956 mm off"},
-      {"ball_small_harsh", "ends 94 mm off"},
+      {"ball_medium_harsh", "ends 719 mm off"},
+      {"ball_medium_overrange", "ends 954 mm off"},
+      {"ball_small_harsh", "ends 95 mm off"},
       {"ball_small_typical", "ends 853 mm off"},
-      {"cup_large_harsh", "no grasp, ends 126 mm off"},
-      {"cup_large_typical", "not carried (lift 2 mm), ends 128 mm off"},
+      {"cup_large_harsh", "no grasp, ends 127 mm off"},
+      {"cup_large_typical", "not carried (lift 2 mm), ends 126 mm off"},
       {"cup_medium_120hz", "knocked at 0.59 m/s, no grasp, ends 36 mm off"},
       {"cup_medium_30hz", "knocked at 0.60 m/s, no grasp, ends 38 mm off"},
-      {"cup_medium_clean", "knocked at 0.58 m/s, no grasp, ends 35 mm off"},
-      {"cup_medium_dropouts", "knocked at 0.59 m/s, no grasp, ends 37 mm off"},
+      {"cup_medium_clean", "knocked at 0.59 m/s, no grasp, ends 35 mm off"},
+      {"cup_medium_dropouts", "knocked at 0.59 m/s, no grasp, ends 36 mm off"},
       {"cup_medium_gaps", "ends 62 mm off"},
       {"cup_medium_grip250ms", "knocked at 0.61 m/s, no grasp, ends 41 mm off"},
-      {"cup_medium_grip500ms", "knocked at 0.60 m/s, no grasp, ends 44 mm off"},
-      {"cup_medium_harsh", "no grasp, ends 127 mm off"},
+      {"cup_medium_grip500ms", "knocked at 0.60 m/s, no grasp, ends 42 mm off"},
+      {"cup_medium_harsh", "no grasp, ends 125 mm off"},
+      {"cup_medium_jitter", "no grasp, ends 143 mm off"},
       {"cup_medium_overrange", "no grasp, ends 125 mm off"},
       {"cup_small_clean", "ends 75 mm off"},
       {"cup_small_harsh", "no grasp, ends 123 mm off"},
-      {"cup_small_typical", "ends 71 mm off"},
+      {"flashlight_large_harsh", "not carried (lift 14 mm)"},
       {"flashlight_medium_harsh", "not carried (lift 20 mm)"},
-      {"flashlight_small_clean", "not carried (lift 10 mm)"},
+      {"flashlight_small_clean", "not carried (lift 11 mm)"},
   };
   return kCells;
 }
