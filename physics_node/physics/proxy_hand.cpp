@@ -494,6 +494,20 @@ void ProxyHand::shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, Proxy
     }
     if (largest_m < kShiftTolerance_m) break;
   }
+  // the panels win: where a free object's plane and a panel's ask for opposite shifts (a link
+  // wedged between them), the link stays out of the panel and the object is pushed
+  for (int pass = 0; pass < kShiftPasses; ++pass) {
+    double largest_m = 0.0;
+    for (const Plane& p : planes_) {
+      if (!p.blocking) continue;
+      const double excess_m = p.depth_m - p.out_G.dot(shift) - p.limit_m;
+      if (excess_m > 0.0) {
+        shift += excess_m * p.out_G;
+        largest_m = std::max(largest_m, excess_m);
+      }
+    }
+    if (largest_m < kShiftTolerance_m) break;
+  }
   result.shift_G = shift;
   // the static surfaces it ends on: a plane at its limit (within kRestingBand_m)
   constexpr double kRestingBand_m = 5e-5;
