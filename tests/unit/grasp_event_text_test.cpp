@@ -42,6 +42,14 @@ TEST(GraspEventText, ReleaseNamesItsReasonAndTheFiguresBehindIt) {
             "|F| 2.37 N, |M| 0.096 N m");
 }
 
+TEST(GraspEventText, AHoldLostForOppositionNamesTheBestOpposition) {
+  physics::GraspEvent e = event(false, physics::GraspReason::kFingersNotOpposed);
+  e.best_opposition_deg = 93.4;
+  EXPECT_EQ(grasp_event_text(e),
+            "fingers not opposed to the thumb: 3 links, thumb touching, best opposition 93 deg, "
+            "|F| 2.37 N, |M| 0.096 N m");
+}
+
 TEST(GraspEventText, LostGloveIsJustThat) {
   EXPECT_EQ(grasp_event_text(event(false, physics::GraspReason::kGloveLost)), "glove lost");
 }

@@ -125,6 +125,29 @@ TEST(GraspRule, ThumbFingerAngleUnderAlpha0IsNoGrasp) {
   EXPECT_NEAR(c.min_thumb_angle_deg, 100.0, 1e-6);
 }
 
+TEST(GraspRule, AHoldLastsWhileAnyFingerIsOpposed) {
+  // the middle finger wraps round the object's end at 100 deg from the thumb: no new grasp
+  // (every finger must oppose), but a held object stays held, the index still opposing
+  auto contacts = balanced_three_point();
+  const double a = 100.0 * M_PI / 180.0;
+  contacts[2] = touch(Link::kMiddleDistal, {0, 0.04, 0}, {std::cos(a), std::sin(a), 0}, 2.0, 0.5);
+  GraspParams params;
+  const GraspCheck entry =
+      evaluate_grasp(contacts.data(), contacts.size(), kCentroid, kMass, kGravity, params, false);
+  EXPECT_EQ(entry.verdict, GraspReason::kFingersNotOpposed);
+  const GraspCheck hold =
+      evaluate_grasp(contacts.data(), contacts.size(), kCentroid, kMass, kGravity, params, true);
+  EXPECT_NEAR(hold.min_thumb_angle_deg, 100.0, 1e-6);
+  EXPECT_GT(hold.best_opposition_deg, params.alpha0_deg - params.exit_alpha_margin_deg);
+  EXPECT_NE(hold.verdict, GraspReason::kFingersNotOpposed);
+  // ... and is let go when no finger is opposed any more
+  contacts[1] = touch(Link::kIndexDistal, {0, -0.04, 0}, {std::cos(a), -std::sin(a), 0}, 2.0, 0.5);
+  const GraspCheck lost =
+      evaluate_grasp(contacts.data(), contacts.size(), kCentroid, kMass, kGravity, params, true);
+  EXPECT_NEAR(lost.best_opposition_deg, 100.0, 1e-6);
+  EXPECT_EQ(lost.verdict, GraspReason::kFingersNotOpposed);
+}
+
 TEST(GraspRule, ThumbPalmAndThumbAloneOpposeNothing) {
   const double w = kMass * 9.81;
   const std::vector<HandContact> contacts = {
