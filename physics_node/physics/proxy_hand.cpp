@@ -49,6 +49,11 @@ ProxyHand::ProxyHand(const Scene& scene)
     for (const hand::DhRow& row : hand_.fingers[static_cast<std::size_t>(f)].rows)
       if (row.joint >= 0 && row.joint < kJointCount)
         finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(row.joint)] = true;
+  for (int f = 0; f < kFingerCount; ++f) {
+    FingerJointList& list = finger_joint_list_[static_cast<std::size_t>(f)];
+    for (int j = 0; j < kJointCount && list.count < kMaxFingerJoints; ++j)
+      if (finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(j)]) list.joint[static_cast<std::size_t>(list.count++)] = j;
+  }
   planes_.reserve(64);
 }
 
@@ -201,9 +206,10 @@ ProxyConstraint ProxyHand::constrain_wrist(ProxyPose& pose,
                                            std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
                                            const std::vector<uint8_t>& held,
                                            std::vector<ContactPoint>& contacts,
-                                           std::vector<ContactPoint>& hand_static) {
+                                           std::vector<ContactPoint>& hand_static,
+                                           std::vector<Eigen::Vector3d>& blocking_out_G) {
   ProxyConstraint result;
-  shift_out(X_GL, pose, held, contacts, hand_static, result);
+  shift_out(X_GL, pose, held, contacts, hand_static, result, blocking_out_G);
   return result;
 }
 
@@ -266,19 +272,15 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
 void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_goal_rad,
                              ProxyPose& pose) {
   constexpr int kMaxRows = 4;       // the binding contacts that steer the slide
-  constexpr int kMaxJoints = 6;     // joints of one finger
   constexpr double kProbe_rad = 1e-4;
   constexpr double kDamping_m2 = 1e-8;
   constexpr double kBinding_m = 1e-6;  // a contact this close to its limit binds the slide
   constexpr int kActiveSetPasses = 3;
-  const auto f = static_cast<std::size_t>(finger);
-  std::array<int, kMaxJoints> joints{};
-  int joint_count = 0;
-  for (int j = 0; j < kJointCount && joint_count < kMaxJoints; ++j)
-    if (finger_joints_[f][static_cast<std::size_t>(j)]) joints[static_cast<std::size_t>(joint_count++)] = j;
+  const auto& joints = finger_joint_list_[static_cast<std::size_t>(finger)].joint;
+  const int joint_count = finger_joint_list_[static_cast<std::size_t>(finger)].count;
   if (joint_count == 0) return;
   // what the share left of the finger's step
-  Eigen::Matrix<double, kMaxJoints, 1> rest = Eigen::Matrix<double, kMaxJoints, 1>::Zero();
+  Eigen::Matrix<double, kMaxFingerJoints, 1> rest = Eigen::Matrix<double, kMaxFingerJoints, 1>::Zero();
   for (int k = 0; k < joint_count; ++k) {
     const int j = joints[static_cast<std::size_t>(k)];
     rest(k) = q_goal_rad[j] - pose.q_rad[j];
@@ -289,7 +291,7 @@ void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_g
   slide_rows_.clear();
   forward_kinematics(hand_, pose.q_rad, slide_links_);
   for (std::size_t i = 0; i < limits_.size(); ++i)
-    if (limits_[i].finger == finger) slide_rows_.push_back({i, Eigen::Matrix<double, 6, 1>::Zero(), 0.0});
+    if (limits_[i].finger == finger) slide_rows_.push_back({i, Eigen::Matrix<double, kMaxFingerJoints, 1>::Zero(), 0.0, false});
   if (slide_rows_.empty()) return;
   for (int k = 0; k < joint_count; ++k) {
     JointAngles probe = pose.q_rad;
@@ -315,20 +317,20 @@ void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_g
 
   // the rest projected off the gradients of the binding contacts it would deepen (an active
   // set, grown a few times): the finger slides along the surfaces that stopped it
-  Eigen::Matrix<double, kMaxJoints, 1> slide = rest;
+  Eigen::Matrix<double, kMaxFingerJoints, 1> slide = rest;
   std::array<const SlideRow*, kMaxRows> active{};
   int active_count = 0;
   for (int pass = 0; pass < kActiveSetPasses; ++pass) {
     bool grew = false;
-    for (const SlideRow& row : slide_rows_) {
-      if (row.room_m > kBinding_m || row.gradient_m.dot(slide) <= kTinyDepth_m) continue;
-      if (std::find(active.begin(), active.begin() + active_count, &row) != active.begin() + active_count) continue;
+    for (SlideRow& row : slide_rows_) {
+      if (row.active || row.room_m > kBinding_m || row.gradient_m.dot(slide) <= kTinyDepth_m) continue;
       if (active_count == kMaxRows) break;
+      row.active = true;
       active[static_cast<std::size_t>(active_count++)] = &row;
       grew = true;
     }
     if (!grew) break;
-    Eigen::Matrix<double, kMaxRows, kMaxJoints> G = Eigen::Matrix<double, kMaxRows, kMaxJoints>::Zero();
+    Eigen::Matrix<double, kMaxRows, kMaxFingerJoints> G = Eigen::Matrix<double, kMaxRows, kMaxFingerJoints>::Zero();
     for (int i = 0; i < active_count; ++i) G.row(i) = active[static_cast<std::size_t>(i)]->gradient_m.transpose();
     const auto Ga = G.topRows(active_count);
     const Eigen::MatrixXd GGt =
@@ -339,7 +341,7 @@ void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_g
   double along = 1.0;
   for (const SlideRow& row : slide_rows_) {
     // the active rows are projected off (to within the damping's trace): they do not deepen
-    if (std::find(active.begin(), active.begin() + active_count, &row) != active.begin() + active_count) continue;
+    if (row.active) continue;
     const double deepens_m = row.gradient_m.dot(slide);
     if (deepens_m <= kTinyDepth_m) continue;
     along = std::min(along, std::max(0.0, row.room_m) / deepens_m);
@@ -380,7 +382,6 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
                                    std::vector<ContactPoint>& hand_static,
                                    ProxyConstraint& result) {
   constexpr int kRows = 3;          // the deepest contacts of a finger that steer its joints
-  constexpr int kMaxJoints = 6;     // joints of one finger
   constexpr double kProbe_rad = 1e-4;
   constexpr double kDamping_m2 = 1e-6;  // (1 mm/rad)^2: keeps the step small near a singular finger
   constexpr double kMaxBend_rad = 0.05;  // per substep: ~4 mm at a fingertip
@@ -414,14 +415,11 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
     for (const ContactPoint& c : hand_static) consider(c);
     for (const ContactPoint& c : contacts) consider(c);
     if (row_count == 0) continue;
-    std::array<int, kMaxJoints> joints{};
-    int joint_count = 0;
-    for (int j = 0; j < kJointCount && joint_count < kMaxJoints; ++j)
-      if (finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(j)])
-        joints[static_cast<std::size_t>(joint_count++)] = j;
+    const auto& joints = finger_joint_list_[static_cast<std::size_t>(f)].joint;
+    const int joint_count = finger_joint_list_[static_cast<std::size_t>(f)].count;
     // J(i, k): the depth gained at contact i per radian of joint k (the link is body_b, so
     // moving its point by u deepens the contact by -n.u)
-    Eigen::Matrix<double, kRows, kMaxJoints> J = Eigen::Matrix<double, kRows, kMaxJoints>::Zero();
+    Eigen::Matrix<double, kRows, kMaxFingerJoints> J = Eigen::Matrix<double, kRows, kMaxFingerJoints>::Zero();
     Eigen::Matrix<double, kRows, 1> excess = Eigen::Matrix<double, kRows, 1>::Zero();
     for (int k = 0; k < joint_count; ++k) {
       ProxyPose probe = pose;
@@ -462,7 +460,8 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
 
 void ProxyHand::shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, ProxyPose& pose,
                           const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
-                          std::vector<ContactPoint>& hand_static, ProxyConstraint& result) {
+                          std::vector<ContactPoint>& hand_static, ProxyConstraint& result,
+                          std::vector<Eigen::Vector3d>& blocking_out_G) {
   // which side of a contact moves with the proxy: its links and the objects it holds
   const auto moves = [&](int body) {
     return is_link(body) || held[static_cast<std::size_t>(body)] != 0;
@@ -483,41 +482,21 @@ void ProxyHand::shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, Proxy
   collect(contacts);
 
   Eigen::Vector3d shift = Eigen::Vector3d::Zero();
-  for (int pass = 0; pass < kShiftPasses; ++pass) {
-    double largest_m = 0.0;
-    for (const Plane& p : planes_) {
-      const double excess_m = p.depth_m - p.out_G.dot(shift) - p.limit_m;
-      if (excess_m > 0.0) {
-        shift += excess_m * p.out_G;
-        largest_m = std::max(largest_m, excess_m);
-      }
-    }
-    if (largest_m < kShiftTolerance_m) break;
-  }
+  project_shift(false, shift);
   // the panels win: where a free object's plane and a panel's ask for opposite shifts (a link
   // wedged between them), the link stays out of the panel and the object is pushed
-  for (int pass = 0; pass < kShiftPasses; ++pass) {
-    double largest_m = 0.0;
-    for (const Plane& p : planes_) {
-      if (!p.blocking) continue;
-      const double excess_m = p.depth_m - p.out_G.dot(shift) - p.limit_m;
-      if (excess_m > 0.0) {
-        shift += excess_m * p.out_G;
-        largest_m = std::max(largest_m, excess_m);
-      }
-    }
-    if (largest_m < kShiftTolerance_m) break;
-  }
+  project_shift(true, shift);
   result.shift_G = shift;
   // the static surfaces it ends on: a plane at its limit (within kRestingBand_m)
   constexpr double kRestingBand_m = 5e-5;
   constexpr double kAlikeCos = 0.995;  // ~6 deg
+  blocking_out_G.clear();
   for (const Plane& p : planes_) {
     if (!p.blocking || p.depth_m - p.out_G.dot(shift) - p.limit_m < -kRestingBand_m) continue;
     bool alike = false;
-    for (const Eigen::Vector3d& n : result.blocking_out_G) alike = alike || n.dot(p.out_G) > kAlikeCos;
-    if (!alike && static_cast<int>(result.blocking_out_G.size()) < kMaxBlockingPlanes)
-      result.blocking_out_G.push_back(p.out_G);
+    for (const Eigen::Vector3d& n : blocking_out_G) alike = alike || n.dot(p.out_G) > kAlikeCos;
+    if (!alike && static_cast<int>(blocking_out_G.size()) < kMaxBlockingPlanes)
+      blocking_out_G.push_back(p.out_G);
   }
 
   const bool shifted = shift.squaredNorm() > 0.0;
@@ -541,6 +520,21 @@ void ProxyHand::shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, Proxy
   };
   follow(hand_static);
   follow(contacts);
+}
+
+void ProxyHand::project_shift(bool panels_only, Eigen::Vector3d& shift_G) const {
+  for (int pass = 0; pass < kShiftPasses; ++pass) {
+    double largest_m = 0.0;
+    for (const Plane& p : planes_) {
+      if (panels_only && !p.blocking) continue;
+      const double excess_m = p.depth_m - p.out_G.dot(shift_G) - p.limit_m;
+      if (excess_m > 0.0) {
+        shift_G += excess_m * p.out_G;
+        largest_m = std::max(largest_m, excess_m);
+      }
+    }
+    if (largest_m < kShiftTolerance_m) break;
+  }
 }
 
 }  // namespace vcockpit::physics

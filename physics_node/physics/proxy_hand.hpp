@@ -54,14 +54,12 @@ struct ProxyPose {
   JointAngles q_rad{};
 };
 
-// What constrain() did in one substep.
+// The most static surfaces the proxy keeps as resting on between steps.
 inline constexpr int kMaxBlockingPlanes = 4;
 
+// What constrain() did in one substep.
 struct ProxyConstraint {
   Eigen::Vector3d shift_G = Eigen::Vector3d::Zero();  // the proxy's translation out of contact
-  // the directions out of the static surfaces the proxy (or an object it holds) ends on, at its
-  // depth limit: the deepest first, at most kMaxBlockingPlanes, no two alike
-  std::vector<Eigen::Vector3d> blocking_out_G;
   bool pushing = false;         // a hand link or held object touches a free object
   bool fingers_held = false;    // some finger moved less than its step
 };
@@ -74,7 +72,7 @@ class ProxyHand {
   // The pose the proxy heads for over the coming step of `step_s`: the tracked hand, approached
   // at the free speeds, or the pushing speed when `pushing`.
   // The wrist's motion goes along, never into, the static surfaces in `blocking_out_G` (the last
-  // step's ProxyConstraint::blocking_out_G). While `holding`, the wrist moves as the tracked
+  // step's constrain_wrist). While `holding`, the wrist moves as the tracked
   // hand does over the step (`tracked_from` to `tracked`) and closes its lag behind it at no
   // more than the pushing speed.
   ProxyPose step_goal(const ProxyPose& now, const HandInput& tracked_from,
@@ -103,10 +101,13 @@ class ProxyHand {
                          HandLinkPoses& links, std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
                          const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
                          std::vector<ContactPoint>& hand_static, double dt_s);
+  // `blocking_out_G` receives the directions out of the static surfaces the proxy (or an object
+  // it holds) ends on at its depth limit: at most kMaxBlockingPlanes, no two alike.
   ProxyConstraint constrain_wrist(ProxyPose& pose, std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
                                   const std::vector<uint8_t>& held,
                                   std::vector<ContactPoint>& contacts,
-                                  std::vector<ContactPoint>& hand_static);
+                                  std::vector<ContactPoint>& hand_static,
+                                  std::vector<Eigen::Vector3d>& blocking_out_G);
 
   // How deep a link may go into object `object` (m): static_depth_m for a static one, d_grip
   // for a dynamic one.
@@ -151,7 +152,11 @@ class ProxyHand {
                   std::vector<ContactPoint>& contacts, std::vector<ContactPoint>& hand_static);
   void shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, ProxyPose& pose,
                  const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
-                 std::vector<ContactPoint>& hand_static, ProxyConstraint& result);
+                 std::vector<ContactPoint>& hand_static, ProxyConstraint& result,
+                 std::vector<Eigen::Vector3d>& blocking_out_G);
+  // Gauss-Seidel passes over planes_ (only the panels' when `panels_only`) that grow `shift_G`
+  // until each plane's contact is within its limit.
+  void project_shift(bool panels_only, Eigen::Vector3d& shift_G) const;
 
   const Scene& scene_;
   const HandModel& hand_;
@@ -161,6 +166,12 @@ class ProxyHand {
   const std::vector<uint32_t>* resting_links_ = nullptr;     // per object
   std::vector<uint8_t> dynamic_;                             // per object
   std::array<std::array<bool, kJointCount>, kFingerCount> finger_joints_{};  // joints moving a finger
+  static constexpr int kMaxFingerJoints = 6;
+  struct FingerJointList {  // the same, as indices in order
+    std::array<int, kMaxFingerJoints> joint{};
+    int count = 0;
+  };
+  std::array<FingerJointList, kFingerCount> finger_joint_list_{};
 
   // scratch
   struct Plane {
@@ -181,9 +192,10 @@ class ProxyHand {
   };
   std::vector<ContactLimit> limits_;
   struct SlideRow {
-    std::size_t limit;                      // in limits_
-    Eigen::Matrix<double, 6, 1> gradient_m;  // depth gained per radian of each finger joint
-    double room_m;                          // how much deeper it may go from the held-back pose
+    std::size_t limit;  // in limits_
+    Eigen::Matrix<double, kMaxFingerJoints, 1> gradient_m;  // depth gained per radian of each finger joint
+    double room_m;      // how much deeper it may go from the held-back pose
+    bool active;        // in the slide's active set: projected off
   };
   std::vector<SlideRow> slide_rows_;
   HandLinkPoses slide_links_;

@@ -80,6 +80,7 @@ World::World(Scene scene)
   I_O_inv_.resize(object_count_);
   held_mask_.assign(object_count_, 0);
   resting_links_.assign(object_count_, 0);
+  state_.blocking_out_G.reserve(kMaxBlockingPlanes);
   start_bodies_.resize(object_count_);
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
@@ -94,7 +95,7 @@ World::World(Scene scene)
   state_.X_GL.fill(Eigen::Isometry3d::Identity());
   X_GL_before_ = state_.X_GL;
   tracked_X_GL_ = state_.X_GL;
-  state_.substeps = choose_substeps();  // for the initial state: the count the first step will use
+  state_.substeps = choose_substeps(false);  // for the initial state: the count the first step will use
   const int body_count = object_count_ + (scene_.hand ? kLinkCount : 0);
   contact_bodies_.resize(body_count);
   F_G_.resize(body_count);
@@ -110,10 +111,8 @@ World::~World() = default;
 
 // Substeps for the coming step (substep_choice.hpp): the hand sweeps from its links now to the
 // latest input, or the proxy to where it heads (never farther than its speeds allow).
-int World::choose_substeps() {
+int World::choose_substeps(bool holding) {
   if (proxy_ && state_.hand_active) {
-    bool holding = false;
-    for (const BodyState& body : state_.bodies) holding = holding || body.held_by != kNotHeld;
     proxy_goal_ = proxy_->step_goal({state_.X_GH, state_.q_rad}, state_.hand_from, state_.hand_to,
                                     state_.pushing, holding, state_.blocking_out_G, scene_.step_s);
     return substep_choice_.choose(state_.bodies, &state_.X_GL, proxy_goal_.X_GH,
@@ -160,12 +159,6 @@ void World::step() {
   events_.clear();
   body_check_.clear_new_faults();
   std::copy(state_.bodies.begin(), state_.bodies.end(), start_bodies_.begin());
-  {
-    StageTimer timer(stage_times_, Stage::kBroadphase);
-    state_.substeps = choose_substeps();
-  }
-  VCOCKPIT_ASSERT(state_.substeps >= 1 && state_.substeps <= scene_.contact.max_substeps,
-                  "substeps in [1, max_substeps]");
   // a held object and the hand move together: their contacts matter to the grasp test only,
   // which reads the last substep's, so the substeps before it leave them out (their friction
   // anchors carry over) -- but for a proxy hand, whose fingers stop at the held object's surface
@@ -175,6 +168,12 @@ void World::step() {
     resting_links_[i] = state_.grasp[i].resting_links;
     any_held = any_held || held_mask_[i] != 0;
   }
+  {
+    StageTimer timer(stage_times_, Stage::kBroadphase);
+    state_.substeps = choose_substeps(any_held);
+  }
+  VCOCKPIT_ASSERT(state_.substeps >= 1 && state_.substeps <= scene_.contact.max_substeps,
+                  "substeps in [1, max_substeps]");
   if (proxy_ && state_.hand_active && !proxy_prev_links_valid_) {
     forward_kinematics(*scene_.hand, state_.q_rad, proxy_prev_links_);
     proxy_prev_links_valid_ = true;
@@ -273,11 +272,11 @@ void World::constrain_proxy(double dt_s) {
   // the links' static contacts afresh: the wrist's shift must see exactly how deep they are
   if (fingers_moved) collision_.compute_hand_static_contacts(state_.X_GL, hand_static_);
   const ProxyConstraint r =
-      proxy_->constrain_wrist(pose, state_.X_GL, held_mask_, contacts_, hand_static_);
+      proxy_->constrain_wrist(pose, state_.X_GL, held_mask_, contacts_, hand_static_,
+                              state_.blocking_out_G);
   state_.X_GH = pose.X_GH;
   state_.q_rad = pose.q_rad;
   state_.pushing = r.pushing;
-  state_.blocking_out_G = r.blocking_out_G;
   if (!held_pairs_skipped_) state_.fingers_on_held = proxy_->fingers_touching(contacts_, held_mask_);
   proxy_prev_links_ = link_poses_;
   if (r.shift_G.squaredNorm() == 0.0) return;

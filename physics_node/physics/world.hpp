@@ -108,7 +108,7 @@ class World {
   const std::vector<BodyFault>& step_faults() const { return body_check_.new_faults(); }
 
  private:
-  int choose_substeps();
+  int choose_substeps(bool holding);  // holding: the hand holds an object
   void substep(double dt_s, double alpha, int remaining, bool skip_held_hand_pairs);
   void move_hand(double alpha, int remaining);
   void place_hand(const Eigen::Isometry3d& X_GH, const JointAngles& q_rad);
