@@ -91,7 +91,9 @@ int main(int argc, char** argv) {
                  "DDS: hand_state/object_state publications per second")
       ->check(CLI::Range(1.0, 10000.0) & kFinite)
       ->capture_default_str();
-  double glove_timeout_s = 0.5;
+  // 1 s: real gloves and trackers drop out for up to 0.66 s (a Leap losing the hand, a
+  // CyberGlove's serial hiccup), which is a gap to hold across, not a glove to give up on
+  double glove_timeout_s = static_cast<double>(physics_io::kDefaultGloveTimeout_ns) * 1e-9;
   app.add_option("--glove-timeout", glove_timeout_s,
                  "seconds without a hand sample before the glove counts as lost (real time: of "
                  "wall time; lockstep and offline: of the samples' timeline)")

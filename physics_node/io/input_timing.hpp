@@ -12,7 +12,7 @@
 
 namespace vcockpit::physics_io {
 
-constexpr int64_t kDefaultGloveTimeout_ns = 500'000'000;
+constexpr int64_t kDefaultGloveTimeout_ns = 1'000'000'000;
 
 struct InputTiming {
   int64_t max_gap_ns = hand::kDefaultMaxGap_ns;  // 0: never interpolate (hold each sample)

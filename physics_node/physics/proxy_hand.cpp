@@ -152,19 +152,32 @@ void ProxyHand::limit_finger_speed(const JointAngles& now_rad, double reach_m,
   }
 }
 
-ProxyPose ProxyHand::advance(const ProxyPose& prev, const ProxyPose& goal, int remaining) {
-  VCOCKPIT_ASSERT(remaining >= 1, "at least this substep remains");
-  const double share = 1.0 / remaining;
+ProxyPose ProxyHand::advance(const ProxyPose& prev, const ProxyPose& start,
+                             const ProxyPose& goal, int substeps) {
+  VCOCKPIT_ASSERT(substeps >= 1, "a step has at least one substep");
+  const double share = 1.0 / substeps;
   ProxyPose next;
   next.X_GH.translation() =
-      prev.X_GH.translation() + share * (goal.X_GH.translation() - prev.X_GH.translation());
-  next.X_GH.linear() = Eigen::Quaterniond(prev.X_GH.linear())
-                           .slerp(share, Eigen::Quaterniond(goal.X_GH.linear()))
+      prev.X_GH.translation() + share * (goal.X_GH.translation() - start.X_GH.translation());
+  // the step's turn (in the world frame), a share of its angle per substep
+  const Eigen::AngleAxisd turn(goal.X_GH.linear() * start.X_GH.linear().transpose());
+  next.X_GH.linear() = (Eigen::AngleAxisd(share * turn.angle(), turn.axis()) *
+                        Eigen::Quaterniond(prev.X_GH.linear()))
                            .normalized()
                            .toRotationMatrix();
   for (int j = 0; j < kJointCount; ++j)
-    next.q_rad[j] = prev.q_rad[j] + share * (goal.q_rad[j] - prev.q_rad[j]);
+    next.q_rad[j] = prev.q_rad[j] + share * (goal.q_rad[j] - start.q_rad[j]);
   return next;
+}
+
+void ProxyHand::catch_up_fingers(uint8_t fingers, const ProxyPose& start, const ProxyPose& goal,
+                                 ProxyPose& pose) const {
+  for (int f = 0; f < kFingerCount; ++f) {
+    if ((fingers & (1u << f)) == 0) continue;
+    for (int j = 0; j < kJointCount; ++j)
+      if (finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(j)])
+        pose.q_rad[j] += goal.q_rad[j] - start.q_rad[j];
+  }
 }
 
 void ProxyHand::keep_fingers(uint8_t fingers, const ProxyPose& prev, ProxyPose& pose) const {

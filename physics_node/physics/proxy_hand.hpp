@@ -79,8 +79,18 @@ class ProxyHand {
                       const HandInput& tracked, bool pushing, bool holding,
                       const std::vector<Eigen::Vector3d>& blocking_out_G, double step_s) const;
 
-  // The tentative pose one substep on: the share 1 / remaining of what is left to `goal`.
-  static ProxyPose advance(const ProxyPose& prev, const ProxyPose& goal, int remaining);
+  // The tentative pose one substep on: the step's motion from `start` to `goal`, split evenly
+  // over its `substeps`, added to where the proxy is now (`prev`). A proxy that the world holds
+  // back keeps trying the same small motion every substep; taking instead the share
+  // 1 / remaining of all it still lacked made the last substep take the whole step's lag in one
+  // bite: a held-back finger jabbed 35 um into the cup in the last substep and backed off in
+  // the others, and that substep's contact damping read 20 N where the grip pressed 2-5 N.
+  static ProxyPose advance(const ProxyPose& prev, const ProxyPose& start, const ProxyPose& goal,
+                           int substeps);
+  // The fingers flagged in `fingers`, kept where they were for the earlier substeps of a step
+  // (keep_fingers), take the whole step's joint motion from `start` to `goal` now.
+  void catch_up_fingers(uint8_t fingers, const ProxyPose& start, const ProxyPose& goal,
+                        ProxyPose& pose) const;
 
   // Puts the joints of the fingers flagged in `fingers` (bit f: finger f) back where `prev` has
   // them.

@@ -113,7 +113,9 @@ World::~World() = default;
 // latest input, or the proxy to where it heads (never farther than its speeds allow).
 int World::choose_substeps(bool holding) {
   if (proxy_ && state_.hand_active) {
-    proxy_goal_ = proxy_->step_goal({state_.X_GH, state_.q_rad}, state_.hand_from, state_.hand_to,
+    proxy_start_ = {state_.X_GH, state_.q_rad};
+    fingers_kept_ = 0;
+    proxy_goal_ = proxy_->step_goal(proxy_start_, state_.hand_from, state_.hand_to,
                                     state_.pushing, holding, state_.blocking_out_G, scene_.step_s);
     return substep_choice_.choose(state_.bodies, &state_.X_GL, proxy_goal_.X_GH,
                                   proxy_goal_.q_rad);
@@ -244,9 +246,16 @@ void World::move_hand(double alpha, int remaining) {
   if (proxy_) {
     // the proxy's tentative pose; constrain_proxy holds it back after the narrowphase
     proxy_prev_ = {state_.X_GH, state_.q_rad};
-    ProxyPose next = ProxyHand::advance(proxy_prev_, proxy_goal_, remaining);
-    // a finger on a held object waits for the last substep, where their contacts are known
-    if (remaining > 1 && held_pairs_skipped_) proxy_->keep_fingers(state_.fingers_on_held, proxy_prev_, next);
+    ProxyPose next = ProxyHand::advance(proxy_prev_, proxy_start_, proxy_goal_, state_.substeps);
+    // a finger on a held object waits for the last substep, where their contacts are known,
+    // and then takes the step's whole motion
+    if (remaining > 1 && held_pairs_skipped_) {
+      proxy_->keep_fingers(state_.fingers_on_held, proxy_prev_, next);
+      fingers_kept_ = state_.fingers_on_held;
+    } else if (remaining == 1 && fingers_kept_ != 0) {
+      proxy_->keep_fingers(fingers_kept_, proxy_prev_, next);
+      proxy_->catch_up_fingers(fingers_kept_, proxy_start_, proxy_goal_, next);
+    }
     place_hand(next.X_GH, next.q_rad);
     return;
   }

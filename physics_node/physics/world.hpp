@@ -145,7 +145,9 @@ class World {
   HandLinkPoses link_poses_;
   HandLinkPoses proxy_prev_links_;  // the proxy's links one substep ago, in H
   ProxyPose proxy_prev_;            // the proxy one substep ago
+  ProxyPose proxy_start_;           // the proxy at the start of this step
   ProxyPose proxy_goal_;            // where the proxy heads over this step
+  uint8_t fingers_kept_ = 0;        // fingers kept still in this step's earlier substeps
   bool proxy_prev_links_valid_ = false;  // false after a restore: recomputed from the state
   bool held_pairs_skipped_ = false;      // in this substep
   std::vector<ContactPoint> contacts_;

@@ -56,13 +56,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0x13c4bbce4b99ea8f") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0x3fcdc2e55f751af3") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0xe40ed4bb8fec44cd") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x324b85eeed71658d") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0xb0923ee0440335b8") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0x3479f7cbbf1f73ce") << "final state";
 }
 
 }  // namespace

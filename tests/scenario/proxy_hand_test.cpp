@@ -193,9 +193,12 @@ TEST(ProxyHand, ACupSqueezedAgainstTheConsoleIsNotCrushed) {
   // chatter: the cup shaking under the palm. Measured as what can be seen, the spin and how far
   // the cup turns while held; the spin's reversals are printed only: with exact finger normals
   // (segment_contact.hpp) a cup at rest reverses a spin of a few tenths of a rad/s, turning it
-  // by hundredths of a degree
+  // by hundredths of a degree. The palm lands on the cup's top and tips it by ~0.4 deg; pressed
+  // on toward the tracked hand 3 cm below, the proxy then slides along that tilted top (a
+  // god-object's slide: at most 3 cm x the tilt, 0.2 mm) and drags the cup a few tenths of a
+  // degree round by friction until it reaches the top's point nearest the tracked hand, and stops
   EXPECT_LT(proxy.max_spin_radps, 1.0) << "the squeezed cup chatters";
-  EXPECT_LT(proxy.wobble_deg, 0.1) << "the squeezed cup chatters";
+  EXPECT_LT(proxy.wobble_deg, 0.5) << "the squeezed cup chatters";
   EXPECT_LT(proxy.drift_m, 0.01);
   EXPECT_GT(kinematic.cup_sink_m, 4e-3) << "without the proxy the palm crushes the cup in";
   std::printf("squeezed cup: proxy sink %.2f mm, %d reversals, max spin %.2f rad/s, turned %.3f deg; "

@@ -42,10 +42,10 @@ TEST(OfflineCounts, ACraftedLogsClampsMissingColumnGapsAndGloveLostLandInTheSumm
   craft.run(0, 100, 3);   // 3 values clamped
   craft.run(200, 300);    // after a 0.1 s gap: bridged
   craft.run(600, 700);    // after 0.3 s: not bridged (max gap 0.25 s)
-  craft.run(1400, 1500);  // after 0.7 s: not bridged, the glove lost from 1.2 s
+  craft.run(1900, 2000);  // after 1.2 s: not bridged, the glove lost from 1.7 s
   RunSummary summary;
   const auto j = run_crafted(craft, "offline_counts", &summary);
-  EXPECT_EQ(summary.steps, 1500u);
+  EXPECT_EQ(summary.steps, 2000u);
 
   const auto& input = j.at("input");
   EXPECT_EQ(input.at("accepted"), craft.rows());
@@ -58,13 +58,13 @@ TEST(OfflineCounts, ACraftedLogsClampsMissingColumnGapsAndGloveLostLandInTheSumm
   EXPECT_EQ(input.at("gaps_bridged"), 1);
   EXPECT_EQ(input.at("gaps_not_bridged"), 2);
   EXPECT_EQ(input.at("intervals_late"), 0);
-  EXPECT_NEAR(input.at("longest_interval_s").get<double>(), 0.7, 1e-12);
+  EXPECT_NEAR(input.at("longest_interval_s").get<double>(), 1.2, 1e-12);
   EXPECT_EQ(input.at("glove_lost"), 1);
   EXPECT_EQ(input.at("max_gap_s"), 0.25);
-  EXPECT_EQ(input.at("glove_timeout_s"), 0.5);
-  // the jumps after the two gaps not bridged are the only fast steps: 0.3 s and 0.7 s of
-  // motion (6 and 14 cm) arrive in one step, and the drawn (proxy) hand catches up with them at
-  // its maximum speed, not at 140 m/s
+  EXPECT_EQ(input.at("glove_timeout_s"), 1.0);
+  // the jumps after the two gaps not bridged are the only fast steps: 0.3 s and 1.2 s of
+  // motion (6 and 24 cm) arrive in one step, and the drawn (proxy) hand catches up with them at
+  // its maximum speed, not at 240 m/s
   EXPECT_NEAR(j.at("hand_peak_wrist_speed_mps").get<double>(), physics::ProxyParams{}.max_speed_mps,
               1e-6);
 }
@@ -89,11 +89,11 @@ TEST(OfflineCounts, ADurationPastTheLogHoldsTheLastSampleAndLosesTheGloveAfterTh
   options.scene_path = source_dir() + "/config/cockpit.yaml";
   options.log_path = log;
   options.out_dir = dir + "/out";
-  options.duration_s = 0.6;  // the glove is lost at 0.6 s, 0.5 s after the last sample
+  options.duration_s = 1.1;  // the glove is lost at 1.1 s, 1 s after the last sample
   run_offline(load_scene(options.scene_path), options);
   std::ifstream in(options.out_dir + "/summary.json");
-  EXPECT_EQ(nlohmann::json::parse(in).at("input").at("glove_lost"), 0) << "0.5 s: not yet";
-  options.duration_s = 0.601;
+  EXPECT_EQ(nlohmann::json::parse(in).at("input").at("glove_lost"), 0) << "1 s: not yet";
+  options.duration_s = 1.101;
   run_offline(load_scene(options.scene_path), options);
   std::ifstream again(options.out_dir + "/summary.json");
   EXPECT_EQ(nlohmann::json::parse(again).at("input").at("glove_lost"), 1);

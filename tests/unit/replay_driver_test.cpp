@@ -114,9 +114,9 @@ std::vector<hand::GloveSample> runs(const hand::HandModel& hand,
 TEST(ReplayDriver, GapsOverTheMaxGapHoldAndOverTheTimeoutLoseTheGloveUntilTheNextSample) {
   physics::World world(cockpit());
   const hand::HandModel& hand = *world.scene().hand;
-  ReplayDriver driver(world, hand);  // max gap 0.25 s, glove timeout 0.5 s
-  // 0.1 s gap (bridged), 0.3 s (held), 0.7 s (held, glove lost after 0.5 s)
-  const auto samples = runs(hand, {{0, 100}, {200, 300}, {600, 700}, {1400, 1500}});
+  ReplayDriver driver(world, hand);  // max gap 0.25 s, glove timeout 1 s
+  // 0.1 s gap (bridged), 0.3 s (held), 1.2 s (held, glove lost after 1 s)
+  const auto samples = runs(hand, {{0, 100}, {200, 300}, {600, 700}, {1900, 2000}});
   auto position_at = [&](int64_t t_ns) -> Eigen::Vector3d {
     const Eigen::Isometry3d X_GH = hand::X_GH_from_sample(hand, truth(hand, t_ns));
     return X_GH.translation();
@@ -135,12 +135,12 @@ TEST(ReplayDriver, GapsOverTheMaxGapHoldAndOverTheTimeoutLoseTheGloveUntilTheNex
       EXPECT_LT((p - position_at(300 * kMs)).norm(), 1e-12) << t;
       EXPECT_TRUE(tracking) << t;
       ++checked;
-    } else if (t > 700 * kMs && t < 1400 * kMs) {  // held; lost after the 0.5 s timeout
+    } else if (t > 700 * kMs && t < 1900 * kMs) {  // held; lost after the 1 s timeout
       EXPECT_LT((p - position_at(700 * kMs)).norm(), 1e-12) << t;
-      EXPECT_EQ(tracking, t <= 1200 * kMs) << t;
+      EXPECT_EQ(tracking, t <= 1700 * kMs) << t;
       EXPECT_EQ(driver.shown().tracking, tracking);
       ++checked;
-    } else if (t == 600 * kMs || t == 1400 * kMs) {  // the next sample, in one step
+    } else if (t == 600 * kMs || t == 1900 * kMs) {  // the next sample, in one step
       EXPECT_LT((p - position_at(t)).norm(), 1e-12) << t;
       EXPECT_TRUE(tracking);
       ++checked;
@@ -148,15 +148,15 @@ TEST(ReplayDriver, GapsOverTheMaxGapHoldAndOverTheTimeoutLoseTheGloveUntilTheNex
   };
   for (const auto& s : samples)
     driver.feed(s, step);
-  EXPECT_EQ(checked, 99 + 299 + 699 + 2);
+  EXPECT_EQ(checked, 99 + 299 + 1199 + 2);
   const auto& c = driver.counts();
   EXPECT_EQ(c.intervals, samples.size() - 1);
   EXPECT_EQ(c.intervals_interpolated, 40u);
   EXPECT_EQ(c.gaps_bridged, 1u);
   EXPECT_EQ(c.gaps_not_bridged, 2u);
-  EXPECT_EQ(c.longest_interval_ns, 700 * kMs);
+  EXPECT_EQ(c.longest_interval_ns, 1200 * kMs);
   EXPECT_EQ(c.glove_lost, 1u);
-  EXPECT_EQ(world.time_ns(), 1500 * kMs);
+  EXPECT_EQ(world.time_ns(), 2000 * kMs);
 }
 
 TEST(ReplayDriver, PastTheLastSampleTheHandHoldsItAndTheGloveIsLostAfterTheTimeout) {
@@ -166,9 +166,9 @@ TEST(ReplayDriver, PastTheLastSampleTheHandHoldsItAndTheGloveIsLostAfterTheTimeo
   auto step = [&] { world.step(); };
   for (const auto& s : runs(hand, {{0, 50}}))
     driver.feed(s, step);
-  driver.step_until(550 * kMs, step);
-  EXPECT_TRUE(driver.shown().tracking) << "0.5 s after the last sample: not yet";
-  driver.step_until(551 * kMs, step);
+  driver.step_until(1050 * kMs, step);
+  EXPECT_TRUE(driver.shown().tracking) << "1 s after the last sample: not yet";
+  driver.step_until(1051 * kMs, step);
   EXPECT_FALSE(driver.shown().tracking);
   EXPECT_EQ(driver.shown().sample_time_ns, 50 * kMs);
   EXPECT_EQ(driver.counts().glove_lost, 1u);
@@ -195,7 +195,7 @@ TEST(ReplayDriver, ARestartedSourceStartsAtTheWorldsPresentWithNoIntervalFromThe
 TEST(ReplayDriver, AMaxGapLongerThanTheGloveTimeoutIsRefused) {
   physics::World world(cockpit());
   InputTiming timing;
-  timing.max_gap_ns = 600 * kMs;
+  timing.max_gap_ns = 1100 * kMs;
   EXPECT_THROW(ReplayDriver(world, *world.scene().hand, timing), std::invalid_argument);
 }
 

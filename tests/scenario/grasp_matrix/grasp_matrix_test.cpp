@@ -30,6 +30,7 @@
 #include "hand/glove_log.hpp"
 #include "hand/hand_yaml.hpp"
 #include "physics_node/config/scene_config.hpp"
+#include "tests/scenario/grasp_matrix/grasp_cells.hpp"
 #include "tests/scenario/grasp_matrix/grasp_scenario.hpp"
 
 namespace vcockpit::test {
@@ -37,128 +38,53 @@ namespace {
 
 std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
 
-// Where each gesture sets its object down (the centre; see the script's comment).
-const std::vector<GraspCase>& objects() {
-  static const std::vector<GraspCase> kObjects = {
-      {"cup", "cup_pick_place.yaml", {0.36, -0.43, 0.75}},
-      {"ball", "ball_pick_place.yaml", {0.55, -0.42, 0.73}},
-      {"flashlight", "flashlight_pick_place.yaml", {0.565, -0.30, 0.718}},
-      {"checklist", "checklist_pick_place.yaml", {0.31, -0.228, 0.704}},
-  };
-  return kObjects;
-}
-
-const std::map<std::string, std::string>& hand_sizes() {
-  static const std::map<std::string, std::string> kSizes = {
-      {"small", "hand_small.yaml"}, {"medium", "hand.yaml"}, {"large", "hand_large.yaml"}};
-  return kSizes;
-}
-
-// Degradations by name: presets of glove_driver/degrade (every one with the same seed). Noise is
-// added at a device's rate, not at the scripts' 1 kHz: white jitter of 0.5 mm at 1 kHz would be a
-// tracker far noisier than any real one (its finite-difference velocity alone is ~0.7 m/s).
-// The gaps come where they hurt: one while the grip closes, one while the object is carried.
-struct Degradation {
-  std::string name;
-  std::vector<std::string> presets;
-  std::vector<double> gap_at_s;
-};
-constexpr uint64_t kSeed = 7;
-const std::vector<Degradation>& degradations() {
-  static const std::vector<Degradation> kDegradations = {
-      {"clean", {}, {}},
-      {"typical", {"typical"}, {}},                 // 60 Hz, jitter, glove noise, 1 % dropouts
-      {"harsh", {"harsh"}, {}},                     // 30 Hz, all of it, grips in 0.25 s
-      {"30hz", {"30hz"}, {}},
-      {"120hz", {"120hz"}, {}},
-      {"jitter", {"120hz", "jitter"}, {}},          // a 120 Hz tracker's jitter
-      {"glove_noise", {"100hz", "glove_noise"}, {}},  // a 100 Hz glove's noise and 8 bits
-      {"overrange", {"overrange"}, {}},
-      {"dropouts", {"60hz", "dropouts"}, {}},
-      {"gaps", {"gaps"}, {2.4, 4.8}},
-      {"grip500ms", {"grip500ms"}, {}},
-      {"grip250ms", {"grip250ms"}, {}},
-  };
-  return kDegradations;
-}
-
-const Degradation& degradation(const std::string& name) {
-  for (const auto& d : degradations()) {
-    if (d.name == name) return d;
-  }
-  throw std::invalid_argument("no degradation " + name);
-}
-
 // ---- the cells that fail today, and why ----------------------------------------------------
-// Measured (seed 7) with the proxy hand, the interpolating replay, the implicit gyroscopic term,
-// rolling resistance, the closed shell, exact capsule contacts (segment_contact.hpp), the held
-// object kept by an opposed pinch (exit_min_contacts) and let go when the glove opens
-// (release_opening_deg, the thumb left out of it), fingers that catch up with the glove at
-// bounded speed, links that stand off what they let go, the palm opposing the fingers of a
-// power grasp, fingers that slide along a panel that stops them, a wrist that slides along the
-// panels it rests on, and a carried object whose hand closes its lag at the pushing speed. No
-// cell sinks a link into a panel. What is left:
-//   no grasp / not carried   the grasp test does not hold, or not through the lift; the cup's
-//              grip with the 50th-percentile hand pinches it between thumb and middle finger
-//              (the index misses it), lifts it by friction and knocks it past 0.5 m/s;
-//   ends off   the object was not let go where it was set down: the scripted open shapes were
-//              solved to clear the object by 3 mm for the 50th-percentile hand, so another hand
-//              (or a degraded log) can still touch it with three links, and the glove opens by
-//              less than release_opening_deg; the hand then carries it away as it withdraws.
+// Measured (seed 7) with the proxy hand advancing evenly over each step's substeps, the
+// interpolating replay, a 1 s glove timeout, the implicit gyroscopic term, rolling resistance,
+// the closed shell, exact capsule contacts (segment_contact.hpp), the held object kept by an
+// opposed pinch (exit_min_contacts) and let go when the glove opens (release_opening_deg),
+// fingers that catch up with the glove at bounded speed and slide along panels, links that stand
+// off what they let go, palm opposition, and a carried object whose hand closes its lag at the
+// pushing speed. No cell sinks a link into a panel. What is left
+// (tests/grasp_cell_trace SOURCE_DIR CELL prints a cell's story):
+//   ends off   the object is not let go where it is set down: the scripted open shapes clear the
+//              object by a few mm for the 50th-percentile hand only, so another hand (or a
+//              degraded log) still touches it with an opposed pinch when it opens, and the
+//              glove opens by less than release_opening_deg; the hand then carries it away as
+//              it withdraws and lets go high (a ball then rolls off the console). A small
+//              hand's curled ring and little fingers reach the console before the ball does;
+//   no grasp   the cup's grip under a degraded input (noise, jitter, over-range values) leaves
+//              the force residual over xi or a finger off the cup;
+//   not carried  the grasp is lost during the lift.
 // Each entry: the checks that fail, with the figures measured.
 const std::map<std::string, std::string>& known_failing() {
   static const std::map<std::string, std::string> kCells = {
-      {"ball_large_harsh", "ends 720 mm off"},
-      {"ball_large_typical", "not carried (lift 10 mm), ends 722 mm off"},
-      {"ball_medium_harsh", "ends 719 mm off"},
-      {"ball_medium_overrange", "ends 954 mm off"},
-      {"ball_small_harsh", "ends 95 mm off"},
-      {"ball_small_typical", "ends 853 mm off"},
-      {"cup_large_harsh", "no grasp, ends 127 mm off"},
-      {"cup_large_typical", "not carried (lift 2 mm), ends 126 mm off"},
-      {"cup_medium_120hz", "knocked at 0.59 m/s, no grasp, ends 36 mm off"},
-      {"cup_medium_30hz", "knocked at 0.60 m/s, no grasp, ends 38 mm off"},
-      {"cup_medium_clean", "knocked at 0.59 m/s, no grasp, ends 35 mm off"},
-      {"cup_medium_dropouts", "knocked at 0.59 m/s, no grasp, ends 36 mm off"},
-      {"cup_medium_gaps", "ends 62 mm off"},
-      {"cup_medium_grip250ms", "knocked at 0.61 m/s, no grasp, ends 41 mm off"},
-      {"cup_medium_grip500ms", "knocked at 0.60 m/s, no grasp, ends 42 mm off"},
-      {"cup_medium_harsh", "no grasp, ends 125 mm off"},
-      {"cup_medium_jitter", "no grasp, ends 143 mm off"},
-      {"cup_medium_overrange", "no grasp, ends 125 mm off"},
-      {"cup_small_clean", "ends 75 mm off"},
-      {"cup_small_harsh", "no grasp, ends 123 mm off"},
-      {"flashlight_large_harsh", "not carried (lift 14 mm)"},
-      {"flashlight_medium_harsh", "not carried (lift 20 mm)"},
-      {"flashlight_small_clean", "not carried (lift 11 mm)"},
+      {"ball_large_typical", "not carried (lift 1 mm), ends 717 mm off"},
+      {"ball_medium_harsh", "ends 877 mm off"},
+      {"ball_medium_overrange", "ends 882 mm off"},
+      {"ball_small_clean", "ends 871 mm off"},
+      {"ball_small_harsh", "ends 65 mm off"},
+      {"ball_small_typical", "ends 950 mm off"},
+      {"cup_large_harsh", "no grasp, ends 125 mm off"},
+      {"cup_large_typical", "not carried (lift 2 mm), ends 129 mm off"},
+      {"cup_medium_120hz", "knocked at 0.62 m/s, no grasp, ends 45 mm off"},
+      {"cup_medium_30hz", "ends 57 mm off"},
+      {"cup_medium_harsh", "no grasp, ends 126 mm off"},
+      {"cup_medium_jitter", "no grasp, ends 142 mm off"},
+      {"cup_medium_overrange", "no grasp, ends 124 mm off"},
+      {"cup_small_harsh", "no grasp, ends 125 mm off"},
+      {"flashlight_medium_typical", "not carried (lift 18 mm)"},
+      {"flashlight_small_harsh", "ends 46 mm off"},
   };
   return kCells;
 }
 
-struct Cell {
-  std::string object;
-  std::string size;
-  std::string degradation;
-  std::string name() const { return object + "_" + size + "_" + degradation; }
-};
+}  // namespace
 
 // Printed by gtest for a failing cell.
 void PrintTo(const Cell& cell, std::ostream* os) { *os << cell.name(); }
 
-std::vector<Cell> cells() {
-  std::vector<Cell> out;
-  for (const auto& o : objects()) {
-    for (const auto& [size, file] : hand_sizes()) {
-      for (const char* d : {"clean", "typical", "harsh"}) out.push_back({o.object, size, d});
-    }
-    for (const auto& d : degradations()) {
-      if (d.name != "clean" && d.name != "typical" && d.name != "harsh") {
-        out.push_back({o.object, "medium", d.name});
-      }
-    }
-  }
-  return out;
-}
+namespace {
 
 class GraspMatrix : public ::testing::TestWithParam<Cell> {};
 
@@ -169,18 +95,9 @@ TEST_P(GraspMatrix, GraspedCarriedPlacedWithoutKnockingOrSinkingIntoThePanels) {
   if (failing != known_failing().end() && !(all && std::string(all) == "1")) {
     GTEST_SKIP() << "known to fail today: " << failing->second;
   }
-  const GraspCase* grasp_case = nullptr;
-  for (const auto& o : objects()) {
-    if (o.object == cell.object) grasp_case = &o;
-  }
-  ASSERT_NE(grasp_case, nullptr);
-  degrade::DegradeSpec spec;
-  const Degradation& d = degradation(cell.degradation);
-  for (const auto& preset : d.presets) degrade::apply_preset(preset, spec);
-  if (!d.gap_at_s.empty()) spec.gaps.at_s = d.gap_at_s;
-  spec.seed = kSeed;
   const ScenarioResult r =
-      run_grasp_scenario(source_dir(), *grasp_case, hand_sizes().at(cell.size), spec);
+      run_grasp_scenario(source_dir(), grasp_case(cell.object), hand_sizes().at(cell.size),
+                         degradation_spec(cell.degradation));
   // one line per cell, for the table of results
   std::printf("CELL %s grasps %d releases %d other %d lift %.3f m | err %.4f m | v_before %.3f m/s "
               "| static %.4f m (link %d, object %d, %.2f s)\n",
@@ -201,7 +118,7 @@ TEST_P(GraspMatrix, GraspedCarriedPlacedWithoutKnockingOrSinkingIntoThePanels) {
       << " at " << static_cast<double>(r.deepest_static_ns) * 1e-9 << " s";
 }
 
-INSTANTIATE_TEST_SUITE_P(Cells, GraspMatrix, ::testing::ValuesIn(cells()),
+INSTANTIATE_TEST_SUITE_P(Cells, GraspMatrix, ::testing::ValuesIn(grasp_cells()),
                          [](const ::testing::TestParamInfo<Cell>& info) {
                            return info.param.name();
                          });
@@ -246,7 +163,7 @@ TEST(GraspMatrixClearance, MeasuresHowDeepTheHandIsInAStaticObject) {
 // Every cell in the list is a cell of the matrix (a renamed cell must not hide a failure).
 TEST(GraspMatrixList, KnownFailingCellsExist) {
   std::map<std::string, int> names;
-  for (const Cell& c : cells()) names[c.name()] = 1;
+  for (const Cell& c : grasp_cells()) names[c.name()] = 1;
   for (const auto& [name, why] : known_failing()) {
     EXPECT_TRUE(names.count(name)) << name << " is not a cell of the matrix";
     EXPECT_FALSE(why.empty()) << name;
@@ -257,7 +174,7 @@ TEST(GraspMatrixList, KnownFailingCellsExist) {
 // its log (glove_driver --record, README "Glove logs") fails here.
 TEST(GraspMatrixLogs, RecordedLogsMatchTheirScripts) {
   const hand::HandModel hand = load_hand_model(source_dir() + "/config/hand.yaml");
-  for (const auto& o : objects()) {
+  for (const auto& o : grasp_objects()) {
     const std::string stem = o.script.substr(0, o.script.size() - 5);
     const auto log =
         hand::read_glove_log(source_dir() + "/config/glove_logs/" + stem + ".csv", hand);
