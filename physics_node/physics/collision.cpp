@@ -515,6 +515,23 @@ Aabb CollisionWorld::hand_link_box(Link link, const Eigen::Isometry3d& X_GL) con
   return shape_aabb(m.shapes[static_cast<std::size_t>(hand_link_body(link))], X_GL * m.X_LC[l]);
 }
 
+bool CollisionWorld::link_overlaps(Link link, const Eigen::Isometry3d& X_GL, int object) const {
+  const Impl& m = *impl_;
+  VCOCKPIT_ASSERT(has_hand_ && 0 <= object && object < object_count_, "a hand link and an object");
+  const auto body = static_cast<std::size_t>(hand_link_body(link));
+  const auto o = static_cast<std::size_t>(object);
+  if (!hand_link_box(link, X_GL).overlaps(shape_aabb(m.shapes[o], m.objects[o]->getTransform())))
+    return false;
+  // (FCL hands out its geometry as const; the probe never changes it)
+  const fcl::CollisionObjectd probe(
+      std::const_pointer_cast<fcl::CollisionGeometryd>(m.objects[body]->collisionGeometry()),
+                                    X_GL * m.X_LC[static_cast<std::size_t>(link)]);
+  const fcl::CollisionRequestd request;  // yes or no: no contacts wanted
+  fcl::CollisionResultd result;
+  fcl::collide(&probe, m.objects[o].get(), request, result);
+  return result.isCollision();
+}
+
 std::size_t CollisionWorld::candidate_pair_count() const { return impl_->pairs.size(); }
 
 std::uint64_t CollisionWorld::skipped_contacts() const { return impl_->skipped; }

@@ -66,6 +66,10 @@ class CollisionWorld {
   // [0, length] along x_L, the palm box on its frame).
   Aabb hand_link_box(Link link, const Eigen::Isometry3d& X_GL) const;
 
+  // Whether hand link `link`, its frame at X_GL, overlaps object `object` where the last
+  // set_poses put it: for a hand that is not a body of this world (the tracked one).
+  bool link_overlaps(Link link, const Eigen::Isometry3d& X_GL, int object) const;
+
   std::size_t candidate_pair_count() const;
   // Narrowphase points dropped since construction for a zero, NaN or non-unit normal (or a NaN
   // depth or point): a run-time counter, never an exception.

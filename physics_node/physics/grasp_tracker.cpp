@@ -43,17 +43,32 @@ GraspHold GraspTracker::initial_hold(const ObjectSpec& o) const {
 }
 
 void GraspTracker::update(int object, const ObjectSpec& o, const HandContact* contacts,
-                          std::size_t count, const HandNow& hand, GraspHold& hold, BodyState& body,
-                          std::vector<GraspEvent>& events) const {
+                          std::size_t count, const HandNow& hand, uint32_t glove_links_inside,
+                          GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events) const {
   if (!o.dynamic) return;
   const bool held = body.held_by == hand_id_;
-  if (hold.resting_links != 0 && hand.t_ns - hold.released_at_ns >= regrab_cooldown_ns_)
-    hold.resting_links = 0;
+  if (hold.hand_clearing && !held) {
+    // For the cooldown after a release, every link whose glove link passes through the object
+    // rests off it: the hand does not push what it has just let go of. After it, if the pilot
+    // let go (the glove opened from its grip) they rest until the glove is clear of it;
+    // otherwise (the grip loosened with the glove still closed) they all end, so the same grip
+    // can take the object again.
+    const bool cooled = hand.t_ns - hold.released_at_ns >= regrab_cooldown_ns_;
+    if (!cooled) {
+      hold.resting_links |= glove_links_inside;
+    } else {
+      const bool let_go = params_.release_opening_deg > 0.0 &&
+                          grip_opening_rad(hand, hold) > deg_to_rad(params_.release_opening_deg);
+      hold.resting_links = let_go ? glove_links_inside : 0u;
+    }
+    if (cooled && hold.resting_links == 0) hold.hand_clearing = false;
+  }
   if (!held && count == 0) return;
   const GraspCheck check = evaluate_grasp(contacts, count, body.X_GO.translation(), o.mass_kg,
                                           gravity_mps2_, params_, held);
   decide(object, check, hand, hold, body, events);
   if (held && body.held_by == kNotHeld) {  // let go this step: name the links that touched it
+    hold.hand_clearing = true;
     hold.resting_links = 0;
     for (std::size_t i = 0; i < count; ++i)
       hold.resting_links |= 1u << static_cast<int>(contacts[i].link);
@@ -117,6 +132,7 @@ void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& ha
   hold.history_count = 0;
   hold.grip_fingers = check.fingers;
   hold.resting_links = 0;
+  hold.hand_clearing = false;
   for (int f = 0; f < kFingerCount; ++f)
     hold.grip_flexion_rad[static_cast<std::size_t>(f)] =
         hand.tracked_q_rad != nullptr ? finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f))

@@ -52,10 +52,17 @@ struct GraspHold {
   uint8_t grip_fingers = 0;
   std::array<double, kFingerCount> grip_flexion_rad{};
   // The links (bit l) that touched it when it was let go: the proxy keeps them a hair off it
-  // (ProxyHand::depth_limit_m) until the regrab cooldown ends. The grip's squeeze is the
-  // pilot's, and it goes when the hand lets go: kept, the penalty depth of the last finger
-  // would shove the released object away (a set-down ball rolled off the console).
+  // (ProxyHand::depth_limit_m) until the regrab cooldown has ended. If the glove has opened
+  // from its grip (release_opening_deg), every link whose glove link passes through the object
+  // joins them, and they rest until the glove is clear of it. The grip's squeeze is the pilot's, and it goes when the hand lets go:
+  // kept, the penalty depth of the last finger would shove the released object away (a
+  // set-down ball rolled off the console). And a glove's finger that opens through where the
+  // object is (a thumb swinging back past a ball) is not pushing it: its proxy, held back
+  // behind the object, would shove it as soon as the cooldown ended.
   uint32_t resting_links = 0;
+  // From a release until the resting links end (the glove is clear of the object): while it
+  // lasts, the links the glove moves through the object join resting_links if the glove opened.
+  bool hand_clearing = false;
 };
 
 // The hand at the end of a step, as the decisions see it.
@@ -81,9 +88,12 @@ class GraspTracker {
 
   // One object's step: the stable-grasp test of the hand's contacts on it (eqs. 30-31 and the
   // gesture), then the decision. Objects neither held nor touched are left alone.
+  // `glove_links_inside` (bit l): the links of the glove's (tracked) hand that overlap the
+  // object now (needed only while hold.hand_clearing).
   void update(int object, const ObjectSpec& o, const HandContact* contacts, std::size_t count,
-              const HandNow& hand, GraspHold& hold, BodyState& body,
+              const HandNow& hand, uint32_t glove_links_inside, GraspHold& hold, BodyState& body,
               std::vector<GraspEvent>& events) const;
+
 
   // The attach/release decision for one dynamic object given its test: attaches (eq. 28) or
   // releases it, appending the event.

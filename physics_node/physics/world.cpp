@@ -298,6 +298,15 @@ void World::constrain_proxy(double dt_s) {
   }
 }
 
+uint32_t World::glove_links_inside(int object, const GraspHold& hold) const {
+  if (!proxy_ || !state_.hand_active || !hold.hand_clearing) return 0;
+  observe_tracked_hand();
+  uint32_t inside = 0;
+  for (int l = 0; l < kLinkCount; ++l)
+    if (collision_.link_overlaps(static_cast<Link>(l), tracked_X_GL_[l], object)) inside |= 1u << l;
+  return inside;
+}
+
 void World::observe_tracked_hand() const {
   if (tracked_observed_) return;
   tracked_observed_ = true;
@@ -389,8 +398,9 @@ void World::grasp_stage() {
   if (!scene_.hand) return;
   const HandNow hand{state_.time_ns, state_.hand_to.tracking, state_.X_GH, &state_.hand_to.q_rad};
   const auto grasp_object = [&](int object, const HandContact* contacts, std::size_t count) {
+    GraspHold& hold = state_.grasp[object];
     grasp_tracker_.update(object, scene_.objects[object], contacts, count, hand,
-                          state_.grasp[object], state_.bodies[object], events_);
+                          glove_links_inside(object, hold), hold, state_.bodies[object], events_);
   };
   // hand contacts of the last substep, grouped by object (contacts are sorted by body_a)
   std::size_t i = 0;

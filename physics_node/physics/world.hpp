@@ -114,6 +114,9 @@ class World {
   void place_hand(const Eigen::Isometry3d& X_GH, const JointAngles& q_rad);
   void constrain_proxy(double dt_s);
   void observe_tracked_hand() const;  // on demand: one forward kinematics a step
+  // The links of the glove's (tracked) hand that overlap `object` now (bit l); 0 unless the
+  // hand is clearing it after a release (GraspHold::hand_clearing), the only time they matter.
+  uint32_t glove_links_inside(int object, const GraspHold& hold) const;
   void move_held_objects(double dt_s);
   void build_contact_bodies();
   void integrate(double dt_s);

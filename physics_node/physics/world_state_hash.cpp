@@ -57,6 +57,7 @@ void hash_hold(Fnv1a64& h, const GraspHold& g) {
   for (double q : g.grip_flexion_rad)
     h.f64(q);
   h.u64(g.resting_links);
+  h.flag(g.hand_clearing);
 }
 
 }  // namespace

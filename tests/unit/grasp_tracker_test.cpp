@@ -178,8 +178,8 @@ TEST(GraspTracker, StaticObjectsAndUntouchedFreeOnesAreLeftAlone) {
   GraspHold panel_hold = rig.tracker.initial_hold(panel);
   EXPECT_TRUE(panel_hold.history.empty());
   BodyState panel_body;
-  rig.tracker.update(1, panel, nullptr, 0, HandNow{}, panel_hold, panel_body, events);
-  rig.tracker.update(0, rig.cup, nullptr, 0, HandNow{}, rig.hold, rig.body, events);
+  rig.tracker.update(1, panel, nullptr, 0, HandNow{}, 0, panel_hold, panel_body, events);
+  rig.tracker.update(0, rig.cup, nullptr, 0, HandNow{}, 0, rig.hold, rig.body, events);
   EXPECT_TRUE(events.empty());
   EXPECT_EQ(rig.body.held_by, kNotHeld);
 }
@@ -260,13 +260,17 @@ TEST(GraspTracker, TheLinksThatLetGoAreNamedUntilTheCooldownEnds) {
   const JointAngles glove{};
   std::vector<GraspEvent> events;
   int64_t t_ns = 0;
-  const auto run_until = [&](double t_s, const std::vector<HandContact>& contacts) {
+  // glove_inside: the glove's links that overlap the cup (the world finds them with FCL)
+  const auto run_until = [&](double t_s, const std::vector<HandContact>& contacts,
+                             uint32_t glove_inside = 0) {
     while (t_ns < std::llround(t_s * 1e9)) {
       t_ns += kStep_ns;
       tracker.update(0, cup, contacts.data(), contacts.size(),
-                     HandNow{t_ns, true, Eigen::Isometry3d::Identity(), &glove}, hold, body, events);
+                     HandNow{t_ns, true, Eigen::Isometry3d::Identity(), &glove}, glove_inside,
+                     hold, body, events);
     }
   };
+  const uint32_t thumb_bit = 1u << static_cast<int>(Link::kThumbDistal);
   run_until(0.3, grip);
   ASSERT_EQ(body.held_by, kHand);
   EXPECT_EQ(hold.resting_links, 0u);
@@ -276,12 +280,68 @@ TEST(GraspTracker, TheLinksThatLetGoAreNamedUntilTheCooldownEnds) {
   const int64_t released_ns = events[1].t_ns;
   EXPECT_EQ(hold.resting_links, 1u << static_cast<int>(Link::kThumbDistal));
   run_until(static_cast<double>(released_ns) * 1e-9 + 0.29, grip);  // back on it: no grasp yet
-  EXPECT_EQ(hold.resting_links, 1u << static_cast<int>(Link::kThumbDistal));
+  EXPECT_EQ(hold.resting_links, thumb_bit);
   EXPECT_EQ(events.size(), 2u);
   run_until(static_cast<double>(released_ns) * 1e-9 + 0.31, grip);  // the cooldown is over
   EXPECT_EQ(hold.resting_links, 0u);
   EXPECT_EQ(events.size(), 3u);  // grasped again
   EXPECT_TRUE(events[2].grasp);
+}
+
+// A glove that opened to let go, its thumb swinging back through the ball: the thumb's proxy
+// rests off the ball after the cooldown until the glove's thumb is out of it. Within the
+// cooldown any link the glove moves through it rests off it too. A glove still
+// closed (the grip loosened by itself): the links rest only for the cooldown, so the same grip
+// can take the ball again.
+TEST(GraspTracker, ALinkStaysRestingWhileTheGlovesLinkIsStillInTheObject) {
+  for (const bool glove_open : {true, false}) {
+    SCOPED_TRACE(glove_open ? "the glove opened" : "the glove still closed");
+  GraspTracker tracker{GraspParams{}, kStep_s, {0.0, 0.0, -9.81}, kHand};
+  ObjectSpec ball;
+  ball.dynamic = true;
+  ball.mass_kg = 0.06;
+  GraspHold hold = tracker.initial_hold(ball);
+  BodyState body;
+  hold.resting_links = (1u << static_cast<int>(Link::kThumbDistal)) |
+                       (1u << static_cast<int>(Link::kIndexDistal));
+  hold.released_at_ns = 0;
+  hold.hand_clearing = true;
+  // the index and middle gripped, curled 1.5 rad at their tightest; the glove now flat (open)
+  // or still curled so (closed)
+  hold.grip_fingers = (1u << static_cast<int>(Finger::kIndex)) |
+                      (1u << static_cast<int>(Finger::kMiddle));
+  JointAngles glove{};
+  for (const Finger f : {Finger::kIndex, Finger::kMiddle})
+    hold.grip_flexion_rad[static_cast<std::size_t>(f)] = 1.5;
+  if (!glove_open) {
+    glove[static_cast<std::size_t>(hand::Joint::kIndexPip)] = 1.5;
+    glove[static_cast<std::size_t>(hand::Joint::kMiddlePip)] = 1.5;
+  }
+  ASSERT_NEAR(finger_flexion_rad(glove, Finger::kIndex), glove_open ? 0.0 : 1.5, 1e-12);
+  std::vector<GraspEvent> events;
+  const auto at = [&](double t_s, uint32_t glove_inside) {
+    tracker.update(0, ball, nullptr, 0,
+                   HandNow{std::llround(t_s * 1e9), true, Eigen::Isometry3d::Identity(), &glove},
+                   glove_inside, hold, body, events);
+  };
+  const uint32_t thumb_bit = 1u << static_cast<int>(Link::kThumbDistal);
+  at(0.1, 0);  // within the cooldown: both rest, whatever the glove does
+  EXPECT_EQ(hold.resting_links, thumb_bit | (1u << static_cast<int>(Link::kIndexDistal)));
+  // the glove's middle finger passes through the ball: it rests off it too
+  const uint32_t middle_bit = 1u << static_cast<int>(Link::kMiddleMiddle);
+  at(0.2, middle_bit);
+  EXPECT_EQ(hold.resting_links,
+            thumb_bit | (1u << static_cast<int>(Link::kIndexDistal)) | middle_bit);
+  at(0.4, thumb_bit);  // after it: the index is out, the glove's thumb is still in the ball
+  EXPECT_EQ(hold.resting_links, glove_open ? thumb_bit : 0u);
+  at(0.6, thumb_bit);
+  EXPECT_EQ(hold.resting_links, glove_open ? thumb_bit : 0u);
+  at(0.7, 0);  // the thumb is out too
+  EXPECT_EQ(hold.resting_links, 0u);
+  at(0.8, thumb_bit);  // back in: it is an ordinary link again, and may push the ball
+  EXPECT_EQ(hold.resting_links, 0u);
+  EXPECT_TRUE(events.empty());
+  }
 }
 
 }  // namespace

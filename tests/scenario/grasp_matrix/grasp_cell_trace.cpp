@@ -92,7 +92,40 @@ int run(int argc, char** argv) {
                       a.z() * 1e3, c.x() * 1e3, c.y() * 1e3, c.z() * 1e3);
         tips += s2;
       }
-      std::printf("        tips mm in O:%s\n", tips.c_str());
+      // the lowest link of the proxy: what reaches a surface under the hand first
+      double lowest_z = 1e9;
+      int lowest = 0;
+      for (int l = 1; l < hand::kLinkCount; ++l) {
+        const auto& X = world.X_GL()[l];
+        const double z = std::min(X.translation().z(),
+                                  (X * Eigen::Vector3d(model.capsules[l].length_m, 0, 0)).z()) -
+                         model.capsules[l].radius_m;
+        if (z < lowest_z) {
+          lowest_z = z;
+          lowest = l;
+        }
+      }
+      std::string others;
+      for (const auto& a : world.contacts()) {
+        if (a.contact.body_a == object && a.contact.body_b >= static_cast<int>(world.scene().objects.size()))
+          continue;  // printed above
+        if (a.contact.body_a != object && a.contact.body_b != object &&
+            a.contact.body_b < static_cast<int>(world.scene().objects.size()))
+          continue;  // neither the hand nor the object
+        char s4[96];
+        std::snprintf(s4, sizeof s4, " %d-%d %.2fmm", a.contact.body_a, a.contact.body_b,
+                      a.contact.depth_m * 1e3);
+        others += s4;
+      }
+      std::string planes;
+      for (const auto& n : world.state().blocking_out_G) {
+        char s3[64];
+        std::snprintf(s3, sizeof s3, " (%.2f %.2f %.2f)", n.x(), n.y(), n.z());
+        planes += s3;
+      }
+      std::printf("        tips mm in O:%s | lowest %s z %.4f | %s blocking%s | others%s\n", tips.c_str(),
+                  short_link(static_cast<physics::Link>(lowest)), lowest_z,
+                  world.state().pushing ? "pushing" : "", planes.c_str(), others.c_str());
     }
   };
   const ScenarioResult r = run_grasp_scenario(source_dir, gc, hand_sizes().at(cell.size),

@@ -7,7 +7,7 @@ namespace vcockpit::test {
 const std::vector<GraspCase>& grasp_objects() {
   static const std::vector<GraspCase> kObjects = {
       {"cup", "cup_pick_place.yaml", {0.36, -0.43, 0.75}},
-      {"ball", "ball_pick_place.yaml", {0.55, -0.42, 0.73}},
+      {"ball", "ball_pick_place.yaml", {0.58, -0.44, 0.73}},
       {"flashlight", "flashlight_pick_place.yaml", {0.565, -0.30, 0.718}},
       {"checklist", "checklist_pick_place.yaml", {0.31, -0.228, 0.704}},
   };
