@@ -122,6 +122,11 @@ void forward_kinematics(const HandModel& model, const JointAngles& q, HandLinkPo
     chain_kinematics(model, static_cast<Finger>(f), q, out);
 }
 
+void finger_kinematics(const HandModel& model, Finger finger, const JointAngles& q,
+                       HandLinkPoses& out) {
+  chain_kinematics(model, finger, q, out);
+}
+
 // NaN is out of range too: it goes to the rest angle rather than poisoning the kinematics.
 int clamp_to_limits(const HandModel& model, JointAngles& q) {
   int clamped = 0;

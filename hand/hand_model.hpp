@@ -76,6 +76,10 @@ struct HandLinkPoses {
 // Forward kinematics (eq. 1 per row, product along each chain). No allocation; angles are used
 // as given (clamp first with clamp_to_limits).
 void forward_kinematics(const HandModel& model, const JointAngles& q, HandLinkPoses& out);
+// The same for one finger: its three links and its tip; the rest of `out` is left as it was
+// (the proxy's probes move one finger's joints at a time).
+void finger_kinematics(const HandModel& model, Finger finger, const JointAngles& q,
+                       HandLinkPoses& out);
 
 // T(i-1, i) of eq. 1 as an isometry, for any row and joint value (the general form, not the
 // paper's printed instances).

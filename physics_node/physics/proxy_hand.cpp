@@ -302,14 +302,14 @@ void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_g
 
   // the depth each of the finger's contacts gains per radian of each joint, at the held-back pose
   slide_rows_.clear();
-  forward_kinematics(hand_, pose.q_rad, slide_links_);
+  finger_kinematics(hand_, finger, pose.q_rad, slide_links_);
   for (std::size_t i = 0; i < limits_.size(); ++i)
     if (limits_[i].finger == finger) slide_rows_.push_back({i, Eigen::Matrix<double, kMaxFingerJoints, 1>::Zero(), 0.0, false});
   if (slide_rows_.empty()) return;
   for (int k = 0; k < joint_count; ++k) {
     JointAngles probe = pose.q_rad;
     probe[joints[static_cast<std::size_t>(k)]] += kProbe_rad;
-    forward_kinematics(hand_, probe, probe_links_);
+    finger_kinematics(hand_, finger, probe, probe_links_);  // only this finger's links are read
     for (SlideRow& row : slide_rows_) {
       const ContactLimit& cl = limits_[row.limit];
       const auto l = static_cast<std::size_t>(cl.link);
@@ -437,7 +437,8 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
     for (int k = 0; k < joint_count; ++k) {
       ProxyPose probe = pose;
       probe.q_rad[joints[k]] += kProbe_rad;
-      forward_kinematics(hand_, probe.q_rad, probe_links_);
+      // only finger f's links are read
+      finger_kinematics(hand_, static_cast<Finger>(f), probe.q_rad, probe_links_);
       for (int i = 0; i < row_count; ++i) {
         const ContactPoint& c = *rows[static_cast<std::size_t>(i)];
         const auto l = static_cast<std::size_t>(link_of(c.body_b));
