@@ -66,7 +66,9 @@ void chain_kinematics(const HandModel& model, Finger finger, const JointAngles& 
     const Eigen::Vector3d y = ct * R.col(1) - st * R.col(0);
     const Eigen::Vector3d z = R.col(2);
     p += row.a_m * x + row.d_m * z;
-    const double ca = std::cos(row.alpha_rad), sa = std::sin(row.alpha_rad);
+    // most rows have no twist (cos 0 = 1 and sin 0 = 0 exactly, so this changes no bit)
+    const double ca = row.alpha_rad == 0.0 ? 1.0 : std::cos(row.alpha_rad);
+    const double sa = row.alpha_rad == 0.0 ? 0.0 : std::sin(row.alpha_rad);
     R.col(0) = x;
     R.col(1) = ca * y + sa * z;
     R.col(2) = ca * z - sa * y;
