@@ -61,14 +61,9 @@ const std::map<std::string, std::string>& known_failing() {
   static const std::map<std::string, std::string> kCells = {
       {"ball_large_typical", "not carried (lift 1 mm), ends 711 mm off"},
       {"cup_large_harsh", "no grasp, ends 125 mm off"},
-      {"cup_large_typical", "not carried (lift 2 mm), ends 122 mm off"},
-      {"cup_medium_120hz", "knocked at 0.62 m/s, no grasp, ends 45 mm off"},
-      {"cup_medium_30hz", "ends 32 mm off"},
-      {"cup_medium_harsh", "no grasp, ends 126 mm off"},
-      {"cup_medium_jitter", "no grasp, ends 142 mm off"},
-      {"cup_medium_overrange", "no grasp, ends 124 mm off"},
-      {"cup_small_harsh", "no grasp, ends 125 mm off"},
-      {"cup_small_typical", "ends 39 mm off"},
+      {"cup_medium_harsh", "no grasp, ends 124 mm off"},
+      {"cup_medium_overrange", "no grasp, ends 121 mm off"},
+      {"cup_small_harsh", "no grasp, ends 124 mm off"},
       {"flashlight_large_typical", "ends 752 mm off"},
       {"flashlight_medium_typical", "not carried (lift 18 mm), ends 756 mm off"},
   };
