@@ -52,11 +52,13 @@ std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
 //              on the rim instead of behind the cup: no grasp;
 //   flashlight, typical: tracker jitter and glove noise move the fingers on the carried torch,
 //              the grip's residual passes xi x exit_scale (12-15 N) and it is let go mid-air;
-//   ball, large hand, typical: the grasp is lost as the lift starts.
+//   ball, medium hand, typical: set down and let go, then touched by a finger of the proxy
+//              (which lags the jittering glove by up to 17 mm) as the hand opens, and it rolls
+//              off the console's front edge 4 cm away.
 // Each entry: the checks that fail, with the figures measured.
 const std::map<std::string, std::string>& known_failing() {
   static const std::map<std::string, std::string> kCells = {
-      {"ball_large_typical", "not carried (lift 1 mm), ends 711 mm off"},
+      {"ball_medium_typical", "ends 711 mm off"},
       {"cup_large_harsh", "no grasp, ends 125 mm off"},
       {"cup_medium_harsh", "no grasp, ends 124 mm off"},
       {"cup_medium_overrange", "no grasp, ends 121 mm off"},
