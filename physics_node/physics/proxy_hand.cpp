@@ -1,6 +1,7 @@
 #include "physics_node/physics/proxy_hand.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "common/assert.hpp"
@@ -35,6 +36,7 @@ ProxyHand::ProxyHand(const Scene& scene)
   VCOCKPIT_ASSERT(scene.hand.has_value(), "a proxy hand needs a hand");
   depth_limit_m_.resize(scene.objects.size());
   dynamic_.resize(scene.objects.size());
+  grip_balance_.assign(scene.objects.size(), GripBalance{});
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const ObjectSpec& o = scene.objects[i];
     dynamic_[i] = o.dynamic ? 1 : 0;
@@ -210,9 +212,62 @@ bool ProxyHand::constrain_fingers(const ProxyPose& prev, const HandLinkPoses& pr
                                   std::vector<ContactPoint>& contacts,
                                   std::vector<ContactPoint>& hand_static, double dt_s) {
   ProxyConstraint result;
+  balance_held_grips(contacts, held);
   hold_back_fingers(prev, prev_links, pose, links, X_GL, held, contacts, hand_static, dt_s, result);
   bend_out(pose, links, X_GL, contacts, hand_static, result);
   return result.fingers_held;
+}
+
+void ProxyHand::balance_held_grips(const std::vector<ContactPoint>& contacts,
+                                   const std::vector<uint8_t>& held) {
+  std::fill(grip_balance_.begin(), grip_balance_.end(), GripBalance{});
+  // contacts are grouped by pair, so each object's hand contacts are consecutive
+  std::size_t i = 0;
+  while (i < contacts.size()) {
+    const int object = contacts[i].body_a;
+    std::size_t end = i;
+    while (end < contacts.size() && contacts[end].body_a == object) ++end;
+    if (is_link(object) || held[static_cast<std::size_t>(object)] == 0) {
+      i = end;
+      continue;
+    }
+    // the grip's axis: the opposing links' normals (into the object), one vote per link
+    Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+    uint32_t opposing = 0, fingers = 0;
+    for (std::size_t k = i; k < end; ++k) {
+      const ContactPoint& c = contacts[k];
+      if (!is_link(c.body_b)) continue;
+      const auto l = static_cast<uint32_t>(c.body_b - object_count_);
+      if (opposes_fingers(link_of(c.body_b))) {
+        if ((opposing >> l & 1u) == 0) axis -= c.n_G;  // n points from the object into the link
+        opposing |= 1u << l;
+      } else {
+        fingers |= 1u << l;
+      }
+    }
+    if (opposing != 0 && fingers != 0 && axis.norm() > 0.0) {
+      axis.normalize();
+      // what each side can press along the axis, in grip forces: one per opposing link, and
+      // each finger link's share along the axis (its deepest point's normal)
+      const double opposing_capacity = std::popcount(opposing);
+      double finger_capacity = 0.0;
+      uint32_t counted = 0;
+      for (std::size_t k = i; k < end; ++k) {
+        const ContactPoint& c = contacts[k];
+        if (!is_link(c.body_b) || opposes_fingers(link_of(c.body_b))) continue;
+        const auto l = static_cast<uint32_t>(c.body_b - object_count_);
+        if ((counted >> l & 1u) != 0) continue;
+        counted |= 1u << l;
+        finger_capacity += std::max(0.0, c.n_G.dot(axis));  // the link pushes along -n
+      }
+      GripBalance& g = grip_balance_[static_cast<std::size_t>(object)];
+      if (finger_capacity > opposing_capacity)
+        g.finger_scale = opposing_capacity / finger_capacity;
+      else if (finger_capacity > 0.0)
+        g.opposing_scale = finger_capacity / opposing_capacity;
+    }
+    i = end;
+  }
 }
 
 ProxyConstraint ProxyHand::constrain_wrist(ProxyPose& pose,

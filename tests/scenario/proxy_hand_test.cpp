@@ -5,7 +5,8 @@
 //     same sweep with the proxy off throws it faster: the test tells the two apart);
 //   - a cup squeezed by the palm against the console is neither crushed into it nor set
 //     chattering (with the proxy off, it is pressed several mm into the console);
-//   - the wrist approaches a far tracked pose no faster than max_speed_mps.
+//   - the wrist approaches a far tracked pose no faster than max_speed_mps;
+//   - a held grip presses as hard on each side (the thumb's and the fingers').
 // Geometry is checked analytically: each capsule's lowest end point and the palm box's corners
 // against the console's top face.
 
@@ -19,6 +20,7 @@
 
 #include "common/pose.hpp"
 #include "hand/hand_yaml.hpp"
+#include "physics_node/physics/proxy_hand.hpp"
 #include "physics_node/physics/world.hpp"
 #include "tests/support/scene_builder.hpp"
 #include "tests/support/test_files.hpp"
@@ -247,6 +249,50 @@ TEST(ProxyHand, TheFingersApproachAFarTrackedShapeAtTheMaximumSpeed) {
   EXPECT_LE(fastest_m, reach_m * 1.01);  // the shares are measured again to within this
   EXPECT_GT(fastest_m, 0.9 * reach_m);  // and it does move at that speed
   for (int j = 0; j < kJointCount; ++j) EXPECT_NEAR(world.state().q_rad[j], fist.q_rad[j], 1e-9) << j;
+}
+
+// A held torch gripped by the thumb on one side and three fingers on the other: the fingers go
+// in only a third as deep as a free grip's, so each presses a third of the thumb's force and
+// the grip balances; the thumb keeps the full depth. Against one finger both keep it; an
+// object not held is not balanced (it moves under the forces instead).
+TEST(ProxyHand, AHeldGripPressesAsHardOnEachSide) {
+  Scene scene = console_scene(true);
+  scene.objects.push_back(test::dynamic_object("torch", Shape::cylinder(0.018, 0.16), 0.25,
+                                               at(0.4, 0.0, 0.9), test::material(3.0e4, 0.5, 0.4, 0.8)));
+  const int torch = 2;
+  ProxyHand proxy(scene);
+  const int first_link = static_cast<int>(scene.objects.size());
+  const auto body = [&](Link l) { return first_link + static_cast<int>(l); };
+  const auto contact = [&](Link l, double n_y) {
+    ContactPoint c;
+    c.body_a = torch;
+    c.body_b = body(l);
+    c.n_G = Eigen::Vector3d(0.0, n_y, 0.0);  // from the torch into the link
+    c.depth_m = 1e-4;
+    return c;
+  };
+  const double free_limit_m = proxy.depth_limit_m(torch);
+  const std::vector<ContactPoint> grip = {contact(Link::kThumbDistal, 1.0),
+                                          contact(Link::kIndexDistal, -1.0),
+                                          contact(Link::kMiddleDistal, -1.0),
+                                          contact(Link::kRingDistal, -1.0)};
+  std::vector<uint8_t> held(scene.objects.size(), 0);
+  proxy.balance_held_grips(grip, held);
+  EXPECT_EQ(proxy.depth_limit_m(torch, body(Link::kIndexDistal)), free_limit_m) << "not held";
+  held[torch] = 1;
+  proxy.balance_held_grips(grip, held);
+  EXPECT_DOUBLE_EQ(proxy.depth_limit_m(torch, body(Link::kThumbDistal)), free_limit_m);
+  for (Link l : {Link::kIndexDistal, Link::kMiddleDistal, Link::kRingDistal})
+    EXPECT_DOUBLE_EQ(proxy.depth_limit_m(torch, body(l)), free_limit_m / 3.0);
+  const std::vector<ContactPoint> pinch = {grip[0], grip[1]};
+  proxy.balance_held_grips(pinch, held);
+  EXPECT_DOUBLE_EQ(proxy.depth_limit_m(torch, body(Link::kThumbDistal)), free_limit_m);
+  EXPECT_DOUBLE_EQ(proxy.depth_limit_m(torch, body(Link::kIndexDistal)), free_limit_m);
+  // thumb and palm against one finger: the two yield to it
+  const std::vector<ContactPoint> against_palm = {contact(Link::kPalm, 1.0), grip[0], grip[1]};
+  proxy.balance_held_grips(against_palm, held);
+  EXPECT_DOUBLE_EQ(proxy.depth_limit_m(torch, body(Link::kPalm)), free_limit_m / 2.0);
+  EXPECT_DOUBLE_EQ(proxy.depth_limit_m(torch, body(Link::kIndexDistal)), free_limit_m);
 }
 
 }  // namespace
