@@ -50,7 +50,6 @@ std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
 // (build/tests/grasp_cell_trace SOURCE_DIR CELL prints a cell's story):
 //   cup, small hand, harsh: the glove's calibration error brings the thumb of cup_open nearer
 //              the cup, and it comes down on the rim instead of behind the cup: no grasp;
-//   flashlight, small hand, harsh: set down 3.2 cm from where the gesture puts it;
 //   ball, medium hand, typical: set down and let go, then touched by a finger of the proxy
 //              (which lags the jittering glove by up to 17 mm) as the hand opens, and it rolls
 //              off the console's front edge 4 cm away.
@@ -59,7 +58,6 @@ const std::map<std::string, std::string>& known_failing() {
   static const std::map<std::string, std::string> kCells = {
       {"ball_medium_typical", "ends 711 mm off"},
       {"cup_small_harsh", "no grasp, ends 120 mm off"},
-      {"flashlight_small_harsh", "ends 32 mm off"},
   };
   return kCells;
 }
