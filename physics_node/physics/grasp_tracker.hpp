@@ -51,17 +51,16 @@ struct GraspHold {
   // the tracked fingers that gripped it (bit f) and each one's tightest flexion while held (rad)
   uint8_t grip_fingers = 0;
   std::array<double, kFingerCount> grip_flexion_rad{};
-  // The links (bit l) that touched it when it was let go: the proxy keeps them a hair off it
-  // (ProxyHand::depth_limit_m) until the regrab cooldown has ended. If the glove has opened
-  // from its grip (release_opening_deg), every link whose glove link passes through the object
-  // joins them, and they rest until the glove is clear of it. The grip's squeeze is the pilot's, and it goes when the hand lets go:
-  // kept, the penalty depth of the last finger would shove the released object away (a
+  // The links (bit l) the proxy keeps a hair off it (ProxyHand::depth_limit_m) after a release:
+  // those that touched it, and those whose glove link passes through it during the regrab
+  // cooldown; after the cooldown, if the glove has opened from its grip (release_opening_deg),
+  // those whose glove link is still in it. The grip's squeeze is the pilot's and goes when the
+  // hand lets go: kept, the last finger's penalty depth shoved the released object away (a
   // set-down ball rolled off the console). And a glove's finger that opens through where the
   // object is (a thumb swinging back past a ball) is not pushing it: its proxy, held back
-  // behind the object, would shove it as soon as the cooldown ended.
+  // behind the object, shoved it as soon as the cooldown ended.
   uint32_t resting_links = 0;
-  // From a release until the resting links end (the glove is clear of the object): while it
-  // lasts, the links the glove moves through the object join resting_links if the glove opened.
+  // From a release until resting_links ends after the cooldown (the glove is clear of it).
   bool hand_clearing = false;
 };
 
@@ -93,7 +92,6 @@ class GraspTracker {
   void update(int object, const ObjectSpec& o, const HandContact* contacts, std::size_t count,
               const HandNow& hand, uint32_t glove_links_inside, GraspHold& hold, BodyState& body,
               std::vector<GraspEvent>& events) const;
-
 
   // The attach/release decision for one dynamic object given its test: attaches (eq. 28) or
   // releases it, appending the event.

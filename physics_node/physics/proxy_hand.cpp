@@ -172,13 +172,13 @@ ProxyPose ProxyHand::advance(const ProxyPose& prev, const ProxyPose& start,
   return next;
 }
 
-void ProxyHand::catch_up_fingers(uint8_t fingers, const ProxyPose& start, const ProxyPose& goal,
-                                 ProxyPose& pose) const {
+void ProxyHand::catch_up_fingers(uint8_t fingers, const ProxyPose& prev, const ProxyPose& start,
+                                 const ProxyPose& goal, ProxyPose& pose) const {
   for (int f = 0; f < kFingerCount; ++f) {
     if ((fingers & (1u << f)) == 0) continue;
     for (int j = 0; j < kJointCount; ++j)
       if (finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(j)])
-        pose.q_rad[j] += goal.q_rad[j] - start.q_rad[j];
+        pose.q_rad[j] = prev.q_rad[j] + (goal.q_rad[j] - start.q_rad[j]);
   }
 }
 
@@ -233,22 +233,18 @@ void ProxyHand::balance_held_grips(const std::vector<ContactPoint>& contacts,
     }
     // the grip's axis: the opposing links' normals (into the object), one vote per link
     Eigen::Vector3d axis = Eigen::Vector3d::Zero();
-    uint32_t opposing = 0, fingers = 0;
+    uint32_t opposing = 0;
     for (std::size_t k = i; k < end; ++k) {
       const ContactPoint& c = contacts[k];
-      if (!is_link(c.body_b)) continue;
+      if (!is_link(c.body_b) || !opposes_fingers(link_of(c.body_b))) continue;
       const auto l = static_cast<uint32_t>(c.body_b - object_count_);
-      if (opposes_fingers(link_of(c.body_b))) {
-        if ((opposing >> l & 1u) == 0) axis -= c.n_G;  // n points from the object into the link
-        opposing |= 1u << l;
-      } else {
-        fingers |= 1u << l;
-      }
+      if ((opposing >> l & 1u) == 0) axis -= c.n_G;  // n points from the object into the link
+      opposing |= 1u << l;
     }
-    if (opposing != 0 && fingers != 0 && axis.norm() > 0.0) {
+    if (opposing != 0 && axis.norm() > 0.0) {
       axis.normalize();
       // what each side can press along the axis, in grip forces: one per opposing link, and
-      // each finger link's share along the axis (its deepest point's normal)
+      // each finger link's share along the axis (its first point's normal); no fingers, no share
       const double opposing_capacity = std::popcount(opposing);
       double finger_capacity = 0.0;
       uint32_t counted = 0;

@@ -88,9 +88,10 @@ class ProxyHand {
   static ProxyPose advance(const ProxyPose& prev, const ProxyPose& start, const ProxyPose& goal,
                            int substeps);
   // The fingers flagged in `fingers`, kept where they were for the earlier substeps of a step
-  // (keep_fingers), take the whole step's joint motion from `start` to `goal` now.
-  void catch_up_fingers(uint8_t fingers, const ProxyPose& start, const ProxyPose& goal,
-                        ProxyPose& pose) const;
+  // (keep_fingers), take the whole step's joint motion from `start` to `goal` now: their joints
+  // in `pose` become `prev`'s plus that motion.
+  void catch_up_fingers(uint8_t fingers, const ProxyPose& prev, const ProxyPose& start,
+                        const ProxyPose& goal, ProxyPose& pose) const;
 
   // Puts the joints of the fingers flagged in `fingers` (bit f: finger f) back where `prev` has
   // them.

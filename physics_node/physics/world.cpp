@@ -253,8 +253,7 @@ void World::move_hand(double alpha, int remaining) {
       proxy_->keep_fingers(state_.fingers_on_held, proxy_prev_, next);
       fingers_kept_ = state_.fingers_on_held;
     } else if (remaining == 1 && fingers_kept_ != 0) {
-      proxy_->keep_fingers(fingers_kept_, proxy_prev_, next);
-      proxy_->catch_up_fingers(fingers_kept_, proxy_start_, proxy_goal_, next);
+      proxy_->catch_up_fingers(fingers_kept_, proxy_prev_, proxy_start_, proxy_goal_, next);
     }
     place_hand(next.X_GH, next.q_rad);
     return;

@@ -16,6 +16,7 @@
 #include "physics_node/physics/grasp.hpp"
 #include "tests/scenario/grasp_matrix/grasp_cells.hpp"
 #include "tests/scenario/grasp_matrix/grasp_scenario.hpp"
+#include "tests/scenario/grasp_matrix/hand_static_clearance.hpp"
 
 namespace vcockpit::test {
 namespace {
@@ -96,10 +97,7 @@ int run(int argc, char** argv) {
       double lowest_z = 1e9;
       int lowest = 0;
       for (int l = 1; l < hand::kLinkCount; ++l) {
-        const auto& X = world.X_GL()[l];
-        const double z = std::min(X.translation().z(),
-                                  (X * Eigen::Vector3d(model.capsules[l].length_m, 0, 0)).z()) -
-                         model.capsules[l].radius_m;
+        const double z = capsule_lowest_z(model, l, world.X_GL()[l]);
         if (z < lowest_z) {
           lowest_z = z;
           lowest = l;

@@ -118,10 +118,7 @@ TEST(GraspMatrixClearance, MeasuresHowDeepTheHandIsInAStaticObject) {
   double lowest_H = hand.X_HP.translation().z() - 0.5 * hand.palm_size_m.z();
   int lowest_link = static_cast<int>(hand::Link::kPalm);
   for (int l = 1; l < hand::kLinkCount; ++l) {
-    const auto& X = poses.X_HL[l];
-    const double z = std::min(X.translation().z(),
-                              (X * Eigen::Vector3d(hand.capsules[l].length_m, 0, 0)).z()) -
-                     hand.capsules[l].radius_m;
+    const double z = capsule_lowest_z(hand, l, poses.X_HL[l]);
     if (z < lowest_H) {
       lowest_H = z;
       lowest_link = l;

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <vector>
@@ -21,6 +22,14 @@ struct Penetration {
   int link = -1;         // hand::Link
   int object = -1;       // scene object index
 };
+
+// The lowest z of phalanx `link`'s capsule (on [0, length] of its x axis) with the link frame at
+// X (in whatever frame X is given: z of that frame).
+inline double capsule_lowest_z(const hand::HandModel& hand, int link, const Eigen::Isometry3d& X) {
+  const hand::Capsule& capsule = hand.capsules[static_cast<std::size_t>(link)];
+  return std::min(X.translation().z(), (X * Eigen::Vector3d(capsule.length_m, 0, 0)).z()) -
+         capsule.radius_m;
+}
 
 class HandStaticClearance {
  public:
