@@ -71,10 +71,13 @@ int run(int argc, char** argv) {
         hand.data(), hand.size(), b.X_GO.translation(), o.mass_kg, world.scene().gravity_mps2,
         world.scene().grasp, b.held_by != physics::kNotHeld);
     const Eigen::Vector3d p = b.X_GO.translation();
-    std::printf("%7.3f p (%.3f %.3f %.3f) |v| %.3f |w| %.2f %s off %.1fmm | %s F %.2f M %.3f "
-                "opp %.0f |%s\n",
+    const double palm_lag_m =
+        (world.tracked_X_GL()[0].translation() - world.X_GL()[0].translation()).norm();
+    std::printf("%7.3f p (%.3f %.3f %.3f) |v| %.3f |w| %.2f %s off %.1fmm palm %.1fmm | "
+                "%s F %.2f M %.3f opp %.0f |%s\n",
                 t_s, p.x(), p.y(), p.z(), b.v_G.norm(), b.w_G.norm(),
                 b.held_by != physics::kNotHeld ? "HELD" : "free", world.tracked_offset_m() * 1e3,
+                palm_lag_m * 1e3,
                 physics::grasp_reason_name(check.verdict), check.residual_force_N,
                 check.residual_torque_Nm, check.best_opposition_deg, links.c_str());
     if (std::getenv("TRACE_TIPS") != nullptr) {
