@@ -258,7 +258,8 @@ void parse_hand(const ConfigNode& node, const std::string& base_dir, Scene& scen
 GraspParams parse_grasp(const ConfigNode& node) {
   node.expect_keys({"xi_N", "eta_Nm", "alpha0_deg", "min_contacts", "exit_min_contacts", "exit_scale",
                     "exit_alpha_margin_deg", "min_hold_s", "release_delay_s", "regrab_cooldown_s",
-                    "velocity_window_s", "release_opening_deg", "palm_opposition"});
+                    "velocity_window_s", "settle_speed_mps", "settle_window_s",
+                    "release_opening_deg", "palm_opposition"});
   GraspParams g;
   auto pos = [](const ConfigNode& n) { return positive(n); };
   read_optional(node, "xi_N", g.xi_N, pos);
@@ -283,6 +284,8 @@ GraspParams parse_grasp(const ConfigNode& node) {
   read_optional(node, "release_delay_s", g.release_delay_s, non_negative);
   read_optional(node, "regrab_cooldown_s", g.regrab_cooldown_s, non_negative);
   read_optional(node, "velocity_window_s", g.velocity_window_s, pos);
+  read_optional(node, "settle_speed_mps", g.settle_speed_mps, non_negative);
+  read_optional(node, "settle_window_s", g.settle_window_s, pos);
   read_optional(node, "release_opening_deg", g.release_opening_deg, non_negative);
   g.palm_opposition = node.get_bool("palm_opposition", g.palm_opposition);
   if (g.exit_alpha_margin_deg >= g.alpha0_deg) {

@@ -29,8 +29,12 @@ GraspTracker::GraspTracker(const GraspParams& params, double step_s,
       step_s_(step_s),
       gravity_mps2_(gravity_mps2),
       hand_id_(hand_id),
-      window_(std::max<std::size_t>(
-          2, static_cast<std::size_t>(std::llround(params.velocity_window_s / step_s)) + 1)),
+      velocity_span_(std::max<std::size_t>(
+          1, static_cast<std::size_t>(std::llround(params.velocity_window_s / step_s)))),
+      settle_span_(std::max<std::size_t>(
+          1, static_cast<std::size_t>(std::llround(params.settle_window_s / step_s)))),
+      window_((params.settle_speed_mps > 0.0 ? std::max(velocity_span_, settle_span_)
+                                              : velocity_span_) + 1),
       regrab_cooldown_ns_(std::llround(params.regrab_cooldown_s * 1e9)),
       release_delay_ns_(std::llround(params.release_delay_s * 1e9)),
       min_hold_ns_(std::llround(params.min_hold_s * 1e9)) {}
@@ -144,19 +148,33 @@ void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& ha
 void GraspTracker::release(int object, GraspReason reason, const GraspCheck& check,
                            const HandNow& hand, GraspHold& hold, BodyState& body,
                            std::vector<GraspEvent>& events) const {
-  // the object leaves with the hand's motion over the last window (no jump, can be thrown)
+  // the object leaves with the hand's motion over the last window (no jump, can be thrown),
+  // or over the settle window when the hand was setting it down
   if (hold.history_count >= 2) {
-    const std::size_t n = hold.history.size();
-    const std::size_t newest = (hold.history_next + n - 1) % n;
-    const std::size_t oldest = hold.history_count < n ? 0 : hold.history_next;
-    const std::size_t span = hold.history_count < n ? hold.history_count - 1 : n - 1;
-    finite_difference_velocity(hold.history[oldest], hold.history[newest],
-                               static_cast<double>(span) * step_s_, body.v_G, body.w_G);
+    held_velocity(hold, velocity_span_, body.v_G, body.w_G);
+    if (params_.settle_speed_mps > 0.0) {
+      Eigen::Vector3d v_G, w_G;
+      held_velocity(hold, settle_span_, v_G, w_G);
+      if (v_G.norm() < params_.settle_speed_mps) {
+        body.v_G = v_G;
+        body.w_G = w_G;
+      }
+    }
   }
   body.held_by = kNotHeld;
   hold.released_at_ns = hand.t_ns;
   hold.failing_since_ns = -1;
   events.push_back(event(object, false, reason, check, hand));
+}
+
+void GraspTracker::held_velocity(const GraspHold& hold, std::size_t span_steps,
+                                 Eigen::Vector3d& v_G, Eigen::Vector3d& w_G) const {
+  const std::size_t n = hold.history.size();
+  const std::size_t span = std::min(span_steps, hold.history_count - 1);
+  const std::size_t newest = (hold.history_next + n - 1) % n;
+  const std::size_t oldest = (newest + n - span) % n;
+  finite_difference_velocity(hold.history[oldest], hold.history[newest],
+                             static_cast<double>(span) * step_s_, v_G, w_G);
 }
 
 GraspEvent GraspTracker::event(int object, bool grasp, GraspReason reason, const GraspCheck& check,

@@ -7,7 +7,8 @@
 //   release  the test (looser while held: hysteresis) has failed for release_delay_s in a row and
 //            the object has been held for min_hold_s; at once when the glove is lost. The object
 //            leaves with the hand's motion over velocity_window_s (its held poses), so it can be
-//            set down or thrown without a jump.
+//            set down or thrown without a jump; a hand slower than settle_speed_mps over
+//            settle_window_s is setting it down, and that window's mean is taken instead.
 // Events are data: the figures behind each decision. Adapters put them in words
 // (physics_node/io/grasp_event_text.hpp).
 
@@ -106,6 +107,10 @@ class GraspTracker {
               BodyState& body, std::vector<GraspEvent>& events) const;
   void release(int object, GraspReason reason, const GraspCheck& check, const HandNow& hand,
                GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events) const;
+  // The held object's velocity over the last `span_steps` steps of its held poses (fewer if it
+  // has not been held that long; at least two poses).
+  void held_velocity(const GraspHold& hold, std::size_t span_steps, Eigen::Vector3d& v_G,
+                     Eigen::Vector3d& w_G) const;
   // How far the gripping fingers opened (rad, mean over them), raising their tightest closure.
   double grip_opening_rad(const HandNow& hand, GraspHold& hold) const;
   GraspEvent event(int object, bool grasp, GraspReason reason, const GraspCheck& check,
@@ -115,7 +120,9 @@ class GraspTracker {
   double step_s_;
   Eigen::Vector3d gravity_mps2_;
   int hand_id_;
-  std::size_t window_;  // poses in the release-velocity ring
+  std::size_t velocity_span_;  // steps of the release velocity's window
+  std::size_t settle_span_;    // ... and of the settle window
+  std::size_t window_;         // poses in the release-velocity ring: the longer span + 1
   int64_t regrab_cooldown_ns_;
   int64_t release_delay_ns_;
   int64_t min_hold_ns_;

@@ -87,6 +87,12 @@ struct GraspParams {
   double release_delay_s = 0.03;  // the condition must fail this long before a release
   double regrab_cooldown_s = 0.3;  // no new grasp of the same object for this long after release
   double velocity_window_s = 0.02;  // released object takes the hand's velocity over this window
+  // ... unless the hand was slower than settle_speed_mps over settle_window_s: then it is setting
+  // the object down, and the object takes that longer window's mean velocity, over which a
+  // tracker's jitter averages out (0.5 mm at 60 Hz reads as 0.05-0.1 m/s over 20 ms, and a ball
+  // set down that way rolled off the console). settle_speed_mps 0: off.
+  double settle_speed_mps = 0.15;
+  double settle_window_s = 0.1;
   // A held object is let go when the tracked fingers that gripped it have opened this far from
   // their tightest closure while holding it (the sum of each finger's flexion angles, averaged
   // over those fingers): the pilot's own hand opening, which the proxy's fingers, resting on the

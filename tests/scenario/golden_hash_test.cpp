@@ -56,13 +56,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0x844e45e5969239ed") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0xaedfb8274830b6ed") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0xc4ee81d254eb4cad") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x4effd6c3a3ffa777") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x87bb22c358a284ee") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0x8aa2379cb53141ae") << "final state";
 }
 
 }  // namespace

@@ -1,11 +1,13 @@
 // The grasp tracker's attach/release decision, driven step by step with stable-grasp test
 // outcomes: attach (eq. 28), minimum hold, release delay, re-grab cooldown, glove lost, and the
-// release velocity from the held poses.
+// release velocity from the held poses (a throw's over 20 ms, a setting down's over 0.1 s).
 
 #include "physics_node/physics/grasp_tracker.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <random>
 #include <vector>
 
 namespace vcockpit::physics {
@@ -48,7 +50,7 @@ GraspCheck failing(GraspReason why = GraspReason::kTooFewContacts) {
 // One object and the hand, stepped the way the world does: decide, move a held object with the
 // hand (eq. 29), record its pose.
 struct Rig {
-  GraspTracker tracker{params(), kStep_s, {0.0, 0.0, -9.81}, kHand};
+  GraspTracker tracker;
   ObjectSpec cup;
   GraspHold hold;
   BodyState body;
@@ -57,8 +59,12 @@ struct Rig {
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
   Eigen::Vector3d hand_v_G = Eigen::Vector3d::Zero();
   JointAngles glove_q_rad{};  // the tracked (glove) joints the decisions see
+  double jitter_m = 0.0;
+  Eigen::Vector3d jitter_G = Eigen::Vector3d::Zero();
+  std::mt19937 rng{7};
+  std::normal_distribution<double> noise{0.0, 1.0};
 
-  Rig() {
+  explicit Rig(const GraspParams& p = params()) : tracker(p, kStep_s, {0.0, 0.0, -9.81}, kHand) {
     cup.dynamic = true;
     cup.mass_kg = 0.2;
     hold = tracker.initial_hold(cup);
@@ -66,11 +72,17 @@ struct Rig {
   }
 
   // Steps until t_s, every step with the same test outcome; returns the events of those steps.
+  // `jitter_m` (if set) adds a tracker's noise to the wrist: a new offset every 1/60 s.
   std::vector<GraspEvent> run_until(double t_s, const GraspCheck& check, bool tracking = true) {
     std::vector<GraspEvent> out;
     while (t_ns < std::llround(t_s * 1e9)) {
       t_ns += kStep_ns;
       X_GH.translation() += hand_v_G * kStep_s;
+      if (jitter_m > 0.0 && t_ns % 16'000'000 == 0) {
+        X_GH.translation() -= jitter_G;
+        jitter_G = jitter_m * Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+        X_GH.translation() += jitter_G;
+      }
       if (body.held_by == kHand) body.X_GO = X_GH * hold.X_HO;  // eq. 29
       events.clear();
       tracker.decide(0, check, HandNow{t_ns, tracking, X_GH, &glove_q_rad}, hold, body, events);
@@ -169,6 +181,44 @@ TEST(GraspTracker, ReleasedObjectLeavesWithTheHandsVelocity) {
   ASSERT_EQ(rig.body.held_by, kNotHeld);
   EXPECT_TRUE(rig.body.v_G.isApprox(rig.hand_v_G, 1e-9)) << rig.body.v_G.transpose();
   EXPECT_LT(rig.body.w_G.norm(), 1e-9);
+}
+
+// A still hand with a tracker's jitter (0.5 mm, 60 Hz) sets the object down: over 20 ms the
+// jitter reads as a velocity of several cm/s, over the 0.1 s settle window it averages out.
+TEST(GraspTracker, AnObjectSetDownByAJitteryStillHandLeavesNearlyAtRest) {
+  auto release_speed = [](double settle_speed_mps) {
+    GraspParams p = params();
+    p.settle_speed_mps = settle_speed_mps;
+    p.settle_window_s = 0.1;
+    Rig rig(p);
+    rig.jitter_m = 0.5e-3;
+    rig.run_until(0.001, holding());
+    rig.run_until(0.5, holding());
+    rig.run_until(0.6, failing());
+    EXPECT_EQ(rig.body.held_by, kNotHeld);
+    return rig.body.v_G.norm();
+  };
+  const double settled = release_speed(0.15);
+  const double raw = release_speed(0.0);  // off: the 20 ms window alone
+  std::printf("release speed of a still hand with jitter: %.4f m/s (20 ms alone: %.4f)\n",
+              settled, raw);
+  EXPECT_LT(settled, 0.015);
+  EXPECT_GT(raw, 2.0 * settled);
+}
+
+// A hand faster than settle_speed_mps over the settle window throws: the 20 ms velocity, so a
+// throw that speeds up toward the release leaves at the speed it reached.
+TEST(GraspTracker, AThrowLeavesWithTheLast20msVelocityNotTheSettleWindowsMean) {
+  Rig rig;
+  rig.run_until(0.001, holding());
+  rig.run_until(0.3, holding());
+  rig.hand_v_G = {0.3, 0.0, 0.0};
+  rig.run_until(0.36, holding());
+  rig.hand_v_G = {1.5, 0.0, 0.5};
+  rig.run_until(0.4, holding());
+  rig.run_until(0.5, failing());  // the hand keeps its speed through the release delay
+  ASSERT_EQ(rig.body.held_by, kNotHeld);
+  EXPECT_TRUE(rig.body.v_G.isApprox(rig.hand_v_G, 1e-9)) << rig.body.v_G.transpose();
 }
 
 TEST(GraspTracker, StaticObjectsAndUntouchedFreeOnesAreLeftAlone) {

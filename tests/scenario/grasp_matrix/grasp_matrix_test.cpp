@@ -56,7 +56,6 @@ std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
 // Each entry: the checks that fail, with the figures measured.
 const std::map<std::string, std::string>& known_failing() {
   static const std::map<std::string, std::string> kCells = {
-      {"ball_medium_typical", "ends 711 mm off"},
       {"cup_small_harsh", "no grasp, ends 120 mm off"},
   };
   return kCells;
