@@ -80,6 +80,13 @@ int run(int argc, char** argv) {
                 palm_lag_m * 1e3,
                 physics::grasp_reason_name(check.verdict), check.residual_force_N,
                 check.residual_torque_Nm, check.best_opposition_deg, links.c_str());
+    if (std::getenv("TRACE_Q") != nullptr) {  // the thumb's joints (deg): proxy / tracked
+      std::printf("        thumb q deg:");
+      for (int j = 0; j < 4; ++j)
+        std::printf(" %.2f/%.2f", world.state().q_rad[j] * 180.0 / M_PI,
+                    world.state().hand_to.q_rad[j] * 180.0 / M_PI);
+      std::printf("\n");
+    }
     if (std::getenv("TRACE_TIPS") != nullptr) {
       // each finger's distal link tip in the object's frame: proxy, then tracked
       const auto& model = *world.scene().hand;

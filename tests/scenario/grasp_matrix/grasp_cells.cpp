@@ -1,6 +1,8 @@
 #include "tests/scenario/grasp_matrix/grasp_cells.hpp"
 
+#include <cstdlib>
 #include <stdexcept>
+#include <string>
 
 namespace vcockpit::test {
 
@@ -18,6 +20,15 @@ const std::map<std::string, std::string>& hand_sizes() {
   static const std::map<std::string, std::string> kSizes = {
       {"small", "hand_small.yaml"}, {"medium", "hand.yaml"}, {"large", "hand_large.yaml"}};
   return kSizes;
+}
+
+uint64_t grasp_matrix_seed() {
+  const char* text = std::getenv("VCOCKPIT_GRASP_MATRIX_SEED");
+  if (text == nullptr || *text == '\0') return kGraspMatrixSeed;
+  char* end = nullptr;
+  const unsigned long long seed = std::strtoull(text, &end, 10);
+  if (*end != '\0') throw std::invalid_argument(std::string("VCOCKPIT_GRASP_MATRIX_SEED: not a number: ") + text);
+  return seed;
 }
 
 const std::vector<Degradation>& degradations() {
@@ -44,7 +55,7 @@ degrade::DegradeSpec degradation_spec(const std::string& name) {
     degrade::DegradeSpec spec;
     for (const auto& preset : d.presets) degrade::apply_preset(preset, spec);
     if (!d.gap_at_s.empty()) spec.gaps.at_s = d.gap_at_s;
-    spec.seed = kGraspMatrixSeed;
+    spec.seed = grasp_matrix_seed();
     return spec;
   }
   throw std::invalid_argument("no degradation " + name);

@@ -6,6 +6,7 @@
 
 #include "glove_driver/glove/gesture_script.hpp"
 #include "hand/hand_yaml.hpp"
+#include "hand/sample_validator.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/grasp_event_text.hpp"
 #include "physics_node/io/replay_driver.hpp"
@@ -79,9 +80,15 @@ ScenarioResult run_grasp_scenario(const std::string& source_dir, const GraspCase
     }
   };
   physics_io::ReplayDriver driver(world, hand);
+  // the checks the offline runner and a live node make: joint values past the hand's range are
+  // clamped to it (without this the proxy took a thumb 2 deg past its limit, and bending it back
+  // into range pushed it 2.7 mm into the held cup)
+  hand::SampleValidator validator(hand);
   for (const auto& row : rows) {
     if (!row.valid) continue;  // the log reader skips dropout rows
-    driver.feed(row.sample, step);
+    hand::GloveSample sample = row.sample;
+    if (!validator.accept(sample)) continue;
+    driver.feed(sample, step);
     ++r.samples_fed;
   }
   driver.step_until(world.time_ns() + kSettle_ns, step);
