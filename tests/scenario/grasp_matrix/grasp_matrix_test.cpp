@@ -46,18 +46,15 @@ std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
 // fingers that catch up with the glove at bounded speed and slide along panels, links that stand
 // off what they let go until the glove is out of it, palm opposition, a held grip balanced
 // between the thumb's side and the fingers', and a carried object whose hand closes its lag at
-// the pushing speed. No cell sinks a link into a panel. What is left
-// (build/tests/grasp_cell_trace SOURCE_DIR CELL prints a cell's story):
-//   cup, small hand, harsh: the glove's calibration error brings the thumb of cup_open nearer
-//              the cup, and it comes down on the rim instead of behind the cup: no grasp;
-//   ball, medium hand, typical: set down and let go, then touched by a finger of the proxy
-//              (which lags the jittering glove by up to 17 mm) as the hand opens, and it rolls
-//              off the console's front edge 4 cm away.
-// Each entry: the checks that fail, with the figures measured.
+// the pushing speed, a set-down object leaving with the hand's mean velocity over 0.1 s, and the
+// samples clamped to the hand's range as the offline runner does: every cell passes, and no
+// cell sinks a link into a panel. On other noise (VCOCKPIT_GRASP_MATRIX_SEED 1-5) a few harsh
+// cells of the flashlight and the checklist still fail (the calibration error of `harsh` and
+// `overrange` on top of 30 Hz and a grip in 0.25 s); build/tests/grasp_cell_trace SOURCE_DIR CELL
+// prints a cell's story. A cell that fails at the default seed goes in known_failing() with
+// the checks that fail and the figures measured.
 const std::map<std::string, std::string>& known_failing() {
-  static const std::map<std::string, std::string> kCells = {
-      {"cup_small_harsh", "no grasp, ends 120 mm off"},
-  };
+  static const std::map<std::string, std::string> kCells = {};
   return kCells;
 }
 
