@@ -42,6 +42,8 @@ bool SweepAndPrune::can_act(int a, int b) const {
   const bool hand = ka == BroadphaseBody::kHand || kb == BroadphaseBody::kHand;
   if (hand && !hand_enabled_) return false;
   if (ka == BroadphaseBody::kDynamic || kb == BroadphaseBody::kDynamic) return true;
+  if (ka == BroadphaseBody::kControl || kb == BroadphaseBody::kControl)
+    return ka != BroadphaseBody::kStatic && kb != BroadphaseBody::kStatic;
   // neither is dynamic: static-static and hand-hand never act; hand-static when asked for
   return report_hand_static_ && hand && (ka == BroadphaseBody::kStatic || kb == BroadphaseBody::kStatic);
 }

@@ -29,7 +29,9 @@ struct Aabb {
 // The tight box of a shape (centred on its frame, axis along z) posed at X_GS.
 Aabb shape_aabb(const Shape& shape, const Eigen::Isometry3d& X_GS);
 
-enum class BroadphaseBody : uint8_t { kStatic, kDynamic, kHand };
+// kControl: a control's moving part, dynamic but held by its joint, so never in contact with a
+// static object (it sits in a panel's cut-out).
+enum class BroadphaseBody : uint8_t { kStatic, kDynamic, kHand, kControl };
 
 struct BodyPair {
   int lo = -1;

@@ -401,7 +401,9 @@ CollisionWorld::CollisionWorld(const Scene& scene) : impl_(std::make_unique<Impl
 
   for (const ObjectSpec& spec : scene.objects)
     m.add_body(object_geometry(spec), spec.X_GO,
-               spec.dynamic ? BodyKind::kDynamic : BodyKind::kStatic, spec.shape);
+               spec.control >= 0 ? BodyKind::kControl
+                                 : (spec.dynamic ? BodyKind::kDynamic : BodyKind::kStatic),
+               spec.shape);
 
   if (has_hand_) {
     const HandModel& hand = *scene.hand;
@@ -450,7 +452,7 @@ void CollisionWorld::set_poses(const std::vector<Eigen::Isometry3d>& X_GO,
   VCOCKPIT_ASSERT(static_cast<int>(X_GO.size()) == object_count_, "one pose per object");
   const int n = std::min(object_count_, static_cast<int>(X_GO.size()));
   for (int i = 0; i < n; ++i)
-    if (m.bodies[static_cast<std::size_t>(i)].kind == BodyKind::kDynamic)
+    if (m.bodies[static_cast<std::size_t>(i)].kind != BodyKind::kStatic)
       m.place(i, X_GO[static_cast<std::size_t>(i)]);
 
   const bool hand_enabled = has_hand_ && X_GL != nullptr;

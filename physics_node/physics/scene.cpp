@@ -135,6 +135,12 @@ Eigen::Vector3d Shape::axis_reach_m() const {
   return Eigen::Vector3d::Zero();
 }
 
+int Scene::find_control(const std::string& name) const {
+  for (std::size_t i = 0; i < controls.size(); ++i)
+    if (controls[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
 int Scene::find_object(const std::string& name) const {
   for (std::size_t i = 0; i < objects.size(); ++i) {
     if (objects[i].name == name) return static_cast<int>(i);

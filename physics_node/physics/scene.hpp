@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "physics_node/physics/control.hpp"
 #include "physics_node/physics/hand_names.hpp"
 
 namespace vcockpit::physics {
@@ -71,6 +72,7 @@ struct ObjectSpec {
   Eigen::Vector3d w_G = Eigen::Vector3d::Zero();            // initial angular velocity (rad/s)
   Material material;
   std::array<float, 4> color_rgba{0.6f, 0.6f, 0.6f, 1.0f};
+  int control = -1;  // >= 0: the moving part of Scene::controls[control], which owns its motion
 };
 
 // Stable grasp (paper §4.4) and the hysteresis around it. Forces in N, torques in N m.
@@ -134,6 +136,7 @@ struct Scene {
   Eigen::Vector3d gravity_mps2{0.0, 0.0, -9.81};
   double step_s = 0.001;
   std::vector<ObjectSpec> objects;
+  std::vector<ControlSpec> controls;  // each moves one dynamic object (ControlSpec::body)
   std::optional<HandModel> hand;       // no hand: objects only
   Material hand_material{2.0e4, 0.7, 1.0, 0.8};  // skin on a glove: grippy and soft
   GraspParams grasp;
@@ -143,6 +146,7 @@ struct Scene {
 
   // -1 when no object has that name.
   int find_object(const std::string& name) const;
+  int find_control(const std::string& name) const;
 };
 
 // Mass properties from density: mass and inertia about the centroid.

@@ -12,7 +12,8 @@ namespace {
 std::vector<BroadphaseBody> reach_kinds(const Scene& scene) {
   std::vector<BroadphaseBody> kinds;
   for (const ObjectSpec& o : scene.objects)
-    kinds.push_back(o.dynamic ? BroadphaseBody::kDynamic : BroadphaseBody::kStatic);
+    kinds.push_back(o.control >= 0 ? BroadphaseBody::kControl
+                                   : (o.dynamic ? BroadphaseBody::kDynamic : BroadphaseBody::kStatic));
   if (scene.hand) kinds.insert(kinds.end(), kLinkCount, BroadphaseBody::kHand);
   return kinds;
 }

@@ -92,6 +92,36 @@ World::World(Scene scene)
     state_.grasp[i] = grasp_tracker_.initial_hold(o);
     I_O_inv_[i] = o.dynamic ? Eigen::Matrix3d(o.I_O.inverse()) : Eigen::Matrix3d::Zero();
   }
+  const int control_count = static_cast<int>(scene_.controls.size());
+  state_.controls.resize(control_count);
+  control_inertia_.resize(control_count);
+  control_push_link_.assign(control_count, -1);
+  control_push_N_.assign(control_count, 0.0);
+  control_touched_.assign(control_count, 0);
+  control_commanded_.assign(control_count, -1);
+  for (int ci = 0; ci < control_count; ++ci) {
+    const ControlSpec& c = scene_.controls[ci];
+    VCOCKPIT_ASSERT(c.body >= 0 && c.body < object_count_ && scene_.objects[c.body].control == ci &&
+                        scene_.objects[c.body].dynamic && !c.positions.empty(),
+                    "a control moves a dynamic object of its own and has positions");
+    const ObjectSpec& o = scene_.objects[c.body];
+    control_inertia_[ci] = joint_inertia(c, o.mass_kg, o.I_O);
+    ControlState& s = state_.controls[ci];
+    s.q = c.q_initial;
+    // the position nearest the initial coordinate, then the one it is in (no event)
+    double nearest = std::abs(c.positions[0].q - s.q);
+    for (std::size_t p = 1; p < c.positions.size(); ++p) {
+      if (std::abs(c.positions[p].q - s.q) < nearest) {
+        nearest = std::abs(c.positions[p].q - s.q);
+        s.position = static_cast<int>(p);
+      }
+    }
+    if (c.latching) s.position = 0;
+    update_position(c, s);
+    place_control(ci);
+    X_GO_[c.body] = state_.bodies[c.body].X_GO;
+    X_GO_before_[c.body] = X_GO_[c.body];
+  }
   state_.X_GL.fill(Eigen::Isometry3d::Identity());
   X_GL_before_ = state_.X_GL;
   tracked_X_GL_ = state_.X_GL;
@@ -126,7 +156,8 @@ int World::choose_substeps(bool holding) {
 
 void World::restore(const WorldState& state) {
   VCOCKPIT_ASSERT(state.bodies.size() == state_.bodies.size() &&
-                      state.grasp.size() == state_.grasp.size(),
+                      state.grasp.size() == state_.grasp.size() &&
+                      state.controls.size() == state_.controls.size(),
                   "a world state of another scene (object count)");
   for (int i = 0; i < object_count_; ++i)
     VCOCKPIT_ASSERT(state.grasp[i].history.size() == state_.grasp[i].history.size(),
@@ -159,6 +190,24 @@ void World::set_hand_input(const HandInput& input) {
 void World::step() {
   stage_times_ = StageTimes{};
   events_.clear();
+  control_events_.clear();
+  for (int ci = 0; ci < static_cast<int>(control_commanded_.size()); ++ci) {
+    const int position = control_commanded_[ci];
+    if (position < 0) continue;
+    control_commanded_[ci] = -1;
+    const ControlSpec& c = scene_.controls[ci];
+    ControlState& s = state_.controls[ci];
+    if (state_.bodies[c.body].held_by != kNotHeld) continue;  // a hand took it meanwhile
+    if (c.latching) {
+      s.latched = position == 1;
+      s.q = spring_rest(c, s);
+    } else {
+      s.q = c.positions[static_cast<std::size_t>(position)].q;
+    }
+    s.qd = 0.0;
+    place_control(ci);
+    note_control_position(ci, ControlCause::kCommanded, -1, -1);
+  }
   body_check_.clear_new_faults();
   std::copy(state_.bodies.begin(), state_.bodies.end(), start_bodies_.begin());
   // a held object and the hand move together: their contacts matter to the grasp test only,
@@ -234,6 +283,7 @@ void World::substep(double dt_s, double alpha, int remaining, bool skip_held_han
     KeptPairs kept;
     if (skip_held_hand_pairs) kept = {&held_mask_, object_count_};
     forces_.apply(contacts_, contact_bodies_, dt_s, F_G_, M_G_, applied_, state_.anchors, kept);
+    if (!scene_.controls.empty()) find_control_pushers();
   }
   {
     StageTimer timer(stage_times_, Stage::kIntegrate);
@@ -291,7 +341,7 @@ void World::constrain_proxy(double dt_s) {
   // the held objects move with the proxy (eq. 29)
   for (int i = 0; i < object_count_; ++i) {
     BodyState& body = state_.bodies[i];
-    if (body.held_by == kNotHeld) continue;
+    if (body.held_by == kNotHeld || scene_.objects[i].control >= 0) continue;  // a joint holds a control
     body.X_GO.translation() += r.shift_G;
     finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
   }
@@ -328,6 +378,10 @@ void World::move_held_objects(double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
     BodyState& body = state_.bodies[i];
     if (body.held_by == kNotHeld) continue;
+    if (scene_.objects[i].control >= 0) {
+      move_held_control(scene_.objects[i].control, dt_s);
+      continue;
+    }
     X_GO_before_[i] = body.X_GO;
     body.X_GO = state_.X_GH * state_.grasp[i].X_HO;  // eq. 29
     finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
@@ -385,9 +439,132 @@ void World::integrate(double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
     BodyState& body = state_.bodies[i];
-    if (!o.dynamic || body.held_by != kNotHeld) continue;
+    if (!o.dynamic || body.held_by != kNotHeld || o.control >= 0) continue;
     const Eigen::Vector3d F = total_force_G(F_G_[i], o.mass_kg, scene_.gravity_mps2);  // eq. 18
     integrate_body(body, F, M_G_[i], o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
+  }
+  if (!scene_.controls.empty()) integrate_controls(dt_s);
+}
+
+bool World::command_control(int control, int position) {
+  if (control < 0 || control >= static_cast<int>(scene_.controls.size())) return false;
+  const ControlSpec& c = scene_.controls[control];
+  if (position < 0 || position >= static_cast<int>(c.positions.size())) return false;
+  if (state_.bodies[c.body].held_by != kNotHeld) return false;
+  control_commanded_[control] = position;
+  return true;
+}
+
+void World::integrate_controls(double dt_s) {
+  for (int ci = 0; ci < static_cast<int>(scene_.controls.size()); ++ci) {
+    const ControlSpec& c = scene_.controls[ci];
+    BodyState& body = state_.bodies[c.body];
+    if (body.held_by != kNotHeld) continue;  // moved with the hand (move_held_control)
+    const ObjectSpec& o = scene_.objects[c.body];
+    // eqs. 18-19 on the body, gravity included, projected onto the joint
+    const Eigen::Vector3d F_G = total_force_G(F_G_[c.body], o.mass_kg, scene_.gravity_mps2);
+    const double Q = generalised_force(c, body.X_GO.translation(), F_G, M_G_[c.body]);
+    integrate_control(c, control_inertia_[ci], Q, dt_s, 0u, state_.controls[ci]);
+    place_control(ci);
+    if (control_push_link_[ci] >= 0) {
+      note_control_position(ci, ControlCause::kPushed, hand_id_, control_push_link_[ci]);
+    } else {
+      note_control_position(ci, control_touched_[ci] != 0 ? ControlCause::kObject
+                                                          : ControlCause::kMechanism,
+                            -1, -1);
+    }
+  }
+}
+
+// eq. 29 restricted to the joint: the coordinate the hand's motion since the grasp asks for,
+// as far as the travel and the gates (open only while the hand has lifted the lever) let it go
+void World::move_held_control(int control, double dt_s) {
+  const ControlSpec& c = scene_.controls[control];
+  ControlState& s = state_.controls[control];
+  const Eigen::Vector3d p_held_H = state_.grasp[c.body].X_HO.translation();
+  const double lift_m = grasped_lift_m(c, s, state_.X_GH, p_held_H);
+  uint32_t gates_open = 0;
+  for (std::size_t g = 0; g < c.gates.size(); ++g)
+    if (lift_m >= c.gates[g].lift_m) gates_open |= 1u << g;
+  const double q = reachable_q(c, s.q, grasped_q(c, s, state_.X_GH, p_held_H), gates_open);
+  s.qd = (q - s.q) / dt_s;
+  s.q = q;
+  place_control(control);
+  note_control_position(control, ControlCause::kGrasped, state_.bodies[c.body].held_by, -1);
+}
+
+void World::place_control(int control) {
+  const ControlSpec& c = scene_.controls[control];
+  const ControlState& s = state_.controls[control];
+  BodyState& body = state_.bodies[c.body];
+  body.X_GO = control_body_pose(c, s.q);
+  const Eigen::Vector3d a = joint_axis_G(c);
+  if (c.joint == JointKind::kPrismatic) {
+    body.v_G = s.qd * a;
+    body.w_G.setZero();
+  } else {
+    body.w_G = s.qd * a;
+    body.v_G = body.w_G.cross(body.X_GO.translation() - joint_origin_G(c));
+  }
+}
+
+void World::note_control_position(int control, ControlCause cause, int hand_id, int link) {
+  ControlState& s = state_.controls[control];
+  const int from = s.position;
+  if (!update_position(scene_.controls[control], s)) return;
+  ControlEvent e;
+  e.t_ns = state_.time_ns + step_ns_;  // the end of the step it happens in
+  e.control = control;
+  e.from = from;
+  e.to = s.position;
+  e.cause = cause;
+  e.hand_id = hand_id;
+  e.link = link;
+  control_events_.push_back(e);
+}
+
+// who pushes each control in this substep: the hand link with the largest normal force on its
+// body, or another object
+void World::find_control_pushers() {
+  std::fill(control_push_link_.begin(), control_push_link_.end(), -1);
+  std::fill(control_push_N_.begin(), control_push_N_.end(), 0.0);
+  std::fill(control_touched_.begin(), control_touched_.end(), 0);
+  for (const AppliedContact& a : applied_) {
+    const int body_a = a.contact.body_a;
+    const int body_b = a.contact.body_b;
+    for (const auto& [body, other] : {std::pair{body_a, body_b}, std::pair{body_b, body_a}}) {
+      if (body >= object_count_) continue;
+      const int ci = scene_.objects[body].control;
+      if (ci < 0) continue;
+      if (collision_.is_hand_body(other)) {
+        if (a.normal_N > control_push_N_[ci]) {
+          control_push_N_[ci] = a.normal_N;
+          control_push_link_[ci] = other - object_count_;
+        }
+      } else {
+        control_touched_[ci] = 1;
+      }
+    }
+  }
+}
+
+// A grasp of a control takes the hand's pose and the coordinate as the projection's reference; a
+// release leaves the control with the hand's velocity along its joint.
+void World::controls_after_grasp_stage() {
+  for (const GraspEvent& e : events_) {
+    const int ci = scene_.objects[e.object].control;
+    if (ci < 0) continue;
+    const ControlSpec& c = scene_.controls[ci];
+    ControlState& s = state_.controls[ci];
+    const BodyState& body = state_.bodies[c.body];
+    if (e.grasp) {
+      s.X_GH_grasp = state_.X_GH;
+      s.q_grasp = s.q;
+    } else {
+      const Eigen::Vector3d a = joint_axis_G(c);
+      s.qd = c.joint == JointKind::kPrismatic ? a.dot(body.v_G) : a.dot(body.w_G);
+      place_control(ci);
+    }
   }
 }
 
@@ -435,6 +612,7 @@ void World::grasp_stage() {
   for (int o = 0; o < object_count_; ++o)
     if (state_.bodies[o].held_by != kNotHeld)
       grasp_tracker_.record_held_pose(state_.grasp[o], state_.bodies[o]);
+  if (!scene_.controls.empty()) controls_after_grasp_stage();
 }
 
 }  // namespace vcockpit::physics

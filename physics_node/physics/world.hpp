@@ -95,8 +95,16 @@ class World {
   // Pose of the held object in the hand frame (eq. 28), valid while held.
   const Eigen::Isometry3d& X_HO(int object) const { return state_.grasp[object].X_HO; }
 
+  // Sets control `control` to its position `position` (a flight model's or an instructor's
+  // command): the coordinate goes to the position's (a latching button's latch with it), at
+  // rest, and the change is a control event caused by the command at the next step. Refused
+  // (false) for an unknown control or position, and while a hand holds the control: the physics
+  // stays the authority.
+  bool command_control(int control, int position);
+
   // Observations of the last step (empty after a restore until the next step).
   const std::vector<GraspEvent>& step_events() const { return events_; }
+  const std::vector<ControlEvent>& control_events() const { return control_events_; }
   const std::vector<AppliedContact>& contacts() const { return applied_; }
   const StageTimes& stage_times() const { return stage_times_; }
   const PenetrationStats& hand_penetration() const { return penetration_; }
@@ -121,6 +129,15 @@ class World {
   void build_contact_bodies();
   void integrate(double dt_s);
   void grasp_stage();
+  // controls (control.hpp): the free motion of each one not held, the held ones projected from
+  // the hand, the pose and velocity of a control's body from its coordinate, and its discrete
+  // position's change as an event
+  void integrate_controls(double dt_s);
+  void move_held_control(int control, double dt_s);
+  void place_control(int control);
+  void note_control_position(int control, ControlCause cause, int hand_id, int link);
+  void find_control_pushers();
+  void controls_after_grasp_stage();
 
   // the model and the stages: built once; what they keep between steps (sweep orders, work
   // space) never changes a result, which is why a restored world steps like the original
@@ -135,6 +152,7 @@ class World {
   int hand_id_ = 0;
   int64_t step_ns_;
   std::vector<Eigen::Matrix3d> I_O_inv_;  // inverse body-frame inertia, dynamic objects
+  std::vector<double> control_inertia_;    // per control: its body's inertia along the joint
 
   WorldState state_;
 
@@ -162,6 +180,11 @@ class World {
   // observations of the last step
   std::vector<AppliedContact> applied_;
   std::vector<GraspEvent> events_;
+  std::vector<ControlEvent> control_events_;
+  std::vector<int> control_push_link_;    // per control, this substep: the hand link pushing it hardest
+  std::vector<double> control_push_N_;    // ... and its normal force
+  std::vector<uint8_t> control_touched_;  // ... touched by another object
+  std::vector<int> control_commanded_;    // per control: the position commanded since the last step, -1
   StageTimes stage_times_;
   PenetrationStats penetration_;
   mutable std::array<Eigen::Isometry3d, kLinkCount> tracked_X_GL_;

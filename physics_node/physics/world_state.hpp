@@ -30,6 +30,7 @@ struct WorldState {
 
   std::vector<BodyState> bodies;  // per object, the scene's order
   std::vector<GraspHold> grasp;   // per object: the grasp tracker's state
+  std::vector<ControlState> controls;  // per control (Scene::controls)
 
   bool hand_active = false;  // a hand input has arrived (and the scene has a hand)
   HandInput hand_from;       // the hand at the start of the coming step

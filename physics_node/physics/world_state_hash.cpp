@@ -89,6 +89,16 @@ uint64_t hash_world_state(const WorldState& s) {
   h.size(s.blocking_out_G.size());
   for (const Eigen::Vector3d& n : s.blocking_out_G)
     h.vec(n);
+  h.size(s.controls.size());
+  for (const ControlState& c : s.controls) {
+    h.f64(c.q);
+    h.f64(c.qd);
+    h.i64(c.position);
+    h.flag(c.latched);
+    h.flag(c.pressed);
+    h.pose(c.X_GH_grasp);
+    h.f64(c.q_grasp);
+  }
   h.size(s.grasp.size());
   for (const GraspHold& g : s.grasp)
     hash_hold(h, g);

@@ -1,0 +1,229 @@
+#include "physics_node/physics/control.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vcockpit::physics {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// A gate or stop that held the coordinate leaves it this far on the side it came from, so the
+// next substep knows which side that is.
+constexpr double kGateSide = 1e-9;
+
+double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+
+// One detent's restoring force at offset x from it: -strength sin(pi x / half_width) within the
+// half width (its peak halfway), nothing beyond.
+double detent_force(const Detent& d, double x) {
+  if (d.half_width <= 0.0 || std::abs(x) >= d.half_width) return 0.0;
+  return -d.strength * std::sin(kPi * x / d.half_width);
+}
+
+}  // namespace
+
+const char* control_kind_name(ControlKind kind) {
+  switch (kind) {
+    case ControlKind::kPushButton: return "push_button";
+    case ControlKind::kToggle: return "toggle";
+    case ControlKind::kRotary: return "rotary";
+    case ControlKind::kLever: return "lever";
+    case ControlKind::kGuard: return "guard";
+  }
+  return "?";
+}
+
+const char* control_cause_name(ControlCause cause) {
+  switch (cause) {
+    case ControlCause::kPushed: return "pushed";
+    case ControlCause::kGrasped: return "grasped";
+    case ControlCause::kCommanded: return "commanded";
+    case ControlCause::kMechanism: return "mechanism";
+    case ControlCause::kObject: return "object";
+  }
+  return "?";
+}
+
+Eigen::Isometry3d joint_motion(JointKind joint, double q) {
+  Eigen::Isometry3d M = Eigen::Isometry3d::Identity();
+  if (joint == JointKind::kPrismatic) {
+    M.translation().z() = q;
+  } else {
+    M.linear() = Eigen::AngleAxisd(q, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  }
+  return M;
+}
+
+Eigen::Isometry3d control_body_pose(const ControlSpec& c, double q) {
+  return c.X_GJ * joint_motion(c.joint, q) * c.X_JO;
+}
+
+double joint_inertia(const ControlSpec& c, double mass_kg, const Eigen::Matrix3d& I_O) {
+  if (c.joint == JointKind::kPrismatic) return mass_kg;
+  const Eigen::Matrix3d& R_JO = c.X_JO.linear();
+  const double I_axis = (R_JO * I_O * R_JO.transpose())(2, 2);
+  const Eigen::Vector3d r = c.X_JO.translation();
+  return I_axis + mass_kg * (r.x() * r.x() + r.y() * r.y());  // parallel axis
+}
+
+double generalised_force(const ControlSpec& c, const Eigen::Vector3d& c_G,
+                         const Eigen::Vector3d& F_G, const Eigen::Vector3d& M_G) {
+  const Eigen::Vector3d a = joint_axis_G(c);
+  if (c.joint == JointKind::kPrismatic) return a.dot(F_G);
+  return a.dot(M_G + (c_G - joint_origin_G(c)).cross(F_G));
+}
+
+double mechanism_force(const ControlSpec& c, double q) {
+  double Q = 0.0;
+  if (c.detent_period > 0.0 && !c.detents.empty()) {
+    const double x = std::remainder(q - c.detents.front().q, c.detent_period);
+    Q += detent_force(c.detents.front(), x);
+  } else {
+    for (const Detent& d : c.detents) Q += detent_force(d, q - d.q);
+  }
+  if (c.snap > 0.0) Q += c.snap * sign(q - c.snap_centre);  // over-centre: toward the nearer end
+  return Q;
+}
+
+double spring_rest(const ControlSpec& c, const ControlState& s) {
+  return c.latching && s.latched ? c.latch_q : c.q_rest;
+}
+
+double reachable_q(const ControlSpec& c, double q_from, double q_to, uint32_t gates_open) {
+  double q = q_to;
+  if (c.limited) q = std::clamp(q, c.q_min, c.q_max);
+  for (std::size_t g = 0; g < c.gates.size(); ++g) {
+    if ((gates_open >> g & 1u) != 0) continue;
+    const double gate = c.gates[g].q;
+    if (q_from < gate && q > gate) q = gate - kGateSide;       // the nearest closed gate wins:
+    else if (q_from > gate && q < gate) q = gate + kGateSide;  // q only shrinks toward q_from
+  }
+  return q;
+}
+
+SpringDamperState spring_damper_step(double M, double c, double k, double F, double x0, double v0,
+                                     double t) {
+  // M x'' + c x' + k x = F, exactly: about the equilibrium x_eq = F / k the motion is the free
+  // response of the damped oscillator; without a spring, the damper's exponential approach to
+  // the terminal velocity F / c (or constant acceleration when c = 0 too)
+  if (k <= 0.0) {
+    if (c <= 0.0) return {x0 + v0 * t + 0.5 * F / M * t * t, v0 + F / M * t};
+    const double v_inf = F / c;
+    const double decay = std::exp(-c / M * t);
+    const double v = v_inf + (v0 - v_inf) * decay;
+    return {x0 + v_inf * t + (v0 - v_inf) * (M / c) * (1.0 - decay), v};
+  }
+  const double x_eq = F / k;
+  const double y0 = x0 - x_eq;
+  const double w0 = std::sqrt(k / M);
+  const double zeta = c / (2.0 * std::sqrt(k * M));
+  double y = 0.0, v = 0.0;
+  if (zeta < 1.0 - 1e-9) {
+    const double wd = w0 * std::sqrt(1.0 - zeta * zeta);
+    const double e = std::exp(-zeta * w0 * t);
+    const double cs = std::cos(wd * t), sn = std::sin(wd * t);
+    const double B = (v0 + zeta * w0 * y0) / wd;
+    y = e * (y0 * cs + B * sn);
+    v = e * ((B * wd - zeta * w0 * y0) * cs - (y0 * wd + zeta * w0 * B) * sn);
+  } else if (zeta > 1.0 + 1e-9) {
+    const double root = w0 * std::sqrt(zeta * zeta - 1.0);
+    const double r1 = -zeta * w0 + root, r2 = -zeta * w0 - root;
+    const double A = (v0 - r2 * y0) / (r1 - r2);
+    const double B = y0 - A;
+    const double e1 = std::exp(r1 * t), e2 = std::exp(r2 * t);
+    y = A * e1 + B * e2;
+    v = A * r1 * e1 + B * r2 * e2;
+  } else {  // critically damped
+    const double e = std::exp(-w0 * t);
+    const double B = v0 + w0 * y0;
+    y = (y0 + B * t) * e;
+    v = (B - w0 * (y0 + B * t)) * e;
+  }
+  return {x_eq + y, v};
+}
+
+void integrate_control(const ControlSpec& c, double M, double Q_ext, double dt_s,
+                       uint32_t gates_open, ControlState& s) {
+  // the spring and damper exactly (a released button returns as its mass-spring-damper does, at
+  // any step), the rest of the generalised force held over the substep
+  const double rest = spring_rest(c, s);
+  double Q = Q_ext + mechanism_force(c, s.q);
+  // Coulomb friction: a control at rest stays while the net force is within it; a moving one
+  // feels it against its motion, and stops rather than turn back within the substep
+  const double net_at_rest = Q - c.stiffness * (s.q - rest);
+  if (s.qd == 0.0 && std::abs(net_at_rest) <= c.friction) return;
+  const double direction = s.qd != 0.0 ? sign(s.qd) : sign(net_at_rest);
+  Q -= direction * c.friction;
+  const SpringDamperState next =
+      spring_damper_step(M, c.damping, c.stiffness, Q, s.q - rest, s.qd, dt_s);
+  double qd = next.v;
+  if (c.friction > 0.0 && sign(qd) == -direction) qd = 0.0;
+  const double q_free = rest + next.x;
+  const double q = reachable_q(c, s.q, q_free, gates_open);
+  if (q != q_free) qd = 0.0;  // a stop or a gate: inelastic
+  s.q = q;
+  s.qd = qd;
+}
+
+bool update_position(const ControlSpec& c, ControlState& s) {
+  int inside = -1;
+  for (std::size_t i = 0; i < c.positions.size(); ++i) {
+    const ControlPosition& p = c.positions[i];
+    if (s.q >= p.enter_lo && s.q <= p.enter_hi) {
+      inside = static_cast<int>(i);
+      break;
+    }
+  }
+  const int before = s.position;
+  if (c.latching) {
+    // positions[0]: released (re-arms), positions[1]: pressed (toggles the latch on entry)
+    if (inside == 1 && !s.pressed) {
+      s.pressed = true;
+      s.latched = !s.latched;
+    } else if (inside == 0) {
+      s.pressed = false;
+    }
+    s.position = s.latched ? 1 : 0;
+  } else if (inside >= 0) {
+    s.position = inside;
+  }
+  return s.position != before;
+}
+
+double grasped_q(const ControlSpec& c, const ControlState& s, const Eigen::Isometry3d& X_GH,
+                 const Eigen::Vector3d& p_held_H) {
+  const Eigen::Vector3d a = joint_axis_G(c);
+  if (c.kind == ControlKind::kRotary && c.joint == JointKind::kRevolute) {
+    // the twist of the hand's rotation since the grasp about the axis (swing-twist)
+    const Eigen::Quaterniond turn(X_GH.linear() * s.X_GH_grasp.linear().transpose());
+    const double along = a.dot(turn.vec());
+    return s.q_grasp + 2.0 * std::atan2(along, turn.w());
+  }
+  const Eigen::Vector3d p0 = s.X_GH_grasp * p_held_H;
+  const Eigen::Vector3d p1 = X_GH * p_held_H;
+  if (c.joint == JointKind::kPrismatic) return s.q_grasp + a.dot(p1 - p0);
+  // a lever: the angle the held point turned about the axis
+  const Eigen::Vector3d o = joint_origin_G(c);
+  Eigen::Vector3d u0 = p0 - o, u1 = p1 - o;
+  u0 -= a.dot(u0) * a;
+  u1 -= a.dot(u1) * a;
+  if (u0.squaredNorm() == 0.0 || u1.squaredNorm() == 0.0) return s.q_grasp;
+  return s.q_grasp + std::atan2(a.dot(u0.cross(u1)), u0.dot(u1));
+}
+
+double grasped_lift_m(const ControlSpec& c, const ControlState& s, const Eigen::Isometry3d& X_GH,
+                      const Eigen::Vector3d& p_held_H) {
+  const Eigen::Vector3d p0 = s.X_GH_grasp * p_held_H;
+  const Eigen::Vector3d p1 = X_GH * p_held_H;
+  if (c.joint == JointKind::kPrismatic) return c.X_GJ.linear().col(0).dot(p1 - p0);
+  const Eigen::Vector3d a = joint_axis_G(c);
+  const Eigen::Vector3d o = joint_origin_G(c);
+  auto radial = [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector3d u = p - o;
+    return (u - a.dot(u) * a).norm();
+  };
+  return radial(p1) - radial(p0);
+}
+
+}  // namespace vcockpit::physics

@@ -1,0 +1,153 @@
+// Cockpit controls in the world (control.hpp), against closed forms:
+//   - a released momentary button returns as its mass-spring-damper does (to 2 % of its travel)
+//     and reports out, caused by its mechanism;
+//   - a detent holds a lever against gravity while its strength exceeds the gravity torque, and
+//     not beyond;
+//   - a command moves a control to the position asked for, reported as commanded; a command for
+//     an unknown position is refused.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "physics_node/physics/world.hpp"
+#include "tests/support/scene_builder.hpp"
+
+namespace vcockpit::test {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+physics::ControlPosition position(const char* name, double q, double lo, double hi) {
+  return {name, q, lo, hi};
+}
+
+// A 5 g push button on a panel, pressed along +x (the joint's z), 4 mm of travel, its spring
+// preloaded against the out stop (rest 2 mm beyond it), damping ratio 0.5.
+struct ButtonScene {
+  static constexpr double kMass_kg = 0.005;
+  static constexpr double kStiffness_Npm = 1500.0;
+  static constexpr double kZeta = 0.5;
+  static constexpr double kRest_m = -0.002;
+  static constexpr double kTravel_m = 0.004;
+
+  static physics::Scene make(double q_initial) {
+    physics::Scene scene;
+    scene.objects.push_back(static_box("panel", {0.02, 0.3, 0.3}, at(0.52, 0, 1.0), material(5e4)));
+    physics::ObjectSpec cap = dynamic_object("button_cap", physics::Shape::box({0.008, 0.012, 0.012}),
+                                             kMass_kg, at(0.5, 0, 1.0), material(5e4));
+    cap.control = 0;
+    scene.objects.push_back(cap);
+    physics::ControlSpec c;
+    c.name = "button";
+    c.kind = physics::ControlKind::kPushButton;
+    c.joint = physics::JointKind::kPrismatic;
+    c.body = 1;
+    c.X_GJ = at(0.5, 0, 1.0, 0, 90, 0);  // z along +x: into the panel
+    c.q_min = 0.0;
+    c.q_max = kTravel_m;
+    c.q_initial = q_initial;
+    c.q_rest = kRest_m;
+    c.stiffness = kStiffness_Npm;
+    c.damping = 2.0 * kZeta * std::sqrt(kStiffness_Npm * kMass_kg);
+    c.positions = {position("out", 0.0, -1.0, 0.0015), position("pressed", kTravel_m, 0.003, 1.0)};
+    scene.controls.push_back(c);
+    return scene;
+  }
+};
+
+TEST(Controls, AReleasedMomentaryButtonReturnsAsItsMassSpringDamper) {
+  physics::World world(ButtonScene::make(ButtonScene::kTravel_m));
+  ASSERT_EQ(world.state().controls[0].position, 1) << "starts pressed";
+  const double w0 = std::sqrt(ButtonScene::kStiffness_Npm / ButtonScene::kMass_kg);
+  const double zeta = ButtonScene::kZeta;
+  const double wd = w0 * std::sqrt(1.0 - zeta * zeta);
+  const double y0 = ButtonScene::kTravel_m - ButtonScene::kRest_m;
+  // the free response from rest at y0 above the spring's rest, until the out stop holds it
+  auto closed_form_q = [&](double t) {
+    const double y = y0 * std::exp(-zeta * w0 * t) *
+                     (std::cos(wd * t) + zeta / std::sqrt(1.0 - zeta * zeta) * std::sin(wd * t));
+    return std::max(0.0, ButtonScene::kRest_m + y);
+  };
+  double worst_m = 0.0;
+  int out_events = 0;
+  for (int i = 1; i <= 50; ++i) {
+    world.step();
+    const double t = i * 1e-3;
+    worst_m = std::max(worst_m, std::abs(world.state().controls[0].q - closed_form_q(t)));
+    for (const physics::ControlEvent& e : world.control_events()) {
+      EXPECT_EQ(e.from, 1);
+      EXPECT_EQ(e.to, 0);
+      EXPECT_EQ(e.cause, physics::ControlCause::kMechanism);
+      ++out_events;
+    }
+  }
+  EXPECT_LE(worst_m, 0.02 * ButtonScene::kTravel_m) << "worst " << worst_m * 1e3 << " mm";
+  EXPECT_EQ(out_events, 1) << "one event, no chatter";
+  EXPECT_EQ(world.state().controls[0].q, 0.0) << "on its out stop";
+  // the cap's body follows its coordinate: at the out stop, where the joint frame is
+  EXPECT_LT((world.bodies()[1].X_GO.translation() - Eigen::Vector3d(0.5, 0, 1.0)).norm(), 1e-12);
+}
+
+// A 100 g lever on a horizontal pivot (y), its centroid 5 cm out along x: gravity's torque about
+// the pivot at q = 0 is m g r = 0.049 N m, turning it down (+q). A detent at 0 of 10 deg half
+// width holds it while the detent's strength exceeds that torque (statically: the lever is
+// damped enough to creep into its equilibrium rather than swing past it).
+physics::Scene lever_scene(double detent_strength_Nm) {
+  physics::Scene scene;
+  physics::ObjectSpec arm = dynamic_object("lever_arm", physics::Shape::box({0.1, 0.01, 0.01}), 0.1,
+                                           at(0.05, 0, 1.0), material(5e4));
+  arm.control = 0;
+  scene.objects.push_back(arm);
+  physics::ControlSpec c;
+  c.name = "lever";
+  c.kind = physics::ControlKind::kLever;
+  c.joint = physics::JointKind::kRevolute;
+  c.body = 0;
+  c.X_GJ = at(0, 0, 1.0, -90, 0, 0);  // z along +y
+  c.X_JO = at(0.05, 0, 0);
+  c.q_min = -kPi / 3;
+  c.q_max = kPi / 3;
+  c.damping = 0.05;  // overdamped in the detent (critical ~0.038 N m s): it creeps, no overshoot
+  c.detents = {{0.0, detent_strength_Nm, 10.0 * kPi / 180.0}};
+  c.positions = {position("up", 0.0, -0.1, 0.1), position("down", kPi / 3, 0.9, 1.1)};
+  scene.controls.push_back(c);
+  return scene;
+}
+
+TEST(Controls, ADetentHoldsALeverAgainstGravityUpToItsStrength) {
+  const double gravity_Nm = 0.1 * 9.81 * 0.05;
+  physics::World held(lever_scene(1.2 * gravity_Nm));
+  physics::World falls(lever_scene(0.8 * gravity_Nm));
+  // (3 s: the damper that lets the held lever creep makes the falling one slow)
+  for (int i = 0; i < 3000; ++i) {
+    held.step();
+    falls.step();
+  }
+  // held: where the detent's restoring torque meets gravity's, A sin(pi q / w) = m g r cos q
+  const double w = 10.0 * kPi / 180.0;
+  const double q_eq = w / kPi * std::asin(1.0 / 1.2);  // (cos q ~ 1 this close to 0)
+  EXPECT_NEAR(held.state().controls[0].q, q_eq, 0.02 * q_eq);
+  EXPECT_EQ(held.state().controls[0].position, 0);
+  EXPECT_EQ(falls.state().controls[0].q, kPi / 3) << "on its stop";
+  EXPECT_EQ(falls.state().controls[0].position, 1);
+}
+
+TEST(Controls, ACommandSetsThePositionAndIsReportedAsCommanded) {
+  physics::World world(lever_scene(1.0));
+  world.step();
+  EXPECT_FALSE(world.command_control(0, 2)) << "no such position";
+  EXPECT_FALSE(world.command_control(1, 0)) << "no such control";
+  ASSERT_TRUE(world.command_control(0, 1));
+  world.step();
+  ASSERT_EQ(world.control_events().size(), 1u);
+  const physics::ControlEvent& e = world.control_events()[0];
+  EXPECT_EQ(e.from, 0);
+  EXPECT_EQ(e.to, 1);
+  EXPECT_EQ(e.cause, physics::ControlCause::kCommanded);
+  EXPECT_EQ(world.state().controls[0].q, kPi / 3);
+}
+
+}  // namespace
+}  // namespace vcockpit::test

@@ -1,0 +1,162 @@
+// The control model's pieces (control.hpp), each against what a cockpit builder specifies:
+// the over-centre snap of a toggle, a gate's stop, positions with hysteresis, the latching
+// button's push-on / push-off, and a grasped knob that turns with the hand's rotation about its
+// axis only.
+
+#include "physics_node/physics/control.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace vcockpit::physics {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+// A 2-position toggle: +-20 deg, snapping away from 0 with 0.05 N m; a 1 g-cm^2 bat.
+ControlSpec toggle() {
+  ControlSpec c;
+  c.kind = ControlKind::kToggle;
+  c.joint = JointKind::kRevolute;
+  c.q_min = -20 * kDeg;
+  c.q_max = 20 * kDeg;
+  c.snap = 0.05;
+  c.damping = 1e-5;
+  c.positions = {{"down", -20 * kDeg, -1.0, -10 * kDeg}, {"up", 20 * kDeg, 10 * kDeg, 1.0}};
+  return c;
+}
+
+// Pushes with Q for `push_s`, then lets go for 0.2 s; returns the final state.
+ControlState push(const ControlSpec& c, ControlState s, double Q, double push_s) {
+  const double M = 1e-7, dt = 1e-4;
+  for (double t = 0; t < push_s; t += dt) integrate_control(c, M, Q, dt, 0u, s);
+  for (double t = 0; t < 0.2; t += dt) integrate_control(c, M, 0.0, dt, 0u, s);
+  update_position(c, s);
+  return s;
+}
+
+TEST(ControlModel, AToggleFlipsOnlyWhenPushedHarderThanItsSnap) {
+  const ControlSpec c = toggle();
+  ControlState up;
+  up.q = c.q_max;
+  up.position = 1;
+  const ControlState weak = push(c, up, -0.9 * c.snap, 0.1);
+  EXPECT_EQ(weak.q, c.q_max) << "below the snap force it stays";
+  EXPECT_EQ(weak.position, 1);
+  const ControlState strong = push(c, up, -1.1 * c.snap, 0.1);
+  EXPECT_EQ(strong.q, c.q_min) << "above it, it goes over centre and snaps to the other end";
+  EXPECT_EQ(strong.position, 0);
+}
+
+TEST(ControlModel, AGateStopsTheLeverUnlessLifted) {
+  ControlSpec c;
+  c.kind = ControlKind::kLever;
+  c.joint = JointKind::kRevolute;
+  c.q_min = 0.0;
+  c.q_max = 1.0;
+  c.gates = {{0.2, 0.01}};
+  ControlState s;
+  s.q = 0.5;
+  for (int i = 0; i < 1000; ++i) integrate_control(c, 1e-3, -1.0, 1e-3, 0u, s);
+  EXPECT_NEAR(s.q, 0.2, 1e-6) << "held at the gate";
+  EXPECT_GT(s.q, 0.2) << "on the side it came from";
+  EXPECT_EQ(s.qd, 0.0);
+  for (int i = 0; i < 1000; ++i) integrate_control(c, 1e-3, -1.0, 1e-3, 1u, s);
+  EXPECT_EQ(s.q, 0.0) << "lifted over it, the lever goes on to its stop";
+  // a grasping hand's lift opens it: the held point pulled 12 mm out along the lever
+  c.X_GJ = Eigen::Isometry3d::Identity();  // pivot at the origin, axis z
+  ControlState held;
+  held.X_GH_grasp = Eigen::Isometry3d::Identity();
+  const Eigen::Vector3d p_held_H(0.1, 0, 0);  // 10 cm out along x
+  Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
+  X_GH.translation() = Eigen::Vector3d(0.012, 0, 0);
+  EXPECT_NEAR(grasped_lift_m(c, held, X_GH, p_held_H), 0.012, 1e-12);
+}
+
+TEST(ControlModel, APositionChangesOnceWhenTheCoordinateHoversAtAThreshold) {
+  ControlSpec c = toggle();
+  ControlState s;
+  s.q = c.q_min;
+  s.position = 0;
+  int changes = 0;
+  // from down up to the "up" interval's edge, then hovering +-0.5 deg about it
+  for (int i = 0; i <= 400; ++i) {
+    s.q = std::min(10 * kDeg + 0.5 * kDeg * std::sin(i * 0.3), -20 * kDeg + i * 0.2 * kDeg);
+    if (update_position(c, s)) ++changes;
+  }
+  EXPECT_EQ(changes, 1);
+  EXPECT_EQ(s.position, 1);
+  // and back down past the middle: nothing until it enters "down"
+  s.q = 0.0;
+  EXPECT_FALSE(update_position(c, s));
+  s.q = -15 * kDeg;
+  EXPECT_TRUE(update_position(c, s));
+  EXPECT_EQ(s.position, 0);
+}
+
+TEST(ControlModel, ALatchingButtonTogglesOnEachPressAndRestsAtItsLatch) {
+  ControlSpec c;
+  c.kind = ControlKind::kPushButton;
+  c.joint = JointKind::kPrismatic;
+  c.q_min = 0.0;
+  c.q_max = 0.004;
+  c.q_rest = -0.001;
+  c.stiffness = 1000.0;
+  c.damping = 2.0;
+  c.latching = true;
+  c.latch_q = 0.0015;
+  c.positions = {{"off", 0.0, -1.0, 0.002}, {"on", 0.004, 0.003, 1.0}};
+  ControlState s;
+  auto press_and_let_go = [&] {
+    for (int i = 0; i < 100; ++i) {  // 10 N for 0.1 s: to the bottom
+      integrate_control(c, 0.005, 10.0, 1e-3, 0u, s);
+      update_position(c, s);
+    }
+    for (int i = 0; i < 200; ++i) {
+      integrate_control(c, 0.005, 0.0, 1e-3, 0u, s);
+      update_position(c, s);
+    }
+  };
+  press_and_let_go();
+  EXPECT_TRUE(s.latched);
+  EXPECT_EQ(s.position, 1);
+  EXPECT_NEAR(s.q, c.latch_q, 1e-6) << "held in at its latch";
+  press_and_let_go();
+  EXPECT_FALSE(s.latched);
+  EXPECT_EQ(s.position, 0);
+  EXPECT_EQ(s.q, 0.0) << "back out on its stop";
+}
+
+// A knob on a panel, its axis along x; the hand that grasped it turns 30 deg about that axis,
+// and also swings 20 deg about another axis and moves 3 cm: the knob turns by the 30 deg only.
+TEST(ControlModel, AGraspedKnobTurnsWithTheHandsRotationAboutItsAxisOnly) {
+  ControlSpec c;
+  c.kind = ControlKind::kRotary;
+  c.joint = JointKind::kRevolute;
+  c.limited = false;
+  c.X_GJ.linear() = Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  c.X_GJ.translation() = Eigen::Vector3d(0.6, -0.1, 1.0);
+  const Eigen::Vector3d axis = c.X_GJ.linear().col(2);
+  ASSERT_NEAR(axis.x(), 1.0, 1e-12);
+  ControlState s;
+  s.q = 0.7;
+  s.q_grasp = 0.7;
+  s.X_GH_grasp = Eigen::Isometry3d::Identity();
+  s.X_GH_grasp.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d(0.2, 0.5, 0.8).normalized()).toRotationMatrix();
+  s.X_GH_grasp.translation() = Eigen::Vector3d(0.5, -0.1, 1.05);
+  // turn = twist about the axis, then a swing about an axis perpendicular to it
+  const Eigen::Matrix3d twist = Eigen::AngleAxisd(30 * kDeg, axis).toRotationMatrix();
+  const Eigen::Matrix3d swing = Eigen::AngleAxisd(20 * kDeg, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  Eigen::Isometry3d X_GH = s.X_GH_grasp;
+  X_GH.linear() = swing * twist * s.X_GH_grasp.linear();
+  X_GH.translation() += Eigen::Vector3d(0.03, 0.01, -0.02);
+  const double q = grasped_q(c, s, X_GH, Eigen::Vector3d(0.1, 0, 0));
+  // the twist of swing * twist about the axis: for a swing about z (perpendicular to x) and a
+  // twist about x, the swing-twist decomposition returns the twist exactly
+  EXPECT_NEAR(q, 0.7 + 30 * kDeg, 1e-12);
+}
+
+}  // namespace
+}  // namespace vcockpit::physics
