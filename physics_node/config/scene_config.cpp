@@ -6,9 +6,10 @@
 
 #include "common/pose.hpp"
 #include "hand/hand_yaml.hpp"
+#include "physics_node/config/scene_parts.hpp"
 
 namespace vcockpit {
-namespace {
+namespace scene_parts {
 
 namespace fs = std::filesystem;
 using physics::GraspParams;
@@ -38,7 +39,7 @@ double require(const ConfigNode& node, double value, bool ok, const std::string&
   return value;
 }
 
-double positive(const ConfigNode& node, const std::string& what = "value") {
+double positive(const ConfigNode& node, const std::string& what) {
   const double v = node.as_double();
   return require(node, v, v > 0.0, what + " must be positive");
 }
@@ -74,11 +75,6 @@ int int_in_range(const ConfigNode& node, int lo, int hi) {
   return static_cast<int>(v);
 }
 
-// Reads map[key] through `parse` when the key is present; otherwise `value` keeps its default.
-template <typename T, typename Parse>
-void read_optional(const ConfigNode& map, std::string_view key, T& value, Parse parse) {
-  if (auto node = map.find(key)) value = parse(*node);
-}
 
 // ---- materials, shapes, poses, colours ------------------------------------------------------
 
@@ -336,11 +332,12 @@ physics::ProxyParams parse_proxy(const ConfigNode& node) {
   return p;
 }
 
-}  // namespace
+}  // namespace scene_parts
 
 physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) {
-  root.expect_keys({"gravity", "step_s", "hand", "hand_material", "objects", "grasp", "contact",
-                   "proxy"});
+  using namespace scene_parts;
+  root.expect_keys({"gravity", "step_s", "hand", "hand_material", "objects", "controls", "grasp",
+                    "contact", "proxy"});
   Scene scene;
   scene.gravity_mps2 = vector3(root["gravity"].as_doubles<3>());
   scene.step_s = in_open_closed(root["step_s"], 0.0, kMaxStep_s);
@@ -348,6 +345,7 @@ physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) 
   if (auto m = root.find("hand_material"))
     scene.hand_material = parse_material(*m, scene.hand_material);
   parse_objects(root["objects"], scene);
+  if (auto controls = root.find("controls")) parse_controls(*controls, scene);
   read_optional(root, "grasp", scene.grasp, parse_grasp);
   read_optional(root, "contact", scene.contact, parse_contact);
   read_optional(root, "proxy", scene.proxy, parse_proxy);
@@ -355,7 +353,8 @@ physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) 
 }
 
 physics::Scene load_scene(const std::string& path) {
-  return parse_scene(ConfigNode::load_file(path), fs::path(path).parent_path().string());
+  return parse_scene(ConfigNode::load_file(path),
+                     std::filesystem::path(path).parent_path().string());
 }
 
 }  // namespace vcockpit
