@@ -133,6 +133,7 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   summary.simulated_s = ns_to_seconds(world.time_ns());
   summary.grasps = events.grasps();
   summary.releases = events.releases();
+  summary.control_events = events.control_events();
   summary.hand_peak_wrist_mps = hand_peak.wrist_mps();
   summary.hand_peak_joint_radps = hand_peak.joint_radps();
   summary.non_finite_refused = trajectories.refused() + events.refused();

@@ -13,7 +13,8 @@ std::string hand_name(int hand_id) { return hand_id == 1 ? "left" : "right"; }
 
 
 TrajectoryWriter::TrajectoryWriter(const std::string& path) : file_(path) {
-  std::fprintf(file_.get(), "t_s,object,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,held_by\n");
+  std::fprintf(file_.get(),
+               "t_s,object,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,held_by,control_q,control_position\n");
 }
 
 void TrajectoryWriter::write(const physics::World& world) {
@@ -30,10 +31,19 @@ void TrajectoryWriter::write(const physics::World& world) {
     const Eigen::Vector3d p = b.X_GO.translation();
     const Eigen::Quaterniond q(b.X_GO.linear());
     std::fprintf(file_.get(),
-                 "%.6f,%s,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%s\n",
+                 "%.6f,%s,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%s,",
                  t_s, objects[i].name.c_str(), p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(),
                  b.v_G.x(), b.v_G.y(), b.v_G.z(), b.w_G.x(), b.w_G.y(), b.w_G.z(),
                  b.held_by == physics::kNotHeld ? "" : hand_name(b.held_by).c_str());
+    const int control = objects[i].control;
+    if (control >= 0) {  // the control's coordinate (m or rad) and its position's name
+      const physics::ControlState& s = world.state().controls[static_cast<std::size_t>(control)];
+      const auto& positions = world.scene().controls[static_cast<std::size_t>(control)].positions;
+      std::fprintf(file_.get(), "%.9f,%s\n", s.q,
+                   positions[static_cast<std::size_t>(s.position)].name.c_str());
+    } else {
+      std::fprintf(file_.get(), ",\n");
+    }
   }
 }
 
@@ -41,6 +51,24 @@ EventWriter::EventWriter(const std::string& path) : file_(path) {}
 
 void EventWriter::write(const physics::World& world) {
   for (const auto& e : world.step_events()) write(e, world.scene().objects[e.object].name);
+  for (const auto& e : world.control_events()) write(e, world.scene());
+}
+
+void EventWriter::write(const physics::ControlEvent& e, const physics::Scene& scene) {
+  ++controls_;
+  const physics::ControlSpec& c = scene.controls[static_cast<std::size_t>(e.control)];
+  nlohmann::ordered_json record = {
+      {"t_s", static_cast<double>(e.t_ns) / 1e9},
+      {"event", "control"},
+      {"control", c.name},
+      {"from", c.positions[static_cast<std::size_t>(e.from)].name},
+      {"to", c.positions[static_cast<std::size_t>(e.to)].name},
+      {"hand", e.hand_id >= 0 ? nlohmann::ordered_json(hand_name(e.hand_id)) : nullptr},
+      {"link", e.link >= 0 ? nlohmann::ordered_json(std::string(physics::link_name(
+                                 static_cast<physics::Link>(e.link))))
+                           : nullptr},
+      {"cause", physics::control_cause_name(e.cause)}};
+  file_.write(json_text(record) + "\n");
 }
 
 void EventWriter::write(const physics::GraspEvent& e, const std::string& object_name) {
@@ -89,6 +117,13 @@ void write_summary(const std::string& path, const RunSummary& s, const physics::
   for (int i = 0; i < physics::kStageCount; ++i) {
     stages[physics::stage_name(static_cast<physics::Stage>(i))] =
         i < static_cast<int>(s.stage_total_s.size()) ? s.stage_total_s[i] : 0.0;
+  }
+  j["control_events"] = s.control_events;
+  auto& controls = j["controls"] = nlohmann::ordered_json::object();
+  for (std::size_t c = 0; c < world.scene().controls.size(); ++c) {
+    const physics::ControlSpec& spec = world.scene().controls[c];
+    controls[spec.name] =
+        spec.positions[static_cast<std::size_t>(world.state().controls[c].position)].name;
   }
   auto& final_poses = j["final"] = nlohmann::ordered_json::object();
   const auto& objects = world.scene().objects;

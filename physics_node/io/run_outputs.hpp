@@ -1,14 +1,19 @@
 #pragma once
 // The offline runner's outputs (a contract other tools rely on; keep the names):
-//   trajectories.csv  t_s,object,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,held_by
-//                     one row per dynamic object per output interval; held_by empty when free
+//   trajectories.csv  t_s,object,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,held_by,control_q,
+//                     control_position: one row per dynamic object per output interval; held_by
+//                     empty when free; a control's moving part adds its coordinate (m or rad)
+//                     and position name (both empty for other objects)
 //   events.jsonl      one JSON object per line: t_s, event (grasp|release), hand, object, reason,
-//                     contacts (+ residual_force_N, residual_torque_Nm)
+//                     contacts (+ residual_force_N, residual_torque_Nm); or t_s, event "control",
+//                     control, from, to (position names), hand and link (null unless pushed or
+//                     grasped), cause (pushed|grasped|commanded|mechanism|object)
 //   summary.json      steps, simulated and wall seconds, grasp/release counts, hand-object
 //                     penetration max and mean (m), the hand's peak wrist and joint speeds,
 //                     "input": the glove log's counts (hand::InputCounts: clamped values, missing
 //                     columns, rejected samples, intervals interpolated, gaps bridged and not,
-//                     glove lost) with the max gap and glove timeout used, final pose per object,
+//                     glove lost) with the max gap and glove timeout used, control_events and
+//                     "controls" (name -> final position name), final pose per object,
 //                     non_finite_refused
 // Every file is written to "<name>.partial" and renamed when the run completes.
 //
@@ -48,9 +53,11 @@ class EventWriter {
   explicit EventWriter(const std::string& path);
   void write(const physics::World& world);  // the last step's events
   void write(const physics::GraspEvent& event, const std::string& object_name);
+  void write(const physics::ControlEvent& event, const physics::Scene& scene);
   void commit() { file_.commit(); }
   int grasps() const { return grasps_; }
   int releases() const { return releases_; }
+  int control_events() const { return controls_; }
   uint64_t refused() const { return guard_.refused(); }  // members left out
 
  private:
@@ -58,6 +65,7 @@ class EventWriter {
   NonFiniteGuard guard_{"events.jsonl"};
   int grasps_ = 0;
   int releases_ = 0;
+  int controls_ = 0;
 };
 
 struct RunSummary {
@@ -70,6 +78,7 @@ struct RunSummary {
   double wall_s = 0.0;
   int grasps = 0;
   int releases = 0;
+  int control_events = 0;
   double penetration_max_m = 0.0;
   double penetration_sum_m = 0.0;
   uint64_t penetration_points = 0;

@@ -72,15 +72,15 @@ std::map<std::string, int> check_trajectories(const std::string& path) {
   std::istringstream in(read_text(path));
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "t_s,object,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,held_by");
+  EXPECT_EQ(line, "t_s,object,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,held_by,control_q,control_position");
   std::map<std::string, int> rows;
   while (std::getline(in, line)) {
     std::vector<std::string> fields;
     std::istringstream row(line);
     for (std::string f; std::getline(row, f, ',');) fields.push_back(f);
     if (line.back() == ',') fields.push_back("");
-    EXPECT_EQ(fields.size(), 16u) << line;
-    if (fields.size() != 16u) continue;
+    EXPECT_EQ(fields.size(), 18u) << line;
+    if (fields.size() != 18u) continue;
     ++rows[fields[1]];
     for (std::size_t i = 0; i < 15; ++i) {
       if (i == 1) continue;
@@ -128,6 +128,63 @@ TEST(RunOutputs, AWorldDrivenNonFiniteWritesOnlyFiniteNumbers) {
   EXPECT_EQ(s.at("non_finite_refused"), 2);
   for (const char* name : {"cup", "ball", "flashlight"})
     EXPECT_EQ(s.at("final").at(name).at("position").size(), 3u) << name << " put back, finite";
+}
+
+// A momentary button starts pressed and springs back out: the change is a control event, its
+// coordinate and position are trajectory columns, its final position is in the summary.
+TEST(RunOutputs, AControlsChangeIsAnEventAndItsCoordinateATrajectoryColumn) {
+  physics::Scene scene;
+  physics::ObjectSpec cap;
+  cap.name = "reset";
+  cap.dynamic = true;
+  cap.shape = physics::Shape::box({0.008, 0.012, 0.012});
+  cap.mass_kg = 0.005;
+  cap.I_O = cap.shape.unit_density_inertia() * (cap.mass_kg / cap.shape.volume_m3());
+  cap.control = 0;
+  scene.objects.push_back(cap);
+  physics::ControlSpec c;
+  c.name = "reset";
+  c.joint = physics::JointKind::kPrismatic;
+  c.body = 0;
+  c.q_max = 0.004;
+  c.q_initial = 0.004;
+  c.q_rest = -0.002;
+  c.stiffness = 1500.0;
+  c.damping = 2.7;
+  c.positions = {{"out", 0.0, -1.0, 0.0015}, {"pressed", 0.004, 0.003, 1.0}};
+  scene.controls.push_back(c);
+  physics_io::OfflineOptions options;
+  options.scene_path = "one button";
+  options.duration_s = 0.05;
+  options.out_dir = make_temp_dir("run_outputs_test");
+  const physics_io::RunSummary summary = physics_io::run_offline(scene, options);
+  EXPECT_EQ(summary.control_events, 1);
+
+  std::istringstream events(read_text(options.out_dir + "/events.jsonl"));
+  std::string line;
+  ASSERT_TRUE(std::getline(events, line));
+  const nlohmann::json e = parse_json(line, "event");
+  EXPECT_EQ(e.at("event"), "control");
+  EXPECT_EQ(e.at("control"), "reset");
+  EXPECT_EQ(e.at("from"), "pressed");
+  EXPECT_EQ(e.at("to"), "out");
+  EXPECT_TRUE(e.at("hand").is_null());
+  EXPECT_TRUE(e.at("link").is_null());
+  EXPECT_EQ(e.at("cause"), "mechanism");
+  EXPECT_GT(e.at("t_s").get<double>(), 0.0);
+  EXPECT_FALSE(std::getline(events, line)) << "one event: " << line;
+
+  std::istringstream rows(read_text(options.out_dir + "/trajectories.csv"));
+  std::getline(rows, line);  // header
+  ASSERT_TRUE(std::getline(rows, line));
+  EXPECT_NE(line.find(",0.004000000,pressed"), std::string::npos) << "t = 0: " << line;
+  std::string last = line;
+  while (std::getline(rows, line)) last = line;
+  EXPECT_NE(last.find(",0.000000000,out"), std::string::npos) << "the end: " << last;
+
+  const nlohmann::json s = parse_json(read_text(options.out_dir + "/summary.json"), "summary");
+  EXPECT_EQ(s.at("controls").at("reset"), "out");
+  EXPECT_EQ(s.at("control_events"), 1);
 }
 
 TEST(RunOutputs, AnEventsNonFiniteResidualIsLeftOutAndNamed) {
