@@ -149,6 +149,34 @@ void write_inertial(Xml& xml, const physics::ObjectSpec& o) {
         << ' ' << I(0, 2) << ' ' << I(1, 2) << "\"/>\n";
 }
 
+// A control: a body at its joint frame with a slide or hinge joint along z (its limits, spring,
+// damper and Coulomb friction as MuJoCo's range, stiffness / springref, damping, frictionloss),
+// the moving part's inertia and geom at X_JO. Detents, snaps and gates have no MuJoCo
+// counterpart (they would be a user force), so MuJoCo steps the linear mechanism only.
+void write_control(Xml& xml, const physics::ControlSpec& c, const physics::ObjectSpec& o,
+                   const std::string& name) {
+  auto& out = xml.out();
+  out << "    <body name=\"" << name << '"';
+  xml.frame(c.X_GJ);
+  out << ">\n      <joint name=\"" << name << "\" type=\""
+      << (c.joint == physics::JointKind::kPrismatic ? "slide" : "hinge") << "\" axis=\"0 0 1\"";
+  if (c.limited) out << " limited=\"true\" range=\"" << c.q_min << ' ' << c.q_max << '"';
+  out << " stiffness=\"" << c.stiffness << "\" springref=\"" << c.q_rest << "\" damping=\""
+      << c.damping << "\" frictionloss=\"" << c.friction << "\"/>\n";
+  // the inertia about the centroid in the joint frame's axes (fullinertia fixes the orientation)
+  const Eigen::Matrix3d I = c.X_JO.linear() * o.I_O * c.X_JO.linear().transpose();
+  const Eigen::Vector3d p = c.X_JO.translation();
+  out << "      <inertial pos=\"" << p.x() << ' ' << p.y() << ' ' << p.z() << "\" mass=\""
+      << o.mass_kg << "\" fullinertia=\"" << I(0, 0) << ' ' << I(1, 1) << ' ' << I(2, 2) << ' '
+      << I(0, 1) << ' ' << I(0, 2) << ' ' << I(1, 2) << "\"/>\n";
+  out << "      <geom name=\"" << name << '"';
+  write_shape(xml, o.shape);
+  xml.frame(c.X_JO);
+  write_contact(xml, kDynamicType, kDynamicAffinity, o.material.mu_s);
+  write_rgba(xml, o.color_rgba);
+  out << "/>\n    </body>\n";
+}
+
 void write_hand(Xml& xml, const physics::Scene& scene, const Names& names) {
   const hand::HandModel& hand = *scene.hand;
   const double mu_s = scene.hand_material.mu_s;
@@ -184,6 +212,7 @@ std::string mjcf_from_scene(const physics::Scene& scene) {
   Xml xml;
   auto& out = xml.out();
   out << "<mujoco model=\"vcockpit\">\n"
+      << "  <compiler angle=\"radian\"/>\n"
       << "  <option timestep=\"" << scene.step_s << "\" gravity=\"";
   xml.vec(scene.gravity_mps2);
   out << "\" integrator=\"Euler\"/>\n"
@@ -202,6 +231,10 @@ std::string mjcf_from_scene(const physics::Scene& scene) {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const physics::ObjectSpec& o = scene.objects[i];
     if (!o.dynamic) continue;
+    if (o.control >= 0) {
+      write_control(xml, scene.controls[static_cast<std::size_t>(o.control)], o, names.objects[i]);
+      continue;
+    }
     // body frame = our centroid frame O: inertial and geom at its origin
     out << "    <body name=\"" << names.objects[i] << '"';
     xml.frame(o.X_GO);
@@ -219,7 +252,7 @@ std::string mjcf_from_scene(const physics::Scene& scene) {
     // one weld per dynamic object to the palm, off until the object is held (set_object_states)
     out << "  <equality>\n";
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-      if (!scene.objects[i].dynamic) continue;
+      if (!scene.objects[i].dynamic || scene.objects[i].control >= 0) continue;
       out << "    <weld name=\"hold_" << names.objects[i] << "\" body1=\""
           << names.links[static_cast<std::size_t>(hand::Link::kPalm)] << "\" body2=\""
           << names.objects[i] << "\" active=\"false\"/>\n";
@@ -258,6 +291,7 @@ MujocoWorld::MujocoWorld(const physics::Scene& scene) {
   object_geom_.assign(n, -1);
   object_qpos_.assign(n, -1);
   object_qvel_.assign(n, -1);
+  object_control_.assign(n, std::nullopt);
   for (std::size_t i = 0; i < n; ++i) {
     X_GO_spec_[i] = scene.objects[i].X_GO;
     object_geom_[i] = mj_name2id(m_, mjOBJ_GEOM, names.objects[i].c_str());
@@ -267,11 +301,16 @@ MujocoWorld::MujocoWorld(const physics::Scene& scene) {
     object_body_[i] = body;
     object_qpos_[i] = m_->jnt_qposadr[joint];
     object_qvel_[i] = m_->jnt_dofadr[joint];
+    if (scene.objects[i].control >= 0) {
+      const physics::ControlSpec& c = scene.controls[static_cast<std::size_t>(scene.objects[i].control)];
+      object_control_[i] = c;
+      d_->qpos[object_qpos_[i]] = c.q_initial;
+    }
   }
   object_weld_.assign(n, -1);
   if (scene.hand)
     for (std::size_t i = 0; i < n; ++i)
-      if (scene.objects[i].dynamic)
+      if (scene.objects[i].dynamic && scene.objects[i].control < 0)
         object_weld_[i] = mj_name2id(m_, mjOBJ_EQUALITY, ("hold_" + names.objects[i]).c_str());
   has_hand_ = scene.hand.has_value();
   hand_mocap_.fill(-1);
@@ -309,6 +348,15 @@ void MujocoWorld::set_object_states(const std::vector<physics::BodyState>& bodie
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (object_body_[i] < 0) continue;
     const physics::BodyState& b = bodies[i];
+    if (const auto& c = object_control_[i]) {
+      // the joint coordinate of the pose: X_GJ^-1 X_GO X_JO^-1 is the joint's motion
+      const Eigen::Isometry3d M = c->X_GJ.inverse() * b.X_GO * c->X_JO.inverse();
+      const Eigen::Vector3d a = physics::joint_axis_G(*c);
+      const bool slide = c->joint == physics::JointKind::kPrismatic;
+      d_->qpos[object_qpos_[i]] = slide ? M.translation().z() : std::atan2(M.linear()(1, 0), M.linear()(0, 0));
+      d_->qvel[object_qvel_[i]] = slide ? a.dot(b.v_G) : a.dot(b.w_G);
+      continue;
+    }
     const Eigen::Quaterniond q(b.X_GO.linear());
     mjtNum* qpos = d_->qpos + object_qpos_[i];
     mjtNum* qvel = d_->qvel + object_qvel_[i];
@@ -374,6 +422,7 @@ Eigen::Isometry3d MujocoWorld::object_pose(int object) const {
   if (object_body_[i] < 0) return X_GO_spec_[i];
   // qpos, not xpos: xpos is from the start of the last step
   const mjtNum* qpos = d_->qpos + object_qpos_[i];
+  if (const auto& c = object_control_[i]) return physics::control_body_pose(*c, qpos[0]);
   Eigen::Isometry3d X_GO = Eigen::Isometry3d::Identity();
   X_GO.translation() = Eigen::Vector3d(qpos[0], qpos[1], qpos[2]);
   X_GO.linear() = Eigen::Quaterniond(qpos[3], qpos[4], qpos[5], qpos[6]).normalized().toRotationMatrix();

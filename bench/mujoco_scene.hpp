@@ -18,6 +18,7 @@
 #include <Eigen/Geometry>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,7 @@ class MujocoWorld {
   std::vector<int> object_geom_;
   std::vector<int> object_qpos_;  // qpos address of the free joint; -1 static
   std::vector<int> object_qvel_;  // qvel address of the free joint; -1 static
+  std::vector<std::optional<physics::ControlSpec>> object_control_;  // a control's moving part
   std::array<int, hand::kLinkCount> hand_mocap_{};
   std::array<int, hand::kLinkCount> hand_geom_{};
   std::vector<int> object_weld_;  // equality id of the object's weld to the palm; -1 none

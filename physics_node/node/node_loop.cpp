@@ -96,6 +96,15 @@ class Node {
                    world_.scene().objects[e.object].name, ns_to_seconds(e.t_ns),
                    physics_io::grasp_event_text(e));
     }
+    for (const auto& e : world_.control_events()) {
+      const physics::ControlSpec& c = world_.scene().controls[static_cast<std::size_t>(e.control)];
+      spdlog::info("CONTROL {} {} -> {} at {:.3f} s: {}{}{}", c.name,
+                   c.positions[static_cast<std::size_t>(e.from)].name,
+                   c.positions[static_cast<std::size_t>(e.to)].name, ns_to_seconds(e.t_ns),
+                   physics::control_cause_name(e.cause), e.link >= 0 ? " by " : "",
+                   e.link >= 0 ? std::string(physics::link_name(static_cast<physics::Link>(e.link)))
+                               : std::string());
+    }
     ++steps_in_period_;
     for (int s = 0; s < physics::kStageCount; ++s) stage_ns_[s] += world_.stage_times().ns[s];
   }

@@ -32,8 +32,9 @@ Aabb shape_aabb(const Shape& shape, const Eigen::Isometry3d& X_GS) {
 }
 
 SweepAndPrune::SweepAndPrune(std::vector<BroadphaseBody> kinds)
-    : kinds_(std::move(kinds)), boxes_(kinds_.size()), order_(kinds_.size()) {
-  std::iota(order_.begin(), order_.end(), 0);
+    : kinds_(std::move(kinds)), boxes_(kinds_.size()) {
+  for (std::size_t i = 0; i < kinds_.size(); ++i)
+    (kinds_[i] == BroadphaseBody::kStatic ? statics_ : order_).push_back(static_cast<int>(i));
 }
 
 bool SweepAndPrune::can_act(int a, int b) const {
@@ -42,8 +43,10 @@ bool SweepAndPrune::can_act(int a, int b) const {
   const bool hand = ka == BroadphaseBody::kHand || kb == BroadphaseBody::kHand;
   if (hand && !hand_enabled_) return false;
   if (ka == BroadphaseBody::kDynamic || kb == BroadphaseBody::kDynamic) return true;
+  // a control acts with the hand only (and with free objects, above): its joint holds it in its
+  // panel, and a cockpit's controls are laid out not to touch one another
   if (ka == BroadphaseBody::kControl || kb == BroadphaseBody::kControl)
-    return ka != BroadphaseBody::kStatic && kb != BroadphaseBody::kStatic;
+    return ka == BroadphaseBody::kHand || kb == BroadphaseBody::kHand;
   // neither is dynamic: static-static and hand-hand never act; hand-static when asked for
   return report_hand_static_ && hand && (ka == BroadphaseBody::kStatic || kb == BroadphaseBody::kStatic);
 }
@@ -63,8 +66,9 @@ void SweepAndPrune::find_pairs(std::vector<BodyPair>& out) {
     variance.maxCoeff(&axis_);
   }
   const int axis = axis_;
-  // insertion sort by the lower end (stable: ties keep their order, so the sweep is a function
-  // of the poses' history only, and the output is sorted anyway)
+  // the moving bodies by sweep and prune: insertion sort by the lower end (stable: ties keep
+  // their order, so the sweep is a function of the poses' history only, and the output is
+  // sorted anyway)
   for (std::size_t i = 1; i < order_.size(); ++i) {
     const int body = order_[i];
     const double key = boxes_[static_cast<std::size_t>(body)].lo[axis];
@@ -87,6 +91,18 @@ void SweepAndPrune::find_pairs(std::vector<BodyPair>& out) {
       if (!can_act(a, b) || !box_a.overlaps(box_b)) continue;
       out.push_back({std::min(a, b), std::max(a, b)});
     }
+  }
+  // the static bodies never move and never pair with each other: each moving body that can act
+  // with them against each of them (the floor and the walls span the sweep axis, so in the sweep
+  // they met every body)
+  for (const int a : order_) {
+    const BroadphaseBody ka = kinds_[static_cast<std::size_t>(a)];
+    const bool acts = ka == BroadphaseBody::kDynamic ||
+                      (ka == BroadphaseBody::kHand && hand_enabled_ && report_hand_static_);
+    if (!acts) continue;
+    const Aabb& box_a = boxes_[static_cast<std::size_t>(a)];
+    for (const int b : statics_)
+      if (box_a.overlaps(boxes_[static_cast<std::size_t>(b)])) out.push_back({std::min(a, b), std::max(a, b)});
   }
   std::sort(out.begin(), out.end());
 }

@@ -1,8 +1,10 @@
 #pragma once
 // Broadphase: the body pairs whose axis-aligned boxes overlap and that can act on each other, by
-// sweep and prune along one axis (Baraff's, as in Bullet's and PhysX's SAP). The bodies keep
-// their sorted order from substep to substep, so re-sorting after a small motion is an insertion
-// sort of a nearly sorted list: O(n) plus the few swaps.
+// sweep and prune along one axis (Baraff's, as in Bullet's and PhysX's SAP) over the moving
+// bodies, and each moving body against the static ones (which never pair with each other, and
+// whose floor and walls span the sweep axis). The moving bodies keep their sorted order from
+// substep to substep, so re-sorting after a small motion is an insertion sort of a nearly
+// sorted list: O(n) plus the few swaps.
 //
 // Pairs that cannot act are never reported: static-static, hand-hand, the hand while it is
 // disabled, and hand-static unless asked for (the proxy hand needs them to stay out of panels;
@@ -30,7 +32,8 @@ struct Aabb {
 Aabb shape_aabb(const Shape& shape, const Eigen::Isometry3d& X_GS);
 
 // kControl: a control's moving part, dynamic but held by its joint, so never in contact with a
-// static object (it sits in a panel's cut-out).
+// static object (it sits in a panel's cut-out) or another control; the hand and free objects
+// push it.
 enum class BroadphaseBody : uint8_t { kStatic, kDynamic, kHand, kControl };
 
 struct BodyPair {
@@ -63,7 +66,8 @@ class SweepAndPrune {
 
   std::vector<BroadphaseBody> kinds_;
   std::vector<Aabb> boxes_;
-  std::vector<int> order_;  // bodies by the lower end of their box on the sweep axis
+  std::vector<int> order_;    // the moving bodies by the lower end of their box on the sweep axis
+  std::vector<int> statics_;  // the static bodies, in body order
   int axis_ = -1;           // chosen on the first sweep: where the boxes are spread the most
   bool hand_enabled_ = false;
   bool report_hand_static_ = false;

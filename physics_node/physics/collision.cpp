@@ -451,9 +451,13 @@ void CollisionWorld::set_poses(const std::vector<Eigen::Isometry3d>& X_GO,
   Impl& m = *impl_;
   VCOCKPIT_ASSERT(static_cast<int>(X_GO.size()) == object_count_, "one pose per object");
   const int n = std::min(object_count_, static_cast<int>(X_GO.size()));
-  for (int i = 0; i < n; ++i)
-    if (m.bodies[static_cast<std::size_t>(i)].kind != BodyKind::kStatic)
-      m.place(i, X_GO[static_cast<std::size_t>(i)]);
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    // a body where it was placed last keeps its transform and box (a resting control or object)
+    if (m.bodies[k].kind != BodyKind::kStatic &&
+        !(m.objects[k]->getTransform().matrix() == X_GO[k].matrix()))
+      m.place(i, X_GO[k]);
+  }
 
   const bool hand_enabled = has_hand_ && X_GL != nullptr;
   m.broadphase->set_hand_enabled(hand_enabled);

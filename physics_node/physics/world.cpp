@@ -99,6 +99,7 @@ World::World(Scene scene)
   control_push_N_.assign(control_count, 0.0);
   control_touched_.assign(control_count, 0);
   control_commanded_.assign(control_count, -1);
+  control_at_rest_.assign(control_count, 0);
   for (int ci = 0; ci < control_count; ++ci) {
     const ControlSpec& c = scene_.controls[ci];
     VCOCKPIT_ASSERT(c.body >= 0 && c.body < object_count_ && scene_.objects[c.body].control == ci &&
@@ -169,6 +170,9 @@ void World::restore(const WorldState& state) {
   // the last step's observations belong to the world the state came from
   applied_.clear();
   events_.clear();
+  control_events_.clear();
+  std::fill(control_at_rest_.begin(), control_at_rest_.end(), 0);
+  std::fill(control_commanded_.begin(), control_commanded_.end(), -1);
   stage_times_ = StageTimes{};
   penetration_ = PenetrationStats{};
   body_check_.clear_new_faults();
@@ -206,6 +210,7 @@ void World::step() {
     }
     s.qd = 0.0;
     place_control(ci);
+    control_at_rest_[ci] = 0;
     note_control_position(ci, ControlCause::kCommanded, -1, -1);
   }
   body_check_.clear_new_faults();
@@ -461,11 +466,19 @@ void World::integrate_controls(double dt_s) {
     BodyState& body = state_.bodies[c.body];
     if (body.held_by != kNotHeld) continue;  // moved with the hand (move_held_control)
     const ObjectSpec& o = scene_.objects[c.body];
+    // a control its last substep left where it was, at rest, with nothing touching it now, stays
+    // there exactly (the same inputs give the same step): most of a cockpit's controls, always
+    const bool untouched = F_G_[c.body].isZero(0.0) && M_G_[c.body].isZero(0.0);
+    if (untouched && control_at_rest_[ci] != 0) continue;
     // eqs. 18-19 on the body, gravity included, projected onto the joint
     const Eigen::Vector3d F_G = total_force_G(F_G_[c.body], o.mass_kg, scene_.gravity_mps2);
     const double Q = generalised_force(c, body.X_GO.translation(), F_G, M_G_[c.body]);
-    integrate_control(c, control_inertia_[ci], Q, dt_s, 0u, state_.controls[ci]);
-    place_control(ci);
+    ControlState& s = state_.controls[ci];
+    const double q_before = s.q;
+    integrate_control(c, control_inertia_[ci], Q, dt_s, 0u, s);
+    control_at_rest_[ci] = untouched && s.q == q_before && s.qd == 0.0 ? 1 : 0;
+    if (s.q != q_before || s.qd != 0.0 || body.v_G.squaredNorm() + body.w_G.squaredNorm() != 0.0)
+      place_control(ci);
     if (control_push_link_[ci] >= 0) {
       note_control_position(ci, ControlCause::kPushed, hand_id_, control_push_link_[ci]);
     } else {
@@ -490,6 +503,7 @@ void World::move_held_control(int control, double dt_s) {
   s.qd = (q - s.q) / dt_s;
   s.q = q;
   place_control(control);
+  control_at_rest_[control] = 0;
   note_control_position(control, ControlCause::kGrasped, state_.bodies[c.body].held_by, -1);
 }
 
@@ -564,6 +578,7 @@ void World::controls_after_grasp_stage() {
       const Eigen::Vector3d a = joint_axis_G(c);
       s.qd = c.joint == JointKind::kPrismatic ? a.dot(body.v_G) : a.dot(body.w_G);
       place_control(ci);
+      control_at_rest_[ci] = 0;
     }
   }
 }

@@ -185,6 +185,7 @@ class World {
   std::vector<double> control_push_N_;    // ... and its normal force
   std::vector<uint8_t> control_touched_;  // ... touched by another object
   std::vector<int> control_commanded_;    // per control: the position commanded since the last step, -1
+  std::vector<uint8_t> control_at_rest_;  // per control: its last free substep changed nothing
   StageTimes stage_times_;
   PenetrationStats penetration_;
   mutable std::array<Eigen::Isometry3d, kLinkCount> tracked_X_GL_;

@@ -73,9 +73,11 @@ TEST(MujocoScene, CockpitCompilesWithOurCountsAndMasses) {
   EXPECT_EQ(m->nbody, 1 + dynamic + kLinkCount);
   EXPECT_EQ(m->ngeom, static_cast<int>(scene.objects.size()) + kLinkCount);
   EXPECT_EQ(m->nmocap, kLinkCount);
+  // a free joint per loose object, a hinge or slide per control
+  const int controls = static_cast<int>(scene.controls.size());
   EXPECT_EQ(m->njnt, dynamic);
-  EXPECT_EQ(m->nq, 7 * dynamic);
-  EXPECT_EQ(m->nv, 6 * dynamic);
+  EXPECT_EQ(m->nq, 7 * (dynamic - controls) + controls);
+  EXPECT_EQ(m->nv, 6 * (dynamic - controls) + controls);
   EXPECT_EQ(mj.timestep_s(), scene.step_s);
   EXPECT_EQ(vec3(m->opt.gravity), scene.gravity_mps2);
   EXPECT_EQ(m->opt.integrator, mjINT_EULER);
@@ -96,8 +98,11 @@ TEST(MujocoScene, CockpitCompilesWithOurCountsAndMasses) {
     ASSERT_GT(b, 0) << o.name;
     EXPECT_EQ(m->geom_bodyid[g], b);
     EXPECT_NEAR(m->body_mass[b], o.mass_kg, 1e-15 * o.mass_kg) << o.name;
-    // the inertial sits at the body origin = our centroid; same principal moments
-    EXPECT_LT(vec3(m->body_ipos + 3 * b).norm(), 1e-15) << o.name;
+    // the inertial sits at our centroid: the body origin, or a control's X_JO from its joint
+    // frame; same principal moments
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    if (o.control >= 0) centroid = scene.controls[static_cast<std::size_t>(o.control)].X_JO.translation();
+    EXPECT_LT((vec3(m->body_ipos + 3 * b) - centroid).norm(), 1e-15) << o.name;
     Eigen::Vector3d ours = o.I_O.diagonal(), theirs = vec3(m->body_inertia + 3 * b);
     std::sort(ours.begin(), ours.end());
     std::sort(theirs.begin(), theirs.end());
@@ -126,7 +131,9 @@ TEST(MujocoScene, RestingObjectsStayPutForOneSecond) {
   for (int k = 0; k < steps; ++k) mj.step();
   for (int i = 0; i < static_cast<int>(scene.objects.size()); ++i) {
     const physics::ObjectSpec& o = scene.objects[static_cast<std::size_t>(i)];
-    if (!o.dynamic) continue;
+    // (a control's detents have no MuJoCo counterpart: a lever the detent holds in ours creeps
+    // under gravity in MuJoCo, so only the loose objects are checked)
+    if (!o.dynamic || o.control >= 0) continue;
     const Eigen::Vector3d p = mj.object_pose(i).translation();
     EXPECT_LT((p - o.X_GO.translation()).norm(), 0.01) << o.name;
     EXPECT_GT(p.z(), 0.0) << o.name << " fell through the floor";

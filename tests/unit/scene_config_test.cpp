@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -17,6 +18,7 @@
 
 #include "common/pose.hpp"
 #include "hand/hand_yaml.hpp"
+#include "physics_node/physics/world.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/test_files.hpp"
 
@@ -90,10 +92,11 @@ class ShippedCockpit : public ::testing::Test {
     EXPECT_GE(i, 0) << name;
     return scene_->objects.at(static_cast<std::size_t>(std::max(i, 0)));
   }
+  // the loose objects: dynamic, and not a control's moving part
   std::vector<const ObjectSpec*> dynamic_objects() const {
     std::vector<const ObjectSpec*> out;
     for (const auto& o : scene_->objects) {
-      if (o.dynamic) out.push_back(&o);
+      if (o.dynamic && o.control < 0) out.push_back(&o);
     }
     return out;
   }
@@ -119,13 +122,14 @@ TEST_F(ShippedCockpit, ObjectsKindsAndMasses) {
   const std::vector<std::string> statics = {
       "floor",     "instrument_panel", "glareshield",   "centre_console", "left_wall",
       "right_wall", "front_bulkhead",  "nose_bulkhead", "windscreen",     "back_wall",
-      "left_window", "right_window",   "canopy"};
+      "left_window", "right_window",   "canopy",         "left_pedestal"};
   for (const auto& name : statics) {
     EXPECT_FALSE(object(name).dynamic) << name;
     EXPECT_EQ(object(name).shape.kind, ShapeKind::kBox) << name;
     EXPECT_EQ(object(name).mass_kg, 0.0) << name;
   }
-  EXPECT_EQ(scene_->objects.size(), statics.size() + 4);
+  EXPECT_EQ(scene_->objects.size(), statics.size() + 4 + scene_->controls.size());
+  EXPECT_EQ(dynamic_objects().size(), 4u);
   EXPECT_EQ(object("cup").mass_kg, 0.2);
   EXPECT_EQ(object("checklist").mass_kg, 0.15);
   EXPECT_EQ(object("flashlight").mass_kg, 0.25);
@@ -137,6 +141,36 @@ TEST_F(ShippedCockpit, ObjectsKindsAndMasses) {
     EXPECT_TRUE(o->I_O.isApprox(expected, 1e-14)) << o->name;
     EXPECT_EQ(o->v_G, Eigen::Vector3d::Zero()) << o->name;
     EXPECT_LE(o->material.mu_d, o->material.mu_s) << o->name;
+  }
+}
+
+// The cockpit's controls: what the issue asks of a default cockpit, each at rest where it starts.
+TEST_F(ShippedCockpit, ControlsOfEveryKind) {
+  using physics::ControlKind;
+  std::map<ControlKind, int> kinds;
+  int latching = 0, lit = 0, gated = 0, continuous = 0;
+  for (const physics::ControlSpec& c : scene_->controls) {
+    ++kinds[c.kind];
+    latching += c.latching ? 1 : 0;
+    lit += c.lit_when >= 0 ? 1 : 0;
+    gated += c.gates.empty() ? 0 : 1;
+    continuous += c.limited ? 0 : 1;
+    EXPECT_EQ(scene_->objects[static_cast<std::size_t>(c.body)].name, c.name);
+  }
+  EXPECT_EQ(kinds[ControlKind::kPushButton], 2);
+  EXPECT_EQ(kinds[ControlKind::kToggle], 3);
+  EXPECT_EQ(kinds[ControlKind::kRotary], 2);
+  EXPECT_EQ(kinds[ControlKind::kLever], 3);  // throttle, flaps, gear
+  EXPECT_EQ(kinds[ControlKind::kGuard], 1);
+  EXPECT_EQ(latching, 1);
+  EXPECT_EQ(lit, 2);
+  EXPECT_EQ(gated, 2);
+  EXPECT_EQ(continuous, 1);
+  // left alone for a second, no control moves off its position
+  physics::World world(*scene_);
+  for (int i = 0; i < 1000; ++i) {
+    world.step();
+    EXPECT_TRUE(world.control_events().empty()) << "at step " << i;
   }
 }
 
@@ -211,7 +245,7 @@ TEST_F(ShippedCockpit, LooseObjectsAreAtLeastOneCentimetreApart) {
 TEST_F(ShippedCockpit, LooseObjectsTouchNoStaticButTheConsole) {
   for (const ObjectSpec* o : dynamic_objects()) {
     for (const ObjectSpec& s : scene_->objects) {
-      if (s.dynamic || s.name == "centre_console") continue;
+      if (s.dynamic || s.name == "centre_console") continue;  // (a control's part is dynamic)
       EXPECT_GE(aabb_gap_m(aabb(*o), aabb(s)), 0.01) << o->name << " vs " << s.name;
     }
   }
