@@ -24,6 +24,10 @@ VCOCKPIT_TOPIC(GraspEvent, "cockpit/grasp_event");
 VCOCKPIT_TOPIC(FrameInfo, "cockpit/frame_info");
 VCOCKPIT_TOPIC(NodeStatus, "cockpit/node_status");
 VCOCKPIT_TOPIC(HeadPose, "cockpit/head_pose");
+VCOCKPIT_TOPIC(ControlInfo, "cockpit/control_info");
+VCOCKPIT_TOPIC(ControlState, "cockpit/control_state");
+VCOCKPIT_TOPIC(ControlEvent, "cockpit/control_event");
+VCOCKPIT_TOPIC(ControlCommand, "cockpit/control_command");
 
 #undef VCOCKPIT_TOPIC
 

@@ -75,6 +75,7 @@ void parse_positions(const ConfigNode& list, ControlSpec& c, const Units& u) {
     node.expect_keys({"name", "at", "enter"});
     physics::ControlPosition p;
     p.name = parse_name(node["name"]);
+    if (p.name.size() > 31) node["name"].fail("a position name has at most 31 characters");
     for (const auto& other : c.positions)
       if (other.name == p.name) node["name"].fail("duplicate position name '" + p.name + "'");
     p.q = u.coordinate(node["at"]);
@@ -97,6 +98,10 @@ void parse_positions(const ConfigNode& list, ControlSpec& c, const Units& u) {
       }
     }
     c.positions.push_back(std::move(p));
+  }
+  if (c.positions.size() > static_cast<std::size_t>(physics::kMaxControlPositions)) {
+    list.fail("a control has at most " + std::to_string(physics::kMaxControlPositions) +
+              " positions, got " + std::to_string(c.positions.size()));
   }
   if (c.positions.size() < 2) {
     list.fail("a control needs at least 2 positions (a momentary one springs back from its "

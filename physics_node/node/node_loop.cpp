@@ -38,9 +38,11 @@ class Node {
         follower_(follower_options(options)),
         reader_(participant.make_reader<cockpit::HandSample>(options.lockstep ? "reliable"
                                                                               : "stream")),
+        command_reader_(participant.make_reader<cockpit::ControlCommand>("event")),
         publisher_(participant, world_) {
     publisher_.publish_object_info(world_);
     publisher_.publish_hand_info(world_);
+    publisher_.publish_control_info(world_);
     last_status_ns_ = monotonic_now_ns();
     last_sample_wall_ns_ = last_status_ns_;
   }
@@ -79,7 +81,29 @@ class Node {
     return recent && reader_.alive_writer_count() > 0;
   }
 
+  // Commands from other nodes (cockpit/control_command) for the coming step: the world refuses a
+  // control or position it does not have, and a control a hand holds.
+  void take_commands() {
+    while (command_reader_.take(command_)) {
+      const auto& controls = world_.scene().controls;
+      const int control = static_cast<int>(command_.control_id());
+      const int position = static_cast<int>(command_.position());
+      if (world_.command_control(control, position)) {
+        spdlog::info("command from '{}': {} to {}", command_.source(), controls[control].name,
+                     controls[control].positions[static_cast<std::size_t>(position)].name);
+      } else {
+        ++commands_refused_;
+        spdlog::warn("command from '{}' refused: control {} position {} ({})", command_.source(),
+                     command_.control_id(), command_.position(),
+                     control >= 0 && control < static_cast<int>(controls.size())
+                         ? "no such position, or a hand holds it"
+                         : "no such control");
+      }
+    }
+  }
+
   void step_world() {
+    take_commands();
     const int64_t start_ns = monotonic_now_ns();
     world_.step();
     stats_.step_compute.record_ns(monotonic_now_ns() - start_ns);
@@ -153,6 +177,9 @@ class Node {
   physics_io::HandMotionPeak hand_peak_;
   uint64_t glove_lost_ = 0;             // real time (lockstep: the replay driver counts)
   Reader<cockpit::HandSample> reader_;
+  Reader<cockpit::ControlCommand> command_reader_;
+  cockpit::ControlCommand command_;
+  uint64_t commands_refused_ = 0;
   StatePublisher publisher_;
   cockpit::HandSample message_;
   dds::InstanceHandle_t source_;

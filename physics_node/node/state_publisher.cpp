@@ -39,8 +39,74 @@ StatePublisher::StatePublisher(DdsParticipant& participant, const physics::World
       hand_writer_(participant.make_writer<cockpit::HandState>("stream")),
       object_writer_(participant.make_writer<cockpit::ObjectState>("state")),
       event_writer_(participant.make_writer<cockpit::GraspEvent>("event")),
-      status_writer_(participant.make_writer<cockpit::NodeStatus>("state")) {
+      status_writer_(participant.make_writer<cockpit::NodeStatus>("state")),
+      control_info_writer_(participant.make_writer<cockpit::ControlInfo>("state")),
+      control_writer_(participant.make_writer<cockpit::ControlState>("state")),
+      control_event_writer_(participant.make_writer<cockpit::ControlEvent>("event")),
+      control_sent_(world.scene().controls.size()),
+      control_sent_valid_(world.scene().controls.size(), 0),
+      control_sent_holder_(world.scene().controls.size(), physics::kNotHeld) {
   hand_msg_.hand_id(static_cast<uint32_t>(world.hand_id()));
+}
+
+static_assert(static_cast<int>(physics::ControlKind::kGuard) == cockpit::GUARD &&
+                  static_cast<int>(physics::ControlKind::kPushButton) == cockpit::PUSH_BUTTON,
+              "ControlKind in the same order as the IDL's");
+static_assert(static_cast<int>(physics::ControlCause::kObject) == cockpit::OBJECT_PUSHED &&
+                  static_cast<int>(physics::ControlCause::kPushed) == cockpit::PUSHED,
+              "ControlCause in the same order as the IDL's");
+
+void StatePublisher::publish_control_info(const physics::World& world) {
+  const auto& controls = world.scene().controls;
+  for (std::size_t i = 0; i < controls.size(); ++i) {
+    const physics::ControlSpec& c = controls[i];
+    cockpit::ControlInfo info;
+    info.control_id(static_cast<uint32_t>(i));
+    info.name(c.name.substr(0, 64));
+    info.kind(static_cast<cockpit::ControlKind>(c.kind));
+    info.joint(c.joint == physics::JointKind::kPrismatic ? cockpit::PRISMATIC : cockpit::REVOLUTE);
+    info.object_id(static_cast<uint32_t>(c.body));
+    info.X_GJ(to_idl(c.X_GJ));
+    info.limited(c.limited);
+    info.travel_min(c.q_min);
+    info.travel_max(c.q_max);
+    info.position_count(static_cast<uint32_t>(c.positions.size()));
+    std::string names;
+    for (std::size_t p = 0; p < c.positions.size() && p < info.position_coordinates().size(); ++p) {
+      names += c.positions[p].name + "|";  // at most 8 names of at most 32 characters
+      info.position_coordinates()[p] = c.positions[p].q;
+    }
+    info.position_names(names);
+    info.lit_position(c.lit_when);
+    control_info_writer_.write(info);
+  }
+}
+
+// each control whose coordinate, position or holder changed since its last sample
+void StatePublisher::publish_controls(const physics::World& world) {
+  const auto& controls = world.scene().controls;
+  for (std::size_t i = 0; i < controls.size(); ++i) {
+    const physics::ControlState& s = world.state().controls[i];
+    const int held_by = world.bodies()[static_cast<std::size_t>(controls[i].body)].held_by;
+    const physics::ControlState& sent = control_sent_[i];
+    if (control_sent_valid_[i] != 0 && s.q == sent.q && s.qd == sent.qd &&
+        s.position == sent.position && held_by == control_sent_holder_[i])
+      continue;
+    if (!control_guard_.pass(std::isfinite(s.q) && std::isfinite(s.qd), controls[i].name,
+                             "coordinate", world.time_ns()))
+      continue;
+    control_msg_.control_id(static_cast<uint32_t>(i));
+    control_msg_.sim_time_ns(world.time_ns());
+    control_msg_.coordinate(s.q);
+    control_msg_.velocity(s.qd);
+    control_msg_.position(static_cast<uint32_t>(s.position));
+    control_msg_.lit(controls[i].lit_when >= 0 && s.position == controls[i].lit_when);
+    control_msg_.held_by_hand_id(held_by);
+    control_writer_.write(control_msg_);
+    control_sent_[i] = s;
+    control_sent_holder_[i] = held_by;
+    control_sent_valid_[i] = 1;
+  }
 }
 
 void StatePublisher::publish_object_info(const physics::World& world) {
@@ -88,6 +154,7 @@ void StatePublisher::publish_hand_info(const physics::World& world) {
 
 void StatePublisher::publish_state(const physics::World& world, const InputStamps& stamps,
                                    bool tracking) {
+  publish_controls(world);
   const auto& objects = world.scene().objects;
   int held = cockpit::kNoObject;
   for (std::size_t i = 0; i < objects.size(); ++i) {
@@ -127,6 +194,17 @@ void StatePublisher::publish_state(const physics::World& world, const InputStamp
 }
 
 void StatePublisher::publish_events(const physics::World& world) {
+  for (const physics::ControlEvent& e : world.control_events()) {
+    control_event_msg_.seq(control_event_seq_++);
+    control_event_msg_.sim_time_ns(e.t_ns);
+    control_event_msg_.control_id(static_cast<uint32_t>(e.control));
+    control_event_msg_.from_position(static_cast<uint32_t>(e.from));
+    control_event_msg_.to_position(static_cast<uint32_t>(e.to));
+    control_event_msg_.cause(static_cast<cockpit::ControlCause>(e.cause));
+    control_event_msg_.hand_id(e.hand_id);
+    control_event_msg_.link(e.link);
+    control_event_writer_.write(control_event_msg_);
+  }
   for (const physics::GraspEvent& e : world.step_events()) {
     event_msg_.seq(event_seq_++);
     event_msg_.sim_time_ns(e.t_ns);

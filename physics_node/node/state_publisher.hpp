@@ -7,6 +7,9 @@
 //   cockpit/hand_state    the hand's 16 link poses and the sample they came from (stream)
 //   cockpit/object_state  every dynamic object's pose and velocities (state)
 //   cockpit/grasp_event   every GRASP and RELEASE with its reason (event)
+//   cockpit/control_info  every control's kind, joint and named positions, once (state)
+//   cockpit/control_state a control's coordinate, position and light when they change (state)
+//   cockpit/control_event every change of a control's position with its cause (event)
 //   cockpit/node_status   rates, stage timings, counters, glove liveliness (state)
 //
 // No NaN or infinity is published (physics_io::NonFiniteGuard: counted, named once in the log):
@@ -35,18 +38,22 @@ class StatePublisher {
   StatePublisher(DdsParticipant& participant, const physics::World& world);
 
   void publish_object_info(const physics::World& world);
+  void publish_control_info(const physics::World& world);
   // The hand's geometry (nothing when the scene has no hand).
   void publish_hand_info(const physics::World& world);
   void publish_state(const physics::World& world, const InputStamps& stamps, bool tracking);
   void publish_events(const physics::World& world);
   void publish_status(const cockpit::NodeStatus& status);
+  // cockpit/control_state of each control that changed since its last sample (publish_state
+  // calls it; a node that publishes no hand state can call it alone)
+  void publish_controls(const physics::World& world);
   // Waits (bounded) until reliable readers have the last state and events, before shutdown.
   void flush(int64_t timeout_ns);
 
   // Samples not sent and values replaced because they were not finite, over all topics.
   uint64_t non_finite_refused() const {
     return info_guard_.refused() + object_guard_.refused() + hand_guard_.refused() +
-           event_guard_.refused() + status_guard_.refused();
+           event_guard_.refused() + status_guard_.refused() + control_guard_.refused();
   }
 
  private:
@@ -56,6 +63,16 @@ class StatePublisher {
   Writer<cockpit::ObjectState> object_writer_;
   Writer<cockpit::GraspEvent> event_writer_;
   Writer<cockpit::NodeStatus> status_writer_;
+  Writer<cockpit::ControlInfo> control_info_writer_;
+  Writer<cockpit::ControlState> control_writer_;
+  Writer<cockpit::ControlEvent> control_event_writer_;
+  cockpit::ControlState control_msg_;
+  cockpit::ControlEvent control_event_msg_;
+  uint64_t control_event_seq_ = 0;
+  // per control, what its last control_state said (a control at rest is not re-sent)
+  std::vector<physics::ControlState> control_sent_;
+  std::vector<uint8_t> control_sent_valid_;
+  std::vector<int> control_sent_holder_;
   cockpit::HandState hand_msg_;
   cockpit::ObjectState object_msg_;
   cockpit::GraspEvent event_msg_;
@@ -66,6 +83,7 @@ class StatePublisher {
   physics_io::NonFiniteGuard hand_guard_{"cockpit/hand_state"};
   physics_io::NonFiniteGuard event_guard_{"cockpit/grasp_event"};
   physics_io::NonFiniteGuard status_guard_{"cockpit/node_status"};
+  physics_io::NonFiniteGuard control_guard_{"cockpit/control_state"};
 };
 
 }  // namespace vcockpit::physics_node

@@ -33,6 +33,9 @@ namespace vcockpit::physics {
 
 enum class JointKind : uint8_t { kPrismatic, kRevolute };
 
+// The most named positions a control has (cockpit/control_info carries a fixed array of them).
+inline constexpr int kMaxControlPositions = 8;
+
 enum class ControlKind : uint8_t { kPushButton, kToggle, kRotary, kLever, kGuard };
 const char* control_kind_name(ControlKind kind);
 
