@@ -41,9 +41,12 @@ ProxyHand::ProxyHand(const Scene& scene)
     const ObjectSpec& o = scene.objects[i];
     dynamic_[i] = o.dynamic ? 1 : 0;
     // a light object is pressed no harder than a few times its weight (at one standard g, so a
-    // weightless scene grips alike): a finger that arrives first nudges a 60 g bar, not flings it
+    // weightless scene grips alike): a finger that arrives first nudges a 60 g bar, not flings it.
+    // A control's joint holds it: a finger presses a 5 g button cap with what its spring asks.
     const double force_N =
-        std::min(params_.grip_force_N, params_.grip_weight_ratio * o.mass_kg * kStandardGravity_mps2);
+        o.control >= 0 ? params_.grip_force_N
+                       : std::min(params_.grip_force_N,
+                                  params_.grip_weight_ratio * o.mass_kg * kStandardGravity_mps2);
     depth_limit_m_[i] = o.dynamic ? force_N / pair_stiffness(scene.hand_material, o.material)
                                   : params_.static_depth_m;
   }

@@ -100,6 +100,7 @@ World::World(Scene scene)
   control_touched_.assign(control_count, 0);
   control_commanded_.assign(control_count, -1);
   control_at_rest_.assign(control_count, 0);
+  control_push_Q_.assign(control_count, 0.0);
   for (int ci = 0; ci < control_count; ++ci) {
     const ControlSpec& c = scene_.controls[ci];
     VCOCKPIT_ASSERT(c.body >= 0 && c.body < object_count_ && scene_.objects[c.body].control == ci &&
@@ -479,7 +480,9 @@ void World::integrate_controls(double dt_s) {
     control_at_rest_[ci] = untouched && s.q == q_before && s.qd == 0.0 ? 1 : 0;
     if (s.q != q_before || s.qd != 0.0 || body.v_G.squaredNorm() + body.w_G.squaredNorm() != 0.0)
       place_control(ci);
-    if (control_push_link_[ci] >= 0) {
+    // pushed: the hand's force drives the motion (a button that springs back out against a
+    // withdrawing fingertip is returned by its spring)
+    if (control_push_link_[ci] >= 0 && control_push_Q_[ci] * s.qd > 0.0) {
       note_control_position(ci, ControlCause::kPushed, hand_id_, control_push_link_[ci]);
     } else {
       note_control_position(ci, control_touched_[ci] != 0 ? ControlCause::kObject
@@ -543,6 +546,7 @@ void World::find_control_pushers() {
   std::fill(control_push_link_.begin(), control_push_link_.end(), -1);
   std::fill(control_push_N_.begin(), control_push_N_.end(), 0.0);
   std::fill(control_touched_.begin(), control_touched_.end(), 0);
+  std::fill(control_push_Q_.begin(), control_push_Q_.end(), 0.0);
   for (const AppliedContact& a : applied_) {
     const int body_a = a.contact.body_a;
     const int body_b = a.contact.body_b;
@@ -555,6 +559,13 @@ void World::find_control_pushers() {
           control_push_N_[ci] = a.normal_N;
           control_push_link_[ci] = other - object_count_;
         }
+        // the hand's generalised force on the control: its contact force at the contact point
+        const Eigen::Vector3d F_G = body == body_b ? a.F_on_b_G : Eigen::Vector3d(-a.F_on_b_G);
+        const ControlSpec& c = scene_.controls[ci];
+        control_push_Q_[ci] +=
+            c.joint == JointKind::kPrismatic
+                ? joint_axis_G(c).dot(F_G)
+                : joint_axis_G(c).dot((a.contact.p_G - joint_origin_G(c)).cross(F_G));
       } else {
         control_touched_[ci] = 1;
       }

@@ -183,6 +183,7 @@ class World {
   std::vector<ControlEvent> control_events_;
   std::vector<int> control_push_link_;    // per control, this substep: the hand link pushing it hardest
   std::vector<double> control_push_N_;    // ... and its normal force
+  std::vector<double> control_push_Q_;    // ... and the hand's generalised force on it
   std::vector<uint8_t> control_touched_;  // ... touched by another object
   std::vector<int> control_commanded_;    // per control: the position commanded since the last step, -1
   std::vector<uint8_t> control_at_rest_;  // per control: its last free substep changed nothing

@@ -4,15 +4,21 @@
 //   - a detent holds a lever against gravity while its strength exceeds the gravity torque, and
 //     not beyond;
 //   - a command moves a control to the position asked for, reported as commanded; a command for
-//     an unknown position is refused.
+//     an unknown position is refused;
+//   - the default cockpit's master caution button pressed by the proxy hand's fingertip.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <vector>
 
+#include "hand/hand_model.hpp"
+#include "physics_node/config/scene_config.hpp"
 #include "physics_node/physics/world.hpp"
 #include "tests/support/scene_builder.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace vcockpit::test {
 namespace {
@@ -147,6 +153,89 @@ TEST(Controls, ACommandSetsThePositionAndIsReportedAsCommanded) {
   EXPECT_EQ(e.to, 1);
   EXPECT_EQ(e.cause, physics::ControlCause::kCommanded);
   EXPECT_EQ(world.state().controls[0].q, kPi / 3);
+}
+
+
+// The default cockpit's master caution button, pressed by the proxy hand's index fingertip: the
+// fingertip's contact force, projected onto the button's axis, pushes it past its actuation
+// point ("pressed", caused by the index's distal link); withdrawn, the spring returns it ("out",
+// by its mechanism). One event each, no chatter.
+TEST(Controls, AFingertipPressesTheMasterCautionButtonAndItsSpringReturnsIt) {
+  physics::World world(load_scene(source_dir() + "/config/cockpit.yaml"));
+  const physics::Scene& scene = world.scene();
+  const int button = scene.find_control("master_caution");
+  ASSERT_GE(button, 0);
+  const physics::ControlSpec& c = scene.controls[static_cast<std::size_t>(button)];
+  const hand::HandModel& model = *scene.hand;
+  // a pointing hand: index straight, the other fingers and the thumb curled in
+  physics::HandInput input;
+  input.q_rad = model.rest_pose();
+  for (hand::Joint j : {hand::Joint::kMiddleMcp, hand::Joint::kMiddlePip, hand::Joint::kRingMcp,
+                        hand::Joint::kRingPip, hand::Joint::kLittleMcp, hand::Joint::kLittlePip})
+    input.q_rad[static_cast<std::size_t>(j)] = 80.0 * kPi / 180.0;
+  input.q_rad[static_cast<std::size_t>(hand::Joint::kIndexMcp)] = 0.0;
+  input.q_rad[static_cast<std::size_t>(hand::Joint::kIndexPip)] = 0.0;
+  input.q_rad[static_cast<std::size_t>(hand::Joint::kIndexDip)] = 0.0;
+  input.q_rad[static_cast<std::size_t>(hand::Joint::kThumbIp)] = 60.0 * kPi / 180.0;
+  hand::HandLinkPoses links;
+  hand::forward_kinematics(model, input.q_rad, links);
+  const Eigen::Vector3d tip_H = links.p_H_tip[static_cast<std::size_t>(hand::Finger::kIndex)];
+  // the index's tip along the button's axis, the back of the hand up
+  const Eigen::Vector3d axis = physics::joint_axis_G(c);
+  const Eigen::Vector3d x = axis;
+  const Eigen::Vector3d z = (Eigen::Vector3d::UnitZ() - x.dot(Eigen::Vector3d::UnitZ()) * x).normalized();
+  Eigen::Matrix3d R_GH;
+  R_GH.col(0) = x;
+  R_GH.col(1) = z.cross(x);
+  R_GH.col(2) = z;
+  const Eigen::Vector3d cap_face = c.X_GJ.translation() - 0.004 * axis;  // the cap's front face
+  const double tip_radius =
+      model.capsules[static_cast<std::size_t>(hand::Link::kIndexDistal)].radius_m;
+  auto hand_at = [&](double depth_m) {  // the fingertip's surface depth_m past the cap's face
+    input.X_GH.linear() = R_GH;
+    input.X_GH.translation() = cap_face + (depth_m - tip_radius) * axis - R_GH * tip_H;
+    return input;
+  };
+  std::vector<physics::ControlEvent> events;
+  auto run = [&](double from_m, double to_m, double seconds) {
+    const int steps = static_cast<int>(seconds * 1000);
+    for (int i = 1; i <= steps; ++i) {
+      world.set_hand_input(hand_at(from_m + (to_m - from_m) * i / steps));
+      world.step();
+      events.insert(events.end(), world.control_events().begin(), world.control_events().end());
+      if (std::getenv("TRACE_BUTTON") != nullptr && i % 20 == 0) {
+        const Eigen::Vector3d tip = world.X_GL()[static_cast<std::size_t>(hand::Link::kIndexDistal)] *
+                                    Eigen::Vector3d(model.capsules[6].length_m, 0, 0);
+        std::printf("t %.3f q %.5f tip-face along axis %.4f lateral %.4f contacts %zu off %.4f\n",
+                    world.time_ns() * 1e-9, world.state().controls[static_cast<std::size_t>(button)].q,
+                    axis.dot(tip - cap_face), ((tip - cap_face) - axis.dot(tip - cap_face) * axis).norm(),
+                    world.contacts().size(), world.tracked_offset_m());
+        for (const auto& a : world.contacts())
+          if (a.contact.body_b >= static_cast<int>(scene.objects.size()))
+            std::printf("   contact %s - link %d depth %.2f mm N %.2f\n",
+                        scene.objects[static_cast<std::size_t>(a.contact.body_a)].name.c_str(),
+                        a.contact.body_b - static_cast<int>(scene.objects.size()),
+                        a.contact.depth_m * 1e3, a.normal_N);
+      }
+    }
+  };
+  run(-0.03, -0.03, 0.05);
+  run(-0.03, 0.006, 0.3);  // in, 2 mm past the bottom of its travel
+  run(0.006, 0.006, 0.2);
+  EXPECT_GE(world.state().controls[static_cast<std::size_t>(button)].q, 0.003) << "held down";
+  run(0.006, -0.03, 0.3);
+  run(-0.03, -0.03, 0.2);
+  std::vector<physics::ControlEvent> mine;
+  for (const auto& e : events)
+    if (e.control == button) mine.push_back(e);
+    else ADD_FAILURE() << scene.controls[static_cast<std::size_t>(e.control)].name << " moved";
+  ASSERT_EQ(mine.size(), 2u);
+  EXPECT_EQ(mine[0].to, 1);
+  EXPECT_EQ(mine[0].cause, physics::ControlCause::kPushed);
+  EXPECT_EQ(mine[0].link, static_cast<int>(hand::Link::kIndexDistal));
+  EXPECT_EQ(mine[1].to, 0);
+  EXPECT_EQ(mine[1].cause, physics::ControlCause::kMechanism);
+  EXPECT_EQ(world.state().controls[static_cast<std::size_t>(button)].q, 0.0);
 }
 
 }  // namespace
