@@ -28,6 +28,8 @@ class ImageGenerator {
         state_reader_(participant.make_reader<cockpit::ObjectState>("state")),
         hand_reader_(participant.make_reader<cockpit::HandState>("stream")),
         head_reader_(participant.make_reader<cockpit::HeadPose>("stream")),
+        control_info_reader_(participant.make_reader<cockpit::ControlInfo>("state")),
+        control_reader_(participant.make_reader<cockpit::ControlState>("state")),
         frame_writer_(participant.make_writer<cockpit::FrameInfo>("stream")),
         status_writer_(participant.make_writer<cockpit::NodeStatus>("state")),
         domain_id_(participant.domain_id()),
@@ -44,6 +46,8 @@ class ImageGenerator {
     while (hand_info_reader_.take(hand_info_)) on_hand_info();
     while (hand_reader_.take(hand_)) cache_.on_hand(hand_);
     while (head_reader_.take(head_)) X_GHead_ = to_eigen(head_.X_GHead());
+    while (control_info_reader_.take(control_info_)) cache_.on_control_info(control_info_);
+    while (control_reader_.take(control_)) cache_.on_control_state(control_);
   }
   void on_hand_info();
   bool wait_for_scene();
@@ -58,6 +62,8 @@ class ImageGenerator {
   Reader<cockpit::ObjectState> state_reader_;
   Reader<cockpit::HandState> hand_reader_;
   Reader<cockpit::HeadPose> head_reader_;
+  Reader<cockpit::ControlInfo> control_info_reader_;
+  Reader<cockpit::ControlState> control_reader_;
   Writer<cockpit::FrameInfo> frame_writer_;
   Writer<cockpit::NodeStatus> status_writer_;
   int domain_id_;
@@ -67,6 +73,8 @@ class ImageGenerator {
   cockpit::ObjectState state_;
   cockpit::HandState hand_;
   cockpit::HeadPose head_;
+  cockpit::ControlInfo control_info_;
+  cockpit::ControlState control_;
   cockpit::FrameInfo frame_;
   std::vector<render::Instance> instances_;
   uint64_t frames_ = 0;

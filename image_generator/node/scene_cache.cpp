@@ -40,6 +40,33 @@ void SceneCache::on_state(const cockpit::ObjectState& state) {
   newest_sim_time_ns_ = std::max(newest_sim_time_ns_, state.sim_time_ns());
 }
 
+void SceneCache::on_control_info(const cockpit::ControlInfo& info) {
+  if (info.lit_position() < 0) return;  // no light
+  ControlLights& lights = control_lights_[info.control_id()];
+  lights.body = info.object_id();
+  lights.light = info.light_object_id();
+  // off until its state says otherwise (a state that came first is applied now)
+  bool lit = false;
+  if (auto pending = lit_pending_.find(info.control_id()); pending != lit_pending_.end()) {
+    lit = pending->second;
+    lit_pending_.erase(pending);
+  }
+  set_lit(lights.body, lit);
+  if (lights.light >= 0) set_lit(static_cast<uint32_t>(lights.light), lit);
+}
+
+void SceneCache::on_control_state(const cockpit::ControlState& state) {
+  const auto it = control_lights_.find(state.control_id());
+  if (it == control_lights_.end()) {
+    lit_pending_[state.control_id()] = state.lit();
+    return;
+  }
+  set_lit(it->second.body, state.lit());
+  if (it->second.light >= 0) set_lit(static_cast<uint32_t>(it->second.light), state.lit());
+}
+
+void SceneCache::set_lit(uint32_t object, bool lit) { objects_[object].light = lit ? 1 : -1; }
+
 bool SceneCache::on_hand_info(const cockpit::HandInfo& info) {
   if (info.hand_id() >= kHandSlots || !hand_info_sizes_valid(info)) {
     ++hand_messages_refused_;
@@ -87,7 +114,13 @@ Eigen::Vector3d SceneCache::object_position(uint32_t id) const {
 void SceneCache::build(std::vector<render::Instance>& out) const {
   out.clear();
   for (const auto& [id, o] : objects_) {
-    if (o.have_info && o.have_pose) out.push_back(o.instance);
+    if (!o.have_info || !o.have_pose) continue;
+    out.push_back(o.instance);
+    if (o.light > 0) {
+      out.back().highlight = true;  // a lit cap or annunciator glows
+    } else if (o.light < 0) {
+      for (int k = 0; k < 3; ++k) out.back().rgba[k] *= kUnlitScale;  // and is dull when off
+    }
   }
   for (const Hand& h : hands_) {
     if (h.have_info && h.have_state) append_hand(h, out);

@@ -25,6 +25,10 @@ class SceneCache {
 
   void on_info(const cockpit::ObjectInfo& info);
   void on_state(const cockpit::ObjectState& state);
+  // A control with a light (lit_position >= 0): its moving part and its annunciator are drawn
+  // glowing while its control_state says lit, and dimmed while not.
+  void on_control_info(const cockpit::ControlInfo& info);
+  void on_control_state(const cockpit::ControlState& state);
   // False (and counted) when the info is unusable: hand_id beyond 1, sizes negative, zero palm or
   // not finite. A later info for the same hand replaces the geometry.
   bool on_hand_info(const cockpit::HandInfo& info);
@@ -61,8 +65,14 @@ class SceneCache {
   struct Object {
     bool have_info = false;
     bool have_pose = false;
+    int light = 0;  // 0 no light, 1 lit, -1 a light that is off
     render::Instance instance;
   };
+  struct ControlLights {
+    uint32_t body = 0;
+    int32_t light = -1;
+  };
+  void set_lit(uint32_t object, bool lit);
   struct Hand {
     bool have_info = false;
     bool have_state = false;
@@ -73,11 +83,14 @@ class SceneCache {
   void append_hand(const Hand& hand, std::vector<render::Instance>& out) const;
   void append_ghost(const Hand& hand, std::vector<render::Instance>& out) const;
 
+  static constexpr float kUnlitScale = 0.35f;  // a light that is off, against its colour
   static constexpr double kGhostRadiusScale = 0.3;  // the ghost's bones against the drawn radii
   static constexpr std::array<float, 4> kGhost = {0.80f, 0.86f, 0.95f, 1.0f};
   double ghost_threshold_m_ = kDefaultGhostThreshold_m;
 
   std::map<uint32_t, Object> objects_;  // by object id: drawn in id order
+  std::map<uint32_t, ControlLights> control_lights_;  // by control id: the objects it lights
+  std::map<uint32_t, bool> lit_pending_;  // a light's state that came before its object's info
   std::array<Hand, kHandSlots> hands_;  // by hand_id
   int shown_ = -1;                      // hand_id of the drawn hand updated last; -1 none
   uint64_t hand_states_without_info_ = 0;

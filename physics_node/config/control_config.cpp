@@ -155,10 +155,22 @@ void parse_mechanism(const ConfigNode& node, ControlSpec& c, const Units& u) {
   }
 }
 
+// An annunciator: a static object that lights with the control (lit_when).
+physics::ObjectSpec parse_light(const ConfigNode& node, const std::string& control_name) {
+  node.expect_keys({"shape", "pose", "color"});
+  physics::ObjectSpec light;
+  light.name = control_name + "_light";
+  light.dynamic = false;
+  light.shape = parse_shape(node["shape"]);
+  light.X_GO = parse_pose(node["pose"]);
+  read_optional(node, "color", light.color_rgba, parse_color);
+  return light;
+}
+
 ControlSpec parse_control(const ConfigNode& node, int body_index, physics::ObjectSpec& body) {
   node.expect_keys({"name", "kind", "joint", "pose", "body", "travel", "continuous", "initial",
                     "spring", "damping", "friction", "snap", "detents", "detent_every", "gates",
-                    "positions", "latch_at", "lit_when"});
+                    "positions", "latch_at", "lit_when", "light"});
   ControlSpec c;
   c.name = parse_name(node["name"]);
   c.kind = parse_control_kind(node["kind"]);
@@ -225,6 +237,13 @@ void parse_controls(const ConfigNode& list, physics::Scene& scene) {
     }
     body.control = static_cast<int>(scene.controls.size());
     scene.objects.push_back(std::move(body));
+    if (auto light = node.find("light")) {
+      if (c.lit_when < 0) light->fail("a light needs lit_when (the position it is lit in)");
+      physics::ObjectSpec spec = parse_light(*light, c.name);
+      if (scene.find_object(spec.name) >= 0) light->fail("duplicate name '" + spec.name + "'");
+      c.light_object = static_cast<int>(scene.objects.size());
+      scene.objects.push_back(std::move(spec));
+    }
     scene.controls.push_back(std::move(c));
   }
 }

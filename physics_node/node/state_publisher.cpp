@@ -78,6 +78,7 @@ void StatePublisher::publish_control_info(const physics::World& world) {
     }
     info.position_names(names);
     info.lit_position(c.lit_when);
+    info.light_object_id(c.light_object);
     control_info_writer_.write(info);
   }
 }

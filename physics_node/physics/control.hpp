@@ -90,6 +90,7 @@ struct ControlSpec {
   bool latching = false;
   double latch_q = 0.0;
   int lit_when = -1;  // the position in which its light (cap or annunciator) is lit; -1: never
+  int light_object = -1;  // a static object of the scene that lights with it (an annunciator)
 };
 
 // What carries from step to step.

@@ -56,13 +56,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0xc0fc0fb809c05bb2") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0x8b0fd9ba2c62926f") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0x763bb22aa3c31b29") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x73d1c5edb1e1c968") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x2a808cbd829dfa1a") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0xd748a1a17da70c09") << "final state";
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // The image generator's scene cache (image_generator/node/scene_cache): a hand is drawn only with
 // the geometry of its own cockpit/hand_info, hand states of a hand without info are counted and
-// not drawn, a new info replaces the geometry, malformed messages are refused, and a warm frame
-// allocates nothing.
+// not drawn, a new info replaces the geometry, malformed messages are refused, a warm frame
+// allocates nothing, and a control's light follows its control_state.
 
 #include <gtest/gtest.h>
 
@@ -48,6 +48,51 @@ void add_box(SceneCache& cache) {
 }
 
 constexpr std::size_t kHandInstances = 16;  // palm box + 15 phalanx capsules
+
+// A control with a light: its cap (object 0) and its annunciator (object 1) are drawn dull while
+// its control_state says off and glowing while on; a control without a light changes nothing.
+TEST(SceneCache, ALitControlsCapAndAnnunciatorGlowAndAreDullWhenOff) {
+  SceneCache cache;
+  for (uint32_t id : {0u, 1u, 2u}) {
+    cockpit::ObjectInfo info;
+    info.object_id(id);
+    info.shape(cockpit::BOX);
+    info.dimensions_m({0.02, 0.02, 0.01});
+    info.color_rgba({0.9f, 0.6f, 0.1f, 1.0f});
+    cache.on_info(info);
+    cockpit::ObjectState state;
+    state.object_id(id);
+    state.X_GO(to_idl(Eigen::Isometry3d::Identity()));
+    state.held_by_hand_id(cockpit::kNoObject);
+    cache.on_state(state);
+  }
+  // a state before the info: kept and applied when the info comes
+  cockpit::ControlState state;
+  state.control_id(4);
+  state.lit(true);
+  cache.on_control_state(state);
+  cockpit::ControlInfo info;
+  info.control_id(4);
+  info.object_id(0);
+  info.light_object_id(1);
+  info.lit_position(1);
+  cache.on_control_info(info);
+  std::vector<render::Instance> out;
+  cache.build(out);
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_TRUE(out[0].highlight);
+  EXPECT_TRUE(out[1].highlight);
+  EXPECT_FALSE(out[2].highlight) << "not this control's";
+  EXPECT_EQ(out[0].rgba[0], 0.9f);
+  state.lit(false);
+  cache.on_control_state(state);
+  cache.build(out);
+  EXPECT_FALSE(out[0].highlight);
+  EXPECT_FALSE(out[1].highlight);
+  EXPECT_LT(out[0].rgba[0], 0.5f) << "dull when off";
+  EXPECT_LT(out[1].rgba[1], 0.3f);
+  EXPECT_EQ(out[2].rgba[0], 0.9f) << "an object without a light keeps its colour";
+}
 
 TEST(SceneCache, NoHandIsDrawnBeforeItsHandInfo) {
   SceneCache cache;

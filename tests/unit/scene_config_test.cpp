@@ -128,7 +128,10 @@ TEST_F(ShippedCockpit, ObjectsKindsAndMasses) {
     EXPECT_EQ(object(name).shape.kind, ShapeKind::kBox) << name;
     EXPECT_EQ(object(name).mass_kg, 0.0) << name;
   }
-  EXPECT_EQ(scene_->objects.size(), statics.size() + 4 + scene_->controls.size());
+  std::size_t lights = 0;
+  for (const physics::ControlSpec& c : scene_->controls) lights += c.light_object >= 0 ? 1 : 0;
+  EXPECT_EQ(lights, 4u) << "landing lights, fuel pump, engine start, gear down";
+  EXPECT_EQ(scene_->objects.size(), statics.size() + 4 + scene_->controls.size() + lights);
   EXPECT_EQ(dynamic_objects().size(), 4u);
   EXPECT_EQ(object("cup").mass_kg, 0.2);
   EXPECT_EQ(object("checklist").mass_kg, 0.15);
@@ -163,7 +166,7 @@ TEST_F(ShippedCockpit, ControlsOfEveryKind) {
   EXPECT_EQ(kinds[ControlKind::kLever], 3);  // throttle, flaps, gear
   EXPECT_EQ(kinds[ControlKind::kGuard], 1);
   EXPECT_EQ(latching, 1);
-  EXPECT_EQ(lit, 2);
+  EXPECT_EQ(lit, 6);
   EXPECT_EQ(gated, 2);
   EXPECT_EQ(continuous, 1);
   // left alone for a second, no control moves off its position
