@@ -20,9 +20,13 @@ using hand::kLinkCount;
 
 // Collision filter: (contype1 & conaffinity2) || (contype2 & conaffinity1) lets a pair collide.
 // Static and hand geoms accept nothing, so they meet only dynamic geoms, which accept everyone.
+// A control's geom accepts the hand only: as in ours, it never meets its panel or another control
+// (and free objects meet it through their own affinity).
 constexpr int kStaticType = 1, kStaticAffinity = 0;
 constexpr int kHandType = 2, kHandAffinity = 0;
-constexpr int kDynamicType = 4, kDynamicAffinity = kStaticType | kHandType | kDynamicType;
+constexpr int kControlType = 8, kControlAffinity = kHandType;
+constexpr int kDynamicType = 4,
+              kDynamicAffinity = kStaticType | kHandType | kDynamicType | kControlType;
 
 // MuJoCo 2.2.2 sizes its contact and constraint buffers at compile time (nconmax, njmax; 2.3
 // grows them), and mjData holds njmax x njmax and njmax x nv arrays that it clears: 500 loose
@@ -172,7 +176,7 @@ void write_control(Xml& xml, const physics::ControlSpec& c, const physics::Objec
   out << "      <geom name=\"" << name << '"';
   write_shape(xml, o.shape);
   xml.frame(c.X_JO);
-  write_contact(xml, kDynamicType, kDynamicAffinity, o.material.mu_s);
+  write_contact(xml, kControlType, kControlAffinity, o.material.mu_s);
   write_rgba(xml, o.color_rgba);
   out << "/>\n    </body>\n";
 }

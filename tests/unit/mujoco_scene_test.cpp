@@ -109,7 +109,8 @@ TEST(MujocoScene, CockpitCompilesWithOurCountsAndMasses) {
     EXPECT_LT((ours - theirs).norm(), 1e-12 * ours.norm()) << o.name;
   }
 
-  // the pairs that act in ours: static-dynamic, dynamic-dynamic, hand-dynamic only
+  // the pairs that act in ours: static-dynamic, dynamic-dynamic, hand-dynamic, and a control
+  // with the hand and free objects only
   const int floor = mj.object_geom(scene.find_object("floor"));
   const int console = mj.object_geom(scene.find_object("centre_console"));
   const int cup = mj.object_geom(scene.find_object("cup"));
@@ -122,6 +123,14 @@ TEST(MujocoScene, CockpitCompilesWithOurCountsAndMasses) {
   EXPECT_FALSE(pair_can_collide(m, floor, console));
   EXPECT_FALSE(pair_can_collide(m, palm, console));
   EXPECT_FALSE(pair_can_collide(m, palm, tip));
+  // a control meets the hand and free objects, never its panel or another control
+  const int button = mj.object_geom(scene.find_object("master_caution"));
+  const int toggle = mj.object_geom(scene.find_object("fuel_pump"));
+  const int panel = mj.object_geom(scene.find_object("instrument_panel"));
+  EXPECT_TRUE(pair_can_collide(m, tip, button));
+  EXPECT_TRUE(pair_can_collide(m, cup, button));
+  EXPECT_FALSE(pair_can_collide(m, panel, button));
+  EXPECT_FALSE(pair_can_collide(m, toggle, button));
 }
 
 TEST(MujocoScene, RestingObjectsStayPutForOneSecond) {
