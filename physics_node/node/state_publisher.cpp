@@ -43,9 +43,7 @@ StatePublisher::StatePublisher(DdsParticipant& participant, const physics::World
       control_info_writer_(participant.make_writer<cockpit::ControlInfo>("state")),
       control_writer_(participant.make_writer<cockpit::ControlState>("state")),
       control_event_writer_(participant.make_writer<cockpit::ControlEvent>("event")),
-      control_sent_(world.scene().controls.size()),
-      control_sent_valid_(world.scene().controls.size(), 0),
-      control_sent_holder_(world.scene().controls.size(), physics::kNotHeld) {
+      control_sent_(world.scene().controls.size()) {
   hand_msg_.hand_id(static_cast<uint32_t>(world.hand_id()));
 }
 
@@ -89,9 +87,9 @@ void StatePublisher::publish_controls(const physics::World& world) {
   for (std::size_t i = 0; i < controls.size(); ++i) {
     const physics::ControlState& s = world.state().controls[i];
     const int held_by = world.bodies()[static_cast<std::size_t>(controls[i].body)].held_by;
-    const physics::ControlState& sent = control_sent_[i];
-    if (control_sent_valid_[i] != 0 && s.q == sent.q && s.qd == sent.qd &&
-        s.position == sent.position && held_by == control_sent_holder_[i])
+    const SentControl& sent = control_sent_[i];
+    if (sent.valid && s.q == sent.q && s.qd == sent.qd && s.position == sent.position &&
+        held_by == sent.held_by)
       continue;
     if (!control_guard_.pass(std::isfinite(s.q) && std::isfinite(s.qd), controls[i].name,
                              "coordinate", world.time_ns()))
@@ -104,9 +102,7 @@ void StatePublisher::publish_controls(const physics::World& world) {
     control_msg_.lit(controls[i].lit_when >= 0 && s.position == controls[i].lit_when);
     control_msg_.held_by_hand_id(held_by);
     control_writer_.write(control_msg_);
-    control_sent_[i] = s;
-    control_sent_holder_[i] = held_by;
-    control_sent_valid_[i] = 1;
+    control_sent_[i] = {true, s.q, s.qd, s.position, held_by};
   }
 }
 

@@ -70,9 +70,14 @@ class StatePublisher {
   cockpit::ControlEvent control_event_msg_;
   uint64_t control_event_seq_ = 0;
   // per control, what its last control_state said (a control at rest is not re-sent)
-  std::vector<physics::ControlState> control_sent_;
-  std::vector<uint8_t> control_sent_valid_;
-  std::vector<int> control_sent_holder_;
+  struct SentControl {
+    bool valid = false;
+    double q = 0.0;
+    double qd = 0.0;
+    int position = 0;
+    int held_by = physics::kNotHeld;
+  };
+  std::vector<SentControl> control_sent_;
   cockpit::HandState hand_msg_;
   cockpit::ObjectState object_msg_;
   cockpit::GraspEvent event_msg_;

@@ -10,8 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <vector>
 
 #include "hand/hand_model.hpp"
@@ -203,20 +201,6 @@ TEST(Controls, AFingertipPressesTheMasterCautionButtonAndItsSpringReturnsIt) {
       world.set_hand_input(hand_at(from_m + (to_m - from_m) * i / steps));
       world.step();
       events.insert(events.end(), world.control_events().begin(), world.control_events().end());
-      if (std::getenv("TRACE_BUTTON") != nullptr && i % 20 == 0) {
-        const Eigen::Vector3d tip = world.X_GL()[static_cast<std::size_t>(hand::Link::kIndexDistal)] *
-                                    Eigen::Vector3d(model.capsules[6].length_m, 0, 0);
-        std::printf("t %.3f q %.5f tip-face along axis %.4f lateral %.4f contacts %zu off %.4f\n",
-                    world.time_ns() * 1e-9, world.state().controls[static_cast<std::size_t>(button)].q,
-                    axis.dot(tip - cap_face), ((tip - cap_face) - axis.dot(tip - cap_face) * axis).norm(),
-                    world.contacts().size(), world.tracked_offset_m());
-        for (const auto& a : world.contacts())
-          if (a.contact.body_b >= static_cast<int>(scene.objects.size()))
-            std::printf("   contact %s - link %d depth %.2f mm N %.2f\n",
-                        scene.objects[static_cast<std::size_t>(a.contact.body_a)].name.c_str(),
-                        a.contact.body_b - static_cast<int>(scene.objects.size()),
-                        a.contact.depth_m * 1e3, a.normal_N);
-      }
     }
   };
   run(-0.03, -0.03, 0.05);

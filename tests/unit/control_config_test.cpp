@@ -3,13 +3,13 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "physics_node/config/scene_config.hpp"
 #include "tests/support/test_files.hpp"
+#include "tests/unit/scene_error_cases.hpp"
 
 namespace vcockpit {
 namespace {
@@ -75,16 +75,6 @@ controls:
       - {name: full, at: 60, enter: [55, 60]}
 )";
 
-std::string load_error(const std::string& text, const std::string& name) {
-  const std::string path = test::write_test_file("control_config_test", name + ".yaml", text);
-  try {
-    load_scene(path);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 TEST(ControlConfig, ControlsLoadWithTheirMovingPartsAsObjects) {
   const std::string path = test::write_test_file("control_config_test", "valid.yaml", kScene);
   const physics::Scene scene = load_scene(path);
@@ -116,17 +106,8 @@ TEST(ControlConfig, ControlsLoadWithTheirMovingPartsAsObjects) {
   EXPECT_NEAR(arm.norm(), 0.06, 1e-12);
 }
 
-struct BadControl {
-  std::string name;
-  std::string find;
-  std::string replace;
-  std::string marker;  // text on the line the error must name
-  std::string key;
-  std::string message;
-};
-
 TEST(ControlConfig, EveryBadControlNamesFileLineAndKey) {
-  const std::vector<BadControl> cases = {
+  const std::vector<BadCase> cases = {
       {"unknown_kind", "kind: rotary", "kind: dial", "kind: dial", "controls[2].kind",
        "unknown kind 'dial'"},
       {"button_revolute", "kind: push_button\n    joint: prismatic", "kind: push_button\n    joint: revolute",
@@ -157,23 +138,8 @@ TEST(ControlConfig, EveryBadControlNamesFileLineAndKey) {
       {"unknown_key", "friction: 0.05", "fricton: 0.05", "fricton: 0.05", "controls[3].fricton",
        "unknown key 'fricton'"},
   };
-  for (const BadControl& c : cases) {
-    SCOPED_TRACE(c.name);
-    std::string text = kScene;
-    const auto at = text.find(c.find);
-    ASSERT_NE(at, std::string::npos) << c.find;
-    ASSERT_EQ(text.find(c.find, at + 1), std::string::npos) << "ambiguous: " << c.find;
-    text.replace(at, c.find.size(), c.replace);
-    const auto marker_at = text.find(c.marker);
-    ASSERT_NE(marker_at, std::string::npos) << c.marker;
-    const std::size_t line =
-        1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<long>(marker_at), '\n'));
-    const std::string msg = load_error(text, c.name);
-    const std::string where = ".yaml:" + std::to_string(line) + ":";
-    EXPECT_NE(msg.find(where), std::string::npos) << "want " << where << " in: " << msg;
-    EXPECT_NE(msg.find(": " + c.key + ": "), std::string::npos) << "want key " << c.key << " in: " << msg;
-    EXPECT_NE(msg.find(c.message), std::string::npos) << "want '" << c.message << "' in: " << msg;
-  }
+  for (const BadCase& c : cases)
+    expect_error(c, kScene);
 }
 
 }  // namespace

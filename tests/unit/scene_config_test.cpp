@@ -21,6 +21,7 @@
 #include "physics_node/physics/world.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/test_files.hpp"
+#include "tests/unit/scene_error_cases.hpp"
 
 namespace vcockpit {
 namespace {
@@ -32,14 +33,6 @@ using physics::ObjectSpec;
 using physics::Scene;
 using physics::ShapeKind;
 
-std::string write_file(const std::string& name, const std::string& text) {
-  return test::write_test_file("scene_config_test", name, text);
-}
-
-std::size_t line_of(const std::string& text, std::size_t pos) {
-  return 1 + static_cast<std::size_t>(
-                 std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-}
 
 // ---- world-frame boxes round objects: exact for boxes, spheres and cylinders ---------------
 
@@ -374,46 +367,6 @@ TEST(SceneConfig, OptionalBlocksMayBeLeftOut) {
 
 // ---- bad input ------------------------------------------------------------------------------
 
-struct BadCase {
-  std::string name;  // file name and test label
-  std::string find;  // text of the valid scene to replace (must occur exactly once)
-  std::string replace;
-  std::string marker;   // text starting on the line the error must name (first occurrence)
-  std::string key;      // key path the error must name
-  std::string message;  // part of the message
-};
-
-// Loads `text` from a file and returns the error message ("(no error)" if it loaded).
-std::string load_error(const std::string& path) {
-  try {
-    load_scene(path);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-void expect_error_at(const std::string& msg, const std::string& file, std::size_t line,
-                     const std::string& key, const std::string& message) {
-  const std::string where = file + ":" + std::to_string(line) + ":";
-  EXPECT_NE(msg.find(where), std::string::npos) << "want " << where << " in: " << msg;
-  EXPECT_NE(msg.find(": " + key + ": "), std::string::npos) << "want key " << key << " in: " << msg;
-  EXPECT_NE(msg.find(message), std::string::npos) << "want '" << message << "' in: " << msg;
-}
-
-void expect_error(const BadCase& c) {
-  SCOPED_TRACE(c.name);
-  std::string text = kValidScene;
-  const auto at = text.find(c.find);
-  ASSERT_NE(at, std::string::npos) << c.find;
-  ASSERT_EQ(text.find(c.find, at + 1), std::string::npos) << "ambiguous: " << c.find;
-  text.replace(at, c.find.size(), c.replace);
-  const auto marker_at = text.find(c.marker);
-  ASSERT_NE(marker_at, std::string::npos) << c.marker;
-  const std::string path = write_file(c.name + ".yaml", text);
-  expect_error_at(load_error(path), path, line_of(text, marker_at), c.key, c.message);
-}
-
 TEST(SceneConfig, ValidSceneFileLoads) {
   EXPECT_EQ(load_error(write_file("valid.yaml", kValidScene)), "(no error)");
 }
@@ -588,7 +541,7 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
        "hand: no_such", "hand", "cannot open hand file"},
   };
   for (const BadCase& c : cases)
-    expect_error(c);
+    expect_error(c, kValidScene);
 }
 
 std::string parse_error(const std::string& text, const std::string& name) {
