@@ -71,7 +71,7 @@ GestureScript GestureScript::load(const std::string& path, const hand::HandModel
 }
 
 GestureScript GestureScript::parse(const ConfigNode& root, const hand::HandModel& hand) {
-  root.expect_keys({"rate_hz", "shapes", "grasp_point", "keyframes"});
+  root.expect_keys({"rate_hz", "shapes", "grasp_point", "tip_point", "keyframes"});
   GestureScript script(hand);
   if (auto rate = root.find("rate_hz")) {
     script.rate_hz_ = rate->as_double();
@@ -113,10 +113,25 @@ GestureScript GestureScript::parse(const ConfigNode& root, const hand::HandModel
     script.has_grasp_point_ = true;
     script.p_H_grasp_ = grasp_point_H(hand, it->second, fingers);
   }
+  if (auto tip = root.find("tip_point")) {
+    tip->expect_keys({"shape", "finger"});
+    const std::string shape = tip->get_string("shape");
+    auto it = shapes.find(shape);
+    if (it == shapes.end()) (*tip)["shape"].fail("unknown hand shape '" + shape + "'");
+    const std::string text = tip->get_string("finger");
+    int finger = -1;
+    for (int f = 0; f < hand::kFingerCount; ++f)
+      if (hand::finger_name(static_cast<hand::Finger>(f)) == text) finger = f;
+    if (finger < 0) (*tip)["finger"].fail("expected thumb, index, middle, ring or little, found '" + text + "'");
+    hand::HandLinkPoses poses;
+    hand::forward_kinematics(hand, it->second, poses);
+    script.has_tip_point_ = true;
+    script.p_H_tip_ = poses.p_H_tip[finger];
+  }
   const ConfigNode frames = root["keyframes"];
   if (frames.size() < 1) frames.fail("needs at least one keyframe");
   for (const ConfigNode& frame : frames.elements()) {
-    frame.expect_keys({"t_s", "position", "grasp_at", "rpy_deg", "shape"});
+    frame.expect_keys({"t_s", "position", "grasp_at", "tip_at", "rpy_deg", "shape"});
     Keyframe k;
     const double t_s = frame.get_double("t_s");
     k.t_ns = hand::log_seconds_to_ns(t_s);
@@ -126,25 +141,33 @@ GestureScript GestureScript::parse(const ConfigNode& root, const hand::HandModel
     const Keyframe* previous = script.keyframes_.empty() ? nullptr : &script.keyframes_.back();
     auto position = frame.find("position");
     auto grasp_at = frame.find("grasp_at");
+    auto tip_at = frame.find("tip_at");
     auto rpy = frame.find("rpy_deg");
-    if (position && grasp_at) frame.fail("give position (the wrist) or grasp_at, not both");
+    if ((position ? 1 : 0) + (grasp_at ? 1 : 0) + (tip_at ? 1 : 0) > 1)
+      frame.fail("give one of position (the wrist), grasp_at and tip_at");
     if (grasp_at && !script.has_grasp_point_) {
       grasp_at->fail("grasp_at needs the script's grasp_point: {shape, fingers}");
     }
-    if (!previous && (!(position || grasp_at) || !rpy)) {
-      frame.fail("the first keyframe needs position (or grasp_at) and rpy_deg");
+    if (tip_at && !script.has_tip_point_) {
+      tip_at->fail("tip_at needs the script's tip_point: {shape, finger}");
+    }
+    if (!previous && (!(position || grasp_at || tip_at) || !rpy)) {
+      frame.fail("the first keyframe needs position (or grasp_at or tip_at) and rpy_deg");
     }
     const Eigen::Matrix3d R = rpy ? pose_from_position_rpy_deg({0, 0, 0}, rpy->as_doubles<3>()).linear()
                                   : Eigen::Matrix3d(previous->X_GH.linear());
-    if (grasp_at || (!position && previous->by_grasp_point)) {
-      k.by_grasp_point = true;
-      k.p_G_grasp = grasp_at ? Eigen::Vector3d(grasp_at->as_doubles<3>().data())
-                             : previous->p_G_grasp;
-      k.X_GH = make_pose(k.p_G_grasp - R * script.p_H_grasp_, R);
+    if (position) k.anchor = Anchor::kWrist;
+    else if (grasp_at) k.anchor = Anchor::kGraspPoint;
+    else if (tip_at) k.anchor = Anchor::kTipPoint;
+    else k.anchor = previous->anchor;
+    if (k.anchor == Anchor::kWrist) {
+      k.p_G_anchor = position ? Eigen::Vector3d(position->as_doubles<3>().data())
+                              : previous->X_GH.translation();
+      k.X_GH = make_pose(k.p_G_anchor, R);
     } else {
-      const Eigen::Vector3d p = position ? Eigen::Vector3d(position->as_doubles<3>().data())
-                                         : previous->X_GH.translation();
-      k.X_GH = make_pose(p, R);
+      const auto given = grasp_at ? grasp_at : tip_at;
+      k.p_G_anchor = given ? Eigen::Vector3d(given->as_doubles<3>().data()) : previous->p_G_anchor;
+      k.X_GH = make_pose(k.p_G_anchor - R * script.p_H_anchor(k.anchor), R);
     }
     k.shape = frame.get_string("shape", previous ? previous->shape : "rest");
     auto it = shapes.find(k.shape);
@@ -171,15 +194,25 @@ void GestureScript::evaluate(int64_t t_ns, Eigen::Isometry3d& X_GH,
   const Eigen::Quaterniond qa(a.X_GH.linear());
   const Eigen::Quaterniond qb(b.X_GH.linear());
   const Eigen::Matrix3d R = qa.slerp(s, qb).toRotationMatrix();
-  if (a.by_grasp_point && b.by_grasp_point) {
-    // the grasp point moves straight and the hand turns about it
-    X_GH = make_pose(a.p_G_grasp + s * (b.p_G_grasp - a.p_G_grasp) - R * p_H_grasp_, R);
+  if (a.anchor == b.anchor && a.anchor != Anchor::kWrist) {
+    // the anchor point moves straight and the hand turns about it
+    X_GH = make_pose(a.p_G_anchor + s * (b.p_G_anchor - a.p_G_anchor) - R * p_H_anchor(a.anchor), R);
   } else {
     X_GH = make_pose(a.X_GH.translation() + s * (b.X_GH.translation() - a.X_GH.translation()), R);
   }
   for (int j = 0; j < hand::kJointCount; ++j) {
     joints_rad[j] = a.joints_rad[j] + s * (b.joints_rad[j] - a.joints_rad[j]);
   }
+}
+
+const Eigen::Vector3d& GestureScript::p_H_anchor(Anchor anchor) const {
+  static const Eigen::Vector3d kWrist = Eigen::Vector3d::Zero();
+  switch (anchor) {
+    case Anchor::kGraspPoint: return p_H_grasp_;
+    case Anchor::kTipPoint: return p_H_tip_;
+    case Anchor::kWrist: break;
+  }
+  return kWrist;
 }
 
 hand::GloveSample GestureScript::sample_at(int64_t t_ns) const {

@@ -9,10 +9,12 @@
 //   shapes:                            # optional extra shapes: joint angles in degrees,
 //     grip: {index_mcp: 50, ...}       #   joints not named take the hand's rest pose
 //   grasp_point: {shape: grip, fingers: [index, middle]}   # optional, see below
+//   tip_point: {shape: point, finger: index}   # optional: a fingertip, for pressing and pushing
 //   keyframes:
 //     - {t_s: 0.0, position: [x, y, z], rpy_deg: [r, p, y], shape: open}
 //     - {t_s: 1.2, position: [...], shape: power}   # omitted position/rpy_deg: as before
 //     - {t_s: 2.0, grasp_at: [x, y, z]}             # the grasp point there, not the wrist
+//     - {t_s: 3.0, tip_at: [x, y, z]}               # the fingertip's centre there
 // Built-in shapes: rest (hand.yaml rest pose), open, pinch, power.
 //
 // Placing the hand by its grasp point, so one script fits hands of every size: `position` puts
@@ -25,6 +27,12 @@
 // wrist does not move as the fingers close. A keyframe that gives neither position nor grasp_at
 // keeps the previous keyframe's: its wrist if that gave `position`, its grasp point if it gave
 // `grasp_at` (turning the hand then turns it about that point).
+//
+// `tip_at` places the hand the same way by one fingertip instead: the centre of the tip's
+// rounded end (its surface is the finger's radius further on) when the hand takes the tip
+// point's shape. A script that presses buttons and flips switches aims the fingertip at the
+// control, whatever the hand's size. Between two keyframes placed by the same point, that point
+// moves straight; otherwise the wrist does.
 
 #include <map>
 #include <string>
@@ -39,11 +47,15 @@ class ConfigNode;
 
 namespace vcockpit::glove {
 
+// What a keyframe places: the wrist (position), the grasp point (grasp_at) or the tip point
+// (tip_at).
+enum class Anchor : uint8_t { kWrist, kGraspPoint, kTipPoint };
+
 struct Keyframe {
   int64_t t_ns = 0;
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
-  bool by_grasp_point = false;  // placed by grasp_at: p_G_grasp is where the grasp point is
-  Eigen::Vector3d p_G_grasp = Eigen::Vector3d::Zero();
+  Anchor anchor = Anchor::kWrist;
+  Eigen::Vector3d p_G_anchor = Eigen::Vector3d::Zero();  // where the anchor point is (not the wrist)
   hand::JointAngles joints_rad{};
   std::string shape;
 };
@@ -57,6 +69,8 @@ class GestureScript {
   double rate_hz() const { return rate_hz_; }
   // The grasp point in H for this hand (zero when the script has none).
   const Eigen::Vector3d& p_H_grasp() const { return p_H_grasp_; }
+  // The tip point in H for this hand (zero when the script has none).
+  const Eigen::Vector3d& p_H_tip() const { return p_H_tip_; }
   int64_t duration_ns() const { return keyframes_.back().t_ns; }
   const std::vector<Keyframe>& keyframes() const { return keyframes_; }
 
@@ -73,6 +87,10 @@ class GestureScript {
   double rate_hz_ = 1000.0;
   bool has_grasp_point_ = false;
   Eigen::Vector3d p_H_grasp_ = Eigen::Vector3d::Zero();
+  bool has_tip_point_ = false;
+  Eigen::Vector3d p_H_tip_ = Eigen::Vector3d::Zero();
+  // the anchor's point in H: zero for the wrist
+  const Eigen::Vector3d& p_H_anchor(Anchor anchor) const;
   std::vector<Keyframe> keyframes_;
 };
 

@@ -176,8 +176,47 @@ TEST(GestureScript, BadGraspPointsAreNamed) {
             std::string::npos);
   EXPECT_NE(error_of("grasp_point: {shape: power, fingers: [index]}\nkeyframes:\n"
                      "  - {t_s: 0, position: [0,0,0], grasp_at: [0,0,0], rpy_deg: [0,0,0]}\n")
-                .find("give position (the wrist) or grasp_at, not both"),
+                .find("give one of position (the wrist), grasp_at and tip_at"),
             std::string::npos);
+  const std::string tip_first = "keyframes:\n  - {t_s: 0, tip_at: [0,0,0], rpy_deg: [0,0,0]}\n";
+  EXPECT_NE(error_of(tip_first).find("tip_at needs the script's tip_point"), std::string::npos);
+  EXPECT_NE(error_of("tip_point: {shape: open, finger: toe}\n" + tip_first)
+                .find("expected thumb, index, middle, ring or little, found 'toe'"),
+            std::string::npos);
+}
+
+constexpr const char* kTipScript = R"(tip_point: {shape: open, finger: index}
+grasp_point: {shape: pinch, fingers: [index]}
+keyframes:
+  - {t_s: 0.0, position: [0.2, 0.0, 1.0], rpy_deg: [0, 0, 0], shape: open}
+  - {t_s: 1.0, tip_at: [0.78, -0.10, 1.0], rpy_deg: [0, 30, 0]}
+  - {t_s: 2.0, tip_at: [0.80, -0.10, 1.0]}
+  - {t_s: 3.0, rpy_deg: [0, 0, 0]}
+  - {t_s: 4.0, grasp_at: [0.6, 0.0, 1.0]}
+)";
+
+// The fingertip's centre goes where tip_at says, for every hand size, moves straight between two
+// tip_at keyframes and stays put while the hand turns; a change of anchor moves the wrist.
+TEST(GestureScript, TipAtPutsTheFingertipThereForEveryHandSize) {
+  const auto hand = default_hand();
+  for (const auto& h : {hand, scaled(hand, 0.85)}) {
+    const auto script = GestureScript::parse(ConfigNode::load_string(kTipScript, "t.yaml"), h);
+    hand::HandLinkPoses poses;
+    hand::forward_kinematics(h, builtin_shapes(h).at("open"), poses);
+    EXPECT_TRUE(script.p_H_tip().isApprox(poses.p_H_tip[1], 1e-12));
+    Eigen::Isometry3d X_GH;
+    hand::JointAngles q;
+    script.evaluate(1'000'000'000, X_GH, q);
+    EXPECT_TRUE((X_GH * script.p_H_tip()).isApprox(Eigen::Vector3d(0.78, -0.10, 1.0), 1e-9));
+    script.evaluate(1'500'000'000, X_GH, q);
+    EXPECT_TRUE((X_GH * script.p_H_tip()).isApprox(Eigen::Vector3d(0.79, -0.10, 1.0), 1e-9));
+    for (int64_t t_ns : {2'000'000'000LL, 2'400'000'000LL, 3'000'000'000LL}) {
+      script.evaluate(t_ns, X_GH, q);
+      EXPECT_TRUE((X_GH * script.p_H_tip()).isApprox(Eigen::Vector3d(0.80, -0.10, 1.0), 1e-9)) << t_ns;
+    }
+    script.evaluate(4'000'000'000, X_GH, q);
+    EXPECT_TRUE((X_GH * script.p_H_grasp()).isApprox(Eigen::Vector3d(0.6, 0.0, 1.0), 1e-9));
+  }
 }
 
 TEST(GestureScript, BundledGestureScriptsLoadForEveryHandSize) {
