@@ -100,6 +100,11 @@ struct ControlState {
   int position = 0;     // index into ControlSpec::positions
   bool latched = false;
   bool pressed = false;  // a latching button: inside its pressed interval (the latch toggles on entry)
+  // The hand link whose push last drove it, and that motion's sign: a toggle pushed over its
+  // hump or a guard past its snap centre finishes the move on its mechanism, and the change it
+  // makes is still the push's, until the control stops or turns back (push_direction 0).
+  int push_link = -1;
+  int push_direction = 0;
   // While a hand holds it: the hand's pose and q when it grasped (the projection's reference).
   Eigen::Isometry3d X_GH_grasp = Eigen::Isometry3d::Identity();
   double q_grasp = 0.0;

@@ -210,6 +210,8 @@ void World::step() {
       s.q = c.positions[static_cast<std::size_t>(position)].q;
     }
     s.qd = 0.0;
+    s.push_link = -1;
+    s.push_direction = 0;
     place_control(ci);
     control_at_rest_[ci] = 0;
     note_control_position(ci, ControlCause::kCommanded, -1, -1);
@@ -481,9 +483,17 @@ void World::integrate_controls(double dt_s) {
     if (s.q != q_before || s.qd != 0.0 || body.v_G.squaredNorm() + body.w_G.squaredNorm() != 0.0)
       place_control(ci);
     // pushed: the hand's force drives the motion (a button that springs back out against a
-    // withdrawing fingertip is returned by its spring)
+    // withdrawing fingertip is returned by its spring), or drove it and the control goes on the
+    // same way (a toggle snapping over once the finger has pushed it past its centre)
     if (control_push_link_[ci] >= 0 && control_push_Q_[ci] * s.qd > 0.0) {
-      note_control_position(ci, ControlCause::kPushed, hand_id_, control_push_link_[ci]);
+      s.push_link = control_push_link_[ci];
+      s.push_direction = s.qd > 0.0 ? 1 : -1;
+    } else if (s.push_direction * s.qd <= 0.0) {
+      s.push_link = -1;
+      s.push_direction = 0;
+    }
+    if (s.push_direction != 0) {
+      note_control_position(ci, ControlCause::kPushed, hand_id_, s.push_link);
     } else {
       note_control_position(ci, control_touched_[ci] != 0 ? ControlCause::kObject
                                                           : ControlCause::kMechanism,
@@ -505,6 +515,8 @@ void World::move_held_control(int control, double dt_s) {
   const double q = reachable_q(c, s.q, grasped_q(c, s, state_.X_GH, p_held_H), gates_open);
   s.qd = (q - s.q) / dt_s;
   s.q = q;
+  s.push_link = -1;
+  s.push_direction = 0;
   place_control(control);
   control_at_rest_[control] = 0;
   note_control_position(control, ControlCause::kGrasped, state_.bodies[c.body].held_by, -1);

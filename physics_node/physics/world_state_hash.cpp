@@ -96,6 +96,8 @@ uint64_t hash_world_state(const WorldState& s) {
     h.i64(c.position);
     h.flag(c.latched);
     h.flag(c.pressed);
+    h.i64(c.push_link);
+    h.i64(c.push_direction);
     h.pose(c.X_GH_grasp);
     h.f64(c.q_grasp);
   }
