@@ -191,7 +191,10 @@ bool update_position(const ControlSpec& c, ControlState& s) {
   int inside = -1;
   for (std::size_t i = 0; i < c.positions.size(); ++i) {
     const ControlPosition& p = c.positions[i];
-    if (s.q >= p.enter_lo && s.q <= p.enter_hi) {
+    // a continuous knob's positions repeat with its detent: q is in one if q - k period is
+    double q = s.q;
+    if (c.detent_period > 0.0) q -= std::ceil((q - p.enter_hi) / c.detent_period) * c.detent_period;
+    if (q >= p.enter_lo && q <= p.enter_hi) {
       inside = static_cast<int>(i);
       break;
     }

@@ -24,7 +24,7 @@ const char* grasp_reason_name(GraspReason reason) {
 GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
                           const Eigen::Vector3d& centroid_G, double mass_kg,
                           const Eigen::Vector3d& gravity_mps2, const GraspParams& params,
-                          bool held) {
+                          bool held, const GraspJoint* joint) {
   // per link: touching, and the force-weighted sum of normals (plain sum if no force yet)
   std::array<bool, kLinkCount> touching{};
   std::array<Eigen::Vector3d, kLinkCount> normal_sum;
@@ -41,8 +41,15 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
   }
 
   GraspCheck check;
-  check.residual_force_N = F.norm();
-  check.residual_torque_Nm = M.norm();
+  if (joint == nullptr) {
+    check.residual_force_N = F.norm();
+    check.residual_torque_Nm = M.norm();
+  } else if (joint->revolute) {  // the moment about the axis: M is about the centroid
+    check.residual_torque_Nm =
+        std::abs(joint->axis_G.dot(M + (centroid_G - joint->origin_G).cross(F)));
+  } else {
+    check.residual_force_N = std::abs(joint->axis_G.dot(F));
+  }
   // a finger touches if any of its phalanges does; its normal is the sum over them
   std::array<Eigen::Vector3d, kFingerCount> finger_normal;
   std::array<bool, kFingerCount> finger_touching{};
@@ -91,7 +98,8 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
 
   const double scale = held ? params.exit_scale : 1.0;
   const double alpha0 = params.alpha0_deg - (held ? params.exit_alpha_margin_deg : 0.0);
-  const int min_contacts = held ? params.exit_min_contacts : params.min_contacts;
+  const int min_contacts =
+      held || joint != nullptr ? params.exit_min_contacts : params.min_contacts;
   if (check.links_in_contact < min_contacts) {
     check.verdict = GraspReason::kTooFewContacts;
   } else if (!check.thumb && !check.palm_opposes && !(held && palm_may_oppose)) {

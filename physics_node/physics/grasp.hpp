@@ -11,6 +11,12 @@
 // grasp does (by default the thumb and one opposed finger): a real hand's grip loosens a finger as
 // it carries, and a pinch that lifted an object goes on holding it; the equilibrium test (eqs.
 // 30-31) still decides whether those links carry it.
+//
+// A control (control.hpp) is grasped by the same rule restricted to its joint: the joint carries
+// every force and moment but the generalised one, so the equilibrium test is on that alone (the
+// hand's and gravity's force along a prismatic joint against xi, their moment about a revolute
+// axis against eta: a knob pinched without twisting it), and the thumb and one opposed finger
+// (exit_min_contacts) are enough to take it: a pinch turns a knob.
 
 #include <Eigen/Core>
 
@@ -59,9 +65,16 @@ struct GraspCheck {
   bool holds() const { return verdict == GraspReason::kStableGrasp; }
 };
 
+// A control's joint, for the grasp test restricted to it.
+struct GraspJoint {
+  bool revolute = false;
+  Eigen::Vector3d axis_G = Eigen::Vector3d::UnitZ();    // unit
+  Eigen::Vector3d origin_G = Eigen::Vector3d::Zero();   // a point on the axis
+};
+
 GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
                           const Eigen::Vector3d& centroid_G, double mass_kg,
                           const Eigen::Vector3d& gravity_mps2, const GraspParams& params,
-                          bool held);
+                          bool held, const GraspJoint* joint = nullptr);
 
 }  // namespace vcockpit::physics

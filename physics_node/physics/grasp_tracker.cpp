@@ -48,7 +48,8 @@ GraspHold GraspTracker::initial_hold(const ObjectSpec& o) const {
 
 void GraspTracker::update(int object, const ObjectSpec& o, const HandContact* contacts,
                           std::size_t count, const HandNow& hand, uint32_t glove_links_inside,
-                          GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events) const {
+                          GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events,
+                          const GraspJoint* joint) const {
   if (!o.dynamic) return;
   const bool held = body.held_by == hand_id_;
   if (hold.hand_clearing && !held) {
@@ -69,7 +70,7 @@ void GraspTracker::update(int object, const ObjectSpec& o, const HandContact* co
   }
   if (!held && count == 0) return;
   const GraspCheck check = evaluate_grasp(contacts, count, body.X_GO.translation(), o.mass_kg,
-                                          gravity_mps2_, params_, held);
+                                          gravity_mps2_, params_, held, joint);
   decide(object, check, hand, hold, body, events);
   if (held && body.held_by == kNotHeld) {  // let go this step: name the links that touched it
     hold.hand_clearing = true;

@@ -90,9 +90,10 @@ class GraspTracker {
   // gesture), then the decision. Objects neither held nor touched are left alone.
   // `glove_links_inside` (bit l): the links of the glove's (tracked) hand that overlap the
   // object now (needed only while hold.hand_clearing).
+  // `joint`: the object is a control's part, tested on its joint (grasp.hpp).
   void update(int object, const ObjectSpec& o, const HandContact* contacts, std::size_t count,
               const HandNow& hand, uint32_t glove_links_inside, GraspHold& hold, BodyState& body,
-              std::vector<GraspEvent>& events) const;
+              std::vector<GraspEvent>& events, const GraspJoint* joint = nullptr) const;
 
   // The attach/release decision for one dynamic object given its test: attaches (eq. 28) or
   // releases it, appending the event.

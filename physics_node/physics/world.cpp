@@ -613,8 +613,16 @@ void World::grasp_stage() {
   const HandNow hand{state_.time_ns, state_.hand_to.tracking, state_.X_GH, &state_.hand_to.q_rad};
   const auto grasp_object = [&](int object, const HandContact* contacts, std::size_t count) {
     GraspHold& hold = state_.grasp[object];
-    grasp_tracker_.update(object, scene_.objects[object], contacts, count, hand,
-                          glove_links_inside(object, hold), hold, state_.bodies[object], events_);
+    const ObjectSpec& o = scene_.objects[object];
+    GraspJoint joint;
+    if (o.control >= 0) {
+      const ControlSpec& c = scene_.controls[o.control];
+      joint.revolute = c.joint == JointKind::kRevolute;
+      joint.axis_G = joint_axis_G(c);
+      joint.origin_G = joint_origin_G(c);
+    }
+    grasp_tracker_.update(object, o, contacts, count, hand, glove_links_inside(object, hold), hold,
+                          state_.bodies[object], events_, o.control >= 0 ? &joint : nullptr);
   };
   // hand contacts of the last substep, grouped by object (contacts are sorted by body_a)
   std::size_t i = 0;

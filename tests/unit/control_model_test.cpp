@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace vcockpit::physics {
 namespace {
@@ -156,6 +157,45 @@ TEST(ControlModel, AGraspedKnobTurnsWithTheHandsRotationAboutItsAxisOnly) {
   // the twist of swing * twist about the axis: for a swing about z (perpendicular to x) and a
   // twist about x, the swing-twist decomposition returns the twist exactly
   EXPECT_NEAR(q, 0.7 + 30 * kDeg, 1e-12);
+}
+
+}  // namespace
+}  // namespace vcockpit::physics
+
+namespace vcockpit::physics {
+namespace {
+
+// A continuous heading knob with a click every 10 deg: its positions repeat with the detent, so
+// turning it 100 deg one way clicks 10 times (click -> between -> click ... 20 changes, the
+// last back to click), and turning it back gives the same changes in reverse order.
+TEST(ControlModel, AContinuousKnobsPositionsRepeatWithItsDetent) {
+  ControlSpec c;
+  c.kind = ControlKind::kRotary;
+  c.joint = JointKind::kRevolute;
+  c.limited = false;
+  c.detents = {{0.0, 0.01, 5 * kDeg}};
+  c.detent_period = 10 * kDeg;
+  c.positions = {{"click", 0.0, -2 * kDeg, 2 * kDeg}, {"between", 5 * kDeg, 3 * kDeg, 7 * kDeg}};
+  ControlState s;
+  std::vector<int> entered;
+  auto turn_to = [&](double deg) {
+    const double step = deg > s.q / kDeg ? 0.1 : -0.1;
+    for (double q = s.q / kDeg; std::abs(q - deg) > 1e-9; q += step) {
+      s.q = (std::abs(q + step - deg) < 1e-9 ? deg : q + step) * kDeg;
+      if (update_position(c, s)) entered.push_back(s.position);
+      if (std::abs(s.q / kDeg - deg) < 1e-9) break;
+    }
+  };
+  turn_to(100.0);
+  ASSERT_EQ(entered.size(), 20u);
+  for (std::size_t i = 0; i < entered.size(); ++i) EXPECT_EQ(entered[i], i % 2 == 0 ? 1 : 0) << i;
+  entered.clear();
+  turn_to(-30.0);  // back through 0 and on: 13 clicks
+  ASSERT_EQ(entered.size(), 26u);
+  EXPECT_EQ(s.position, 0);
+  // halfway between clicks, in neither interval, it keeps the position it had
+  s.q = 2.5 * kDeg;
+  EXPECT_FALSE(update_position(c, s));
 }
 
 }  // namespace

@@ -92,6 +92,27 @@ int run(int argc, char** argv) {
                 c.positions[static_cast<std::size_t>(s.position)].name.c_str(),
                 world.bodies()[static_cast<std::size_t>(body)].held_by != physics::kNotHeld ? "HELD" : "free",
                 world.tracked_offset_m() * 1e3, links.c_str(), others.c_str());
+    if (std::getenv("TRACE_TIPS") != nullptr) {
+      // the thumb, index and middle tips (the centres of their rounded ends) in the joint frame
+      // at coordinate 0, mm: drawn hand, then tracked
+      std::string tips;
+      for (int l : {3, 6, 9}) {
+        const double len = hand.capsules[static_cast<std::size_t>(l)].length_m;
+        const Eigen::Vector3d a = c.X_GJ.inverse() * (world.X_GL()[l] * Eigen::Vector3d(len, 0, 0));
+        const Eigen::Vector3d b = c.X_GJ.inverse() * (world.tracked_X_GL()[l] * Eigen::Vector3d(len, 0, 0));
+        char text[160];
+        std::snprintf(text, sizeof text, " %s (%.1f %.1f %.1f) t(%.1f %.1f %.1f)", short_link(l),
+                      a.x() * 1e3, a.y() * 1e3, a.z() * 1e3, b.x() * 1e3, b.y() * 1e3, b.z() * 1e3);
+        tips += text;
+      }
+      std::string planes;  // the static surfaces holding the drawn hand back (outward normals)
+      for (const Eigen::Vector3d& n : world.state().blocking_out_G) {
+        char text[64];
+        std::snprintf(text, sizeof text, " (%.2f %.2f %.2f)", n.x(), n.y(), n.z());
+        planes += text;
+      }
+      std::printf("        tips in J mm:%s | blocking%s\n", tips.c_str(), planes.c_str());
+    }
   };
   physics_io::ReplayDriver driver(world, hand);
   hand::SampleValidator validator(hand);
