@@ -78,8 +78,11 @@ int main(int argc, char** argv) {
                  "this many seconds of real time, as on SIGINT (default: run until a signal)")
       ->check(CLI::Range(0.001, 1e7) & kFinite);
   app.add_option("--out", offline_options.out_dir,
-                 "offline: output directory for trajectories.csv, events.jsonl, summary.json");
-  app.add_option("--output-hz", offline_options.output_hz, "offline: trajectory rows per second")
+                 "offline: output directory for trajectories.csv, events.jsonl, summary.json; "
+                 "lockstep: for trajectories.csv and events.jsonl (the offline runner's, written "
+                 "at stop)");
+  app.add_option("--output-hz", offline_options.output_hz,
+                 "offline and lockstep --out: trajectory rows per second")
       ->check(CLI::PositiveNumber & kFinite)
       ->capture_default_str();
   app.add_flag("--lockstep", node_options.lockstep,
@@ -143,9 +146,12 @@ int main(int argc, char** argv) {
       offline_options.scene_path = scene_path;
       return run_offline_mode(offline_options);
     }
-    if (!offline_options.log_path.empty() || !offline_options.out_dir.empty()) {
-      throw CLI::ValidationError("--log and --out belong to --offline");
+    if (!offline_options.log_path.empty()) throw CLI::ValidationError("--log belongs to --offline");
+    if (!offline_options.out_dir.empty() && !node_options.lockstep) {
+      throw CLI::ValidationError("--out belongs to --offline and --lockstep");
     }
+    node_options.out_dir = offline_options.out_dir;
+    node_options.output_hz = offline_options.output_hz;
     node_options.duration_s = offline_options.duration_s.value_or(0.0);
     if (input_delay_s && node_options.lockstep) {
       throw CLI::ValidationError("--input-delay belongs to real time (lockstep interpolates "

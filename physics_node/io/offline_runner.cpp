@@ -13,25 +13,10 @@
 #include "hand/sample_validator.hpp"
 #include "physics_node/io/hand_motion_peak.hpp"
 #include "physics_node/io/replay_driver.hpp"
+#include "physics_node/io/run_recorder.hpp"
 
 namespace vcockpit::physics_io {
-namespace {
 
-int64_t output_interval_ns(double output_hz, const physics::Scene& scene) {
-  if (!(output_hz > 0) || !std::isfinite(output_hz)) {
-    throw std::invalid_argument("--output-hz must be positive");
-  }
-  const int64_t step_ns = std::llround(scene.step_s * 1e9);
-  const int64_t interval = std::llround(1e9 / output_hz);
-  if (interval % step_ns != 0) {
-    throw std::invalid_argument("--output-hz " + std::to_string(output_hz) +
-                                " is not a whole number of steps of " +
-                                std::to_string(scene.step_s) + " s");
-  }
-  return interval;
-}
-
-}  // namespace
 
 RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   check_input_timing(options.timing);
@@ -62,9 +47,7 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
                                             : samples.back().t_ns - samples.front().t_ns;
   const int64_t interval_ns = output_interval_ns(options.output_hz, scene);
 
-  std::filesystem::create_directories(options.out_dir);
-  TrajectoryWriter trajectories(options.out_dir + "/trajectories.csv");
-  EventWriter events(options.out_dir + "/events.jsonl");
+  RunRecorder recorder(options.out_dir, interval_ns);
 
   RunSummary summary;
   summary.scene_path = options.scene_path;
@@ -77,7 +60,7 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
   auto step = [&] {
     world.step();
-    events.write(world);
+    recorder.after_step(world);
     for (const auto& f : world.step_faults()) {
       spdlog::warn("object '{}' (#{}): {} at {:.3f} s, put back where it was at the step's start, "
                    "at rest (further faults of it are counted, not logged)",
@@ -94,7 +77,6 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
     summary.substeps = std::max(summary.substeps, world.substeps());
     summary.substeps_total += static_cast<uint64_t>(world.substeps());
     hand_peak.record(world);
-    if (world.time_ns() % interval_ns == 0) trajectories.write(world);
     if (world.step_count() % 100 == 0) {
       const double wall_s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -104,14 +86,14 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
     }
   };
   if (samples.empty()) {
-    trajectories.write(world);
+    recorder.start(world);
     while (world.time_ns() < end_ns) step();
   } else {
     // the first sample sets the hand before the first row; the world then steps through each
     // interval with the hand interpolated, up to the last sample or the end
     ReplayDriver driver(world, *world.scene().hand, options.timing);
     driver.feed(samples.front(), step);
-    trajectories.write(world);
+    recorder.start(world);
     for (std::size_t i = 1; i < samples.size(); ++i) {
       if (driver.world_time_of(samples[i]) > end_ns) {
         driver.push(samples[i]);  // the interval that holds the end
@@ -131,14 +113,13 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   summary.steps = world.step_count();
   summary.simulated_s = ns_to_seconds(world.time_ns());
-  summary.grasps = events.grasps();
-  summary.releases = events.releases();
-  summary.control_events = events.control_events();
+  summary.grasps = recorder.events().grasps();
+  summary.releases = recorder.events().releases();
+  summary.control_events = recorder.events().control_events();
   summary.hand_peak_wrist_mps = hand_peak.wrist_mps();
   summary.hand_peak_joint_radps = hand_peak.joint_radps();
-  summary.non_finite_refused = trajectories.refused() + events.refused();
-  trajectories.commit();
-  events.commit();
+  summary.non_finite_refused = recorder.refused();
+  recorder.commit();
   write_summary(options.out_dir + "/summary.json", summary, world);
   return summary;
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "common/clock.hpp"
 #include "common/signals.hpp"
@@ -12,6 +13,7 @@
 #include "physics_node/io/hand_motion_peak.hpp"
 #include "physics_node/io/input_follower.hpp"
 #include "physics_node/io/replay_driver.hpp"
+#include "physics_node/io/run_recorder.hpp"
 #include "physics_node/node/loop_stats.hpp"
 #include "physics_node/node/sample_gate.hpp"
 #include "physics_node/node/state_publisher.hpp"
@@ -43,6 +45,10 @@ class Node {
     publisher_.publish_object_info(world_);
     publisher_.publish_hand_info(world_);
     publisher_.publish_control_info(world_);
+    if (!options.out_dir.empty()) {
+      recorder_ = std::make_unique<physics_io::RunRecorder>(
+          options.out_dir, physics_io::output_interval_ns(options.output_hz, world_.scene()));
+    }
     last_status_ns_ = monotonic_now_ns();
     last_sample_wall_ns_ = last_status_ns_;
   }
@@ -108,6 +114,7 @@ class Node {
     world_.step();
     stats_.step_compute.record_ns(monotonic_now_ns() - start_ns);
     hand_peak_.record(world_);
+    if (recorder_) recorder_->after_step(world_);
     publisher_.publish_events(world_);
     for (const auto& f : world_.step_faults()) {
       spdlog::warn("object '{}' (#{}): {} at {:.3f} s, put back where it was at the step's start, "
@@ -197,6 +204,8 @@ class Node {
   int64_t run_start_ns_ = 0;
   int64_t stop_at_ns_ = 0;
   LoopStats stats_;
+  std::unique_ptr<physics_io::RunRecorder> recorder_;  // lockstep --out
+  bool recording_started_ = false;
 };
 
 void Node::report_stop(StatsReport report) {
@@ -368,6 +377,11 @@ int Node::run_lockstep() {
             }
           },
           message_.source_stamp_ns());
+      // the offline runner's first row: the hand set by the first sample, before any step
+      if (recorder_ && !recording_started_) {
+        recorder_->start(world_);
+        recording_started_ = true;
+      }
     });
     // caught up with the input: show where the world is, at most at --publish-hz of wall time
     // (a replay at its own pace would otherwise publish every sample), and at once when the
@@ -384,6 +398,11 @@ int Node::run_lockstep() {
   }
   const int64_t loop_end_ns = monotonic_now_ns();
   publisher_.flush(500'000'000);
+  if (recorder_) {
+    if (!recording_started_) recorder_->start(world_);
+    recorder_->commit();
+    spdlog::info("wrote {}/trajectories.csv and events.jsonl", options_.out_dir);
+  }
   spdlog::info("stopped at {:.3f} s simulated after {} steps; {} samples accepted, {} rejected",
                ns_to_seconds(world_.time_ns()), world_.step_count(), received_, gate_.rejected());
   StatsReport report;

@@ -44,6 +44,10 @@ struct NodeOptions {
   std::string node_name = "physics_node";
   double duration_s = 0.0;  // stop by itself after this much real time (0: only on a signal)
   std::string stats_out;    // JSON file of loop statistics written at stop (empty: none)
+  // lockstep: write trajectories.csv and events.jsonl here as the offline runner does (empty:
+  // none), committed at stop
+  std::string out_dir;
+  double output_hz = 100.0;
 };
 
 constexpr int kMaxCatchUpSteps = 100;
