@@ -6,6 +6,8 @@
 //
 //   control_trace SOURCE_DIR SCRIPT CONTROL [FROM_S TO_S [EVERY_MS]]
 //   e.g. build/tests/control_trace . panel_switches.yaml landing_lights 6.5 7.5 5
+// HAND=hand_small.yaml (a file in config/) plays it with another hand; TRACE_TIPS=1 adds the
+// thumb, index and middle tips in the control's joint frame and the surfaces blocking the hand.
 
 #include <cmath>
 #include <cstdio>
@@ -13,10 +15,12 @@
 #include <exception>
 #include <string>
 
+#include "hand/hand_yaml.hpp"
 #include "hand/sample_validator.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/replay_driver.hpp"
 #include "tests/scenario/grasp_matrix/grasp_scenario.hpp"
+#include "tests/scenario/grasp_matrix/hand_static_clearance.hpp"
 #include "tests/support/test_files.hpp"
 
 namespace vcockpit::test {
@@ -37,7 +41,9 @@ int run(int argc, char** argv) {
   const double from_s = argc > 4 ? std::atof(argv[4]) : 0.0;
   const double to_s = argc > 5 ? std::atof(argv[5]) : 1e9;
   const int64_t every_ns = (argc > 6 ? std::atoll(argv[6]) : 10) * 1'000'000;
-  physics::World world(load_scene(source_dir + "/config/cockpit.yaml"));
+  physics::Scene loaded = load_scene(source_dir + "/config/cockpit.yaml");
+  if (const char* other = std::getenv("HAND")) loaded.hand = load_hand_model(source_dir + "/config/" + other);
+  physics::World world(std::move(loaded));
   const physics::Scene& scene = world.scene();
   const int control = scene.find_control(argv[3]);
   if (control < 0) throw std::invalid_argument(std::string("no control ") + argv[3]);
@@ -46,6 +52,7 @@ int run(int argc, char** argv) {
   const int objects = static_cast<int>(scene.objects.size());
   const double unit = c.joint == physics::JointKind::kRevolute ? 180.0 / M_PI : 1e3;
   const hand::HandModel& hand = *scene.hand;
+  HandStaticClearance clearance(scene, hand);
   auto step = [&] {
     world.step();
     const double t_s = static_cast<double>(world.time_ns()) * 1e-9;
@@ -111,7 +118,12 @@ int run(int argc, char** argv) {
         std::snprintf(text, sizeof text, " (%.2f %.2f %.2f)", n.x(), n.y(), n.z());
         planes += text;
       }
-      std::printf("        tips in J mm:%s | blocking%s\n", tips.c_str(), planes.c_str());
+      // the glove's hand's deepest overlap with a static object: what the drawn hand stops at
+      const Penetration p = clearance.deepest(world.tracked_X_GL());
+      std::printf("        tips in J mm:%s | blocking%s | tracked %s in %s %.1fmm\n", tips.c_str(),
+                  planes.c_str(), p.link >= 0 ? short_link(p.link) : "-",
+                  p.object >= 0 ? scene.objects[static_cast<std::size_t>(p.object)].name.c_str() : "-",
+                  p.depth_m * 1e3);
     }
   };
   physics_io::ReplayDriver driver(world, hand);
