@@ -3,7 +3,8 @@
 // small delay behind); a killed glove driver releases
 // the held object ("glove lost") and a restarted one resumes tracking; invalid samples are
 // rejected and counted while the node keeps running; a crafted log's faults are counted the same
-// by the glove driver, the lockstep node and the offline runner.
+// by the glove driver, the lockstep node and the offline runner; each bundled control log in
+// lockstep writes the offline runner's trajectories.csv and events.jsonl byte for byte.
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -74,6 +75,41 @@ TEST_F(PhysicsNodeTest, LockstepReplayGivesTheOfflineRunnersResult) {
     EXPECT_NEAR(o.position.y(), p.y(), 2e-9) << name;
     EXPECT_NEAR(o.position.z(), p.z(), 2e-9) << name;
     EXPECT_EQ(o.sim_time_ns, 8'500'000'000) << name;
+  }
+}
+
+// Each bundled control log (config/glove_logs/panel_*.csv) replayed over DDS
+// to a lockstep node with --out: its trajectories.csv and events.jsonl are the offline runner's,
+// byte for byte (the control events in them are pinned by tests/scenario/control_logs_test).
+TEST_F(PhysicsNodeTest, EachControlLogInLockstepWritesTheOfflineRunnersFilesByteForByte) {
+  for (const char* name : {"panel_switches", "panel_knobs"}) {
+    SCOPED_TRACE(name);
+    const std::string log = source_dir() + "/config/glove_logs/" + name + ".csv";
+    physics_io::OfflineOptions offline;
+    offline.scene_path = source_dir() + "/config/cockpit.yaml";
+    offline.log_path = log;
+    offline.out_dir = dir_ + "/offline_" + name;
+    const auto summary = physics_io::run_offline(load_scene(offline.scene_path), offline);
+    ASSERT_GT(summary.control_events, 0);
+    const std::string end = "sim_time_ns=" + std::to_string(std::llround(summary.simulated_s * 1e9)) + " ";
+
+    const std::string out = dir_ + "/lockstep_" + name;
+    const std::string monitor_file = dir_ + "/monitor_" + name + ".txt";
+    ChildProcess node = start("physics_node", {"--lockstep", "--out", out}, std::string("node_") + name + ".log");
+    ChildProcess monitor = start("test_cockpit_monitor", {"--out", monitor_file}, "monitor.log");
+    ChildProcess driver = start("glove_driver", {"--source", "replay", "--log", log, "--lockstep",
+                                                 "--rate", "0"},
+                                "driver.log");
+    ASSERT_EQ(driver.wait(60 * kSecond), 0) << text("driver.log");
+    EXPECT_TRUE(wait_for_line(monitor_file, end, 120 * kSecond)) << text(std::string("node_") + name + ".log");
+    EXPECT_EQ(monitor.stop(), 0);
+    ASSERT_EQ(node.stop(), 0) << text(std::string("node_") + name + ".log");
+    for (const char* file : {"events.jsonl", "trajectories.csv"}) {
+      const std::string lockstep = read_text(out + "/" + file);
+      EXPECT_FALSE(lockstep.empty()) << file;
+      EXPECT_TRUE(lockstep == read_text(offline.out_dir + "/" + file))
+          << file << " differs from the offline runner's";
+    }
   }
 }
 
