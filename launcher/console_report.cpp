@@ -12,6 +12,10 @@ void print_console_report(const RunSummary& s) {
     std::printf("  %-7s %-10s at %.3f s: %s\n", e.grasp ? "GRASP" : "RELEASE", e.object.c_str(),
                 e.t_s, e.reason.c_str());
   }
+  for (const auto& e : s.control_events) {
+    std::printf("  CONTROL %s %s -> %s at %.3f s: %s%s%s\n", e.control.c_str(), e.from.c_str(),
+                e.to.c_str(), e.t_s, e.cause.c_str(), e.link.empty() ? "" : " by ", e.link.c_str());
+  }
   std::printf("  frames rendered      %llu, snapshots written %d (%s/frames)\n",
               static_cast<unsigned long long>(s.frames_rendered), s.snapshots_written,
               s.out_dir.c_str());

@@ -4,7 +4,35 @@
 #include <cmath>
 #include <cstdio>
 
+#include "hand/hand_joints.hpp"
+
 namespace vcockpit::rig {
+
+namespace {
+
+const char* cause_name(cockpit::ControlCause cause) {
+  switch (cause) {
+    case cockpit::PUSHED: return "pushed";
+    case cockpit::GRASPED: return "grasped";
+    case cockpit::COMMANDED: return "commanded";
+    case cockpit::MECHANISM: return "mechanism";
+    case cockpit::OBJECT_PUSHED: return "object";
+  }
+  return "unknown";
+}
+
+// ControlInfo.position_names: each name ended by '|'
+std::vector<std::string> split_position_names(const std::string& text) {
+  std::vector<std::string> names;
+  std::size_t start = 0;
+  for (std::size_t bar = text.find('|'); bar != std::string::npos; bar = text.find('|', start)) {
+    names.push_back(text.substr(start, bar - start));
+    start = bar + 1;
+  }
+  return names;
+}
+
+}  // namespace
 
 double percentile(std::vector<double> values, double p) {
   if (values.empty()) return 0.0;
@@ -20,7 +48,10 @@ RigMonitor::RigMonitor(DdsParticipant& participant)
       event_reader_(participant.make_reader<cockpit::GraspEvent>("event")),
       frame_reader_(participant.make_reader<cockpit::FrameInfo>("stream")),
       info_reader_(participant.make_reader<cockpit::ObjectInfo>("state")),
-      state_reader_(participant.make_reader<cockpit::ObjectState>("state")) {
+      state_reader_(participant.make_reader<cockpit::ObjectState>("state")),
+      control_info_reader_(participant.make_reader<cockpit::ControlInfo>("state")),
+      control_state_reader_(participant.make_reader<cockpit::ControlState>("state")),
+      control_event_reader_(participant.make_reader<cockpit::ControlEvent>("event")) {
   latencies_ms_.reserve(1 << 16);
 }
 
@@ -54,6 +85,38 @@ void RigMonitor::poll() {
     seen.reason = e.reason().to_string();
     held_ = seen.grasp ? seen.object : "";
     events_.push_back(seen);
+  }
+  cockpit::ControlInfo control_info;
+  while (control_info_reader_.take(control_info)) {
+    controls_[control_info.control_id()] = {control_info.name().to_string(),
+                                             split_position_names(control_info.position_names().to_string())};
+  }
+  // a position by index, or its number when the control's info has not come (yet)
+  auto position_name = [&](uint32_t control, uint32_t position) {
+    auto it = controls_.find(control);
+    if (it != controls_.end() && position < it->second.positions.size()) return it->second.positions[position];
+    return std::to_string(position);
+  };
+  auto control_name = [&](uint32_t control) {
+    auto it = controls_.find(control);
+    return it != controls_.end() ? it->second.name : "control " + std::to_string(control);
+  };
+  cockpit::ControlState control_state;
+  while (control_state_reader_.take(control_state)) {
+    control_positions_[control_name(control_state.control_id())] =
+        position_name(control_state.control_id(), control_state.position());
+  }
+  cockpit::ControlEvent control_event;
+  while (control_event_reader_.take(control_event)) {
+    SeenControlEvent seen;
+    seen.t_s = static_cast<double>(control_event.sim_time_ns()) / 1e9;
+    seen.control = control_name(control_event.control_id());
+    seen.from = position_name(control_event.control_id(), control_event.from_position());
+    seen.to = position_name(control_event.control_id(), control_event.to_position());
+    seen.cause = cause_name(control_event.cause());
+    if (control_event.link() >= 0 && control_event.link() < hand::kLinkCount)
+      seen.link = std::string(hand::link_name(static_cast<hand::Link>(control_event.link())));
+    control_events_.push_back(seen);
   }
   cockpit::FrameInfo frame;
   while (frame_reader_.take(frame)) {

@@ -1,5 +1,6 @@
 #pragma once
-// The launcher's view of the running rig over DDS: node statuses, grasp events, and the
+// The launcher's view of the running rig over DDS: node statuses, grasp and control events, the
+// controls' last positions, and the
 // glove-to-frame latency of every hand sample the image generator drew (render end minus the
 // glove driver's stamp, first frame that drew it; both monotonic on this machine).
 
@@ -19,6 +20,16 @@ struct SeenEvent {
   std::string reason;
 };
 
+// A change of a cockpit control's position (cockpit/control_event), named.
+struct SeenControlEvent {
+  double t_s = 0;
+  std::string control;
+  std::string from;
+  std::string to;
+  std::string cause;  // pushed, grasped, commanded, mechanism, object
+  std::string link;   // the hand link that pushed it; empty when none
+};
+
 class RigMonitor {
  public:
   explicit RigMonitor(DdsParticipant& participant);
@@ -28,6 +39,9 @@ class RigMonitor {
 
   const std::map<std::string, cockpit::NodeStatus>& statuses() const { return statuses_; }
   const std::vector<SeenEvent>& events() const { return events_; }
+  const std::vector<SeenControlEvent>& control_events() const { return control_events_; }
+  // each control's last position name (cockpit/control_state), by control name
+  const std::map<std::string, std::string>& control_positions() const { return control_positions_; }
   const std::vector<double>& latencies_ms() const { return latencies_ms_; }
   // for the same frames: the sample's age at render start, and the render time
   const std::vector<double>& age_at_render_ms() const { return age_at_render_ms_; }
@@ -46,6 +60,16 @@ class RigMonitor {
   Reader<cockpit::FrameInfo> frame_reader_;
   Reader<cockpit::ObjectInfo> info_reader_;
   Reader<cockpit::ObjectState> state_reader_;
+  Reader<cockpit::ControlInfo> control_info_reader_;
+  Reader<cockpit::ControlState> control_state_reader_;
+  Reader<cockpit::ControlEvent> control_event_reader_;
+  struct ControlNames {
+    std::string name;
+    std::vector<std::string> positions;
+  };
+  std::map<uint32_t, ControlNames> controls_;
+  std::vector<SeenControlEvent> control_events_;
+  std::map<std::string, std::string> control_positions_;
   std::map<uint32_t, bool> dynamic_;
   std::map<std::string, cockpit::ObjectState> final_;
   std::map<std::string, cockpit::NodeStatus> statuses_;

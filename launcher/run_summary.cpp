@@ -36,6 +36,8 @@ RunSummary collect_run_summary(const RigConfig& rig, const std::string& out_dir,
   }
   s.events = monitor.events();
   for (const auto& e : s.events) (e.grasp ? s.grasps : s.releases)++;
+  s.control_events = monitor.control_events();
+  s.controls = monitor.control_positions();
   s.physics_step_rate_hz = monitor.mean_step_rate_hz();
   s.late_steps = monitor.late_steps();
 
@@ -82,6 +84,15 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
                       {"object", e.object},
                       {"reason", e.reason}});
   }
+  auto& control_events = j["control_events"] = nlohmann::ordered_json::array();
+  for (const auto& e : s.control_events) {
+    nlohmann::ordered_json c = {{"t_s", e.t_s}, {"control", e.control}, {"from", e.from},
+                                {"to", e.to}, {"cause", e.cause}};
+    c["link"] = e.link.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(e.link);
+    control_events.push_back(c);
+  }
+  auto& controls = j["controls"] = nlohmann::ordered_json::object();
+  for (const auto& [name, position] : s.controls) controls[name] = position;
   j["frames_rendered"] = s.frames_rendered;
   j["snapshots_written"] = s.snapshots_written;
   j["physics_step_rate_hz"] = s.physics_step_rate_hz;

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,8 @@ struct RunSummary {
   int grasps = 0;
   int releases = 0;
   std::vector<SeenEvent> events;
+  std::vector<SeenControlEvent> control_events;
+  std::map<std::string, std::string> controls;  // name -> last position
   uint64_t frames_rendered = 0;  // the image generator's last published count
   int snapshots_written = 0;     // PNGs in OUT/frames
   double physics_step_rate_hz = 0.0;

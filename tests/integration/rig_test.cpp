@@ -2,6 +2,8 @@
 //  - the full rig replaying the grasping log in lockstep: GRASP then RELEASE of the cup, the
 //    cup's final pose equal to the offline runner's, frames rendered, and snapshots whose pixels
 //    show the hand next to the cup while it is held;
+//  - the full rig replaying the knob log in lockstep: the control events the offline runner
+//    writes, in order and at the same times, and each control's final position in summary.json;
 //  - kill -9 of the image generator mid-run: the launcher restarts it, it rebuilds the scene from
 //    the transient-local topics and renders again within 2 s; nothing else stops;
 //  - kill -9 of the glove driver: the physics node reports the glove lost and keeps running;
@@ -32,9 +34,10 @@ namespace {
 std::string config(const std::string& name) { return config_path(name); }
 
 // A rig file for this test's domain; `glove` is the glove driver's node block.
-std::string rig_yaml(const std::string& domain, bool lockstep, const std::string& glove) {
+std::string rig_yaml(const std::string& domain, bool lockstep, const std::string& glove,
+                     const std::string& log = "reach_grasp_lift_release") {
   std::string text = "domain: " + domain + "\nqos: " + config("qos.xml") +
-                     "\nparticipant: loopback\nlog: " + config("glove_logs/reach_grasp_lift_release.csv") +
+                     "\nparticipant: loopback\nlog: " + config("glove_logs/" + log + ".csv") +
                      "\nnodes:\n";
   text += "  - {name: physics_node, command: [physics_node" + std::string(lockstep ? ", --lockstep" : "") +
           ", --scene, " + config("cockpit.yaml") + "], required: true, start_delay_s: 0.3}\n";
@@ -174,6 +177,35 @@ TEST_F(RigTest, FullRigReplaysTheGraspInLockstepLikeTheOfflineRunner) {
     ++held_snapshots;
   }
   EXPECT_GE(held_snapshots, 2) << "snapshots taken while the cup was held";
+}
+
+TEST_F(RigTest, FullRigReportsAControlLogsEventsAsTheOfflineRunnerWritesThem) {
+  ChildProcess rig = launch(rig_yaml(domain_, true, kLockstepGlove, "panel_knobs"));
+  ASSERT_EQ(rig.wait(90 * kSecond), 0) << launcher_log();
+  const std::string summary = read_text(dir_ + "/out/summary.json");
+  const Json json = parse_summary(summary);
+  physics_io::OfflineOptions offline;
+  offline.scene_path = config("cockpit.yaml");
+  offline.log_path = config("glove_logs/panel_knobs.csv");
+  offline.out_dir = dir_ + "/offline";
+  physics_io::run_offline(load_scene(offline.scene_path), offline);
+  std::ifstream events(offline.out_dir + "/events.jsonl");
+  std::vector<Json> expected;
+  for (std::string line; std::getline(events, line);) {
+    Json e = Json::parse(line);
+    if (e.at("event") != "control") continue;
+    expected.push_back({{"t_s", e.at("t_s")}, {"control", e.at("control")}, {"from", e.at("from")},
+                        {"to", e.at("to")}, {"cause", e.at("cause")}, {"link", e.at("link")}});
+  }
+  ASSERT_EQ(expected.size(), 22u);
+  const Json seen = json.value("control_events", Json::array());
+  ASSERT_EQ(seen.size(), expected.size()) << summary;
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(seen[i], expected[i]) << i;
+  const Json controls = json.value("controls", Json::object());
+  EXPECT_EQ(controls.value("nav_mode", ""), "gps") << summary;
+  EXPECT_EQ(controls.value("heading_bug", ""), "click") << summary;
+  EXPECT_EQ(controls.value("throttle", ""), "idle") << summary;
+  EXPECT_EQ(controls.size(), 11u) << summary;
 }
 
 TEST_F(RigTest, KilledImageGeneratorIsRestartedAndRendersAgainWithinTwoSeconds) {
