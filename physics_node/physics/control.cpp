@@ -114,6 +114,7 @@ double reachable_q(const ControlSpec& c, double q_from, double q_to, uint32_t ga
     const double gate = c.gates[g].q;
     if (q_from < gate && q > gate) q = gate - kGateSide;       // the nearest closed gate wins:
     else if (q_from > gate && q < gate) q = gate + kGateSide;  // q only shrinks toward q_from
+    else if (q_from == gate) q = gate;  // in the gate's notch (set there, or commanded): lift to leave
   }
   return q;
 }

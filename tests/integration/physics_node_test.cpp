@@ -78,11 +78,11 @@ TEST_F(PhysicsNodeTest, LockstepReplayGivesTheOfflineRunnersResult) {
   }
 }
 
-// Each bundled control log (config/glove_logs/panel_*.csv) replayed over DDS
+// Each bundled control log (config/glove_logs/panel_*.csv, pedestal_levers.csv) replayed over DDS
 // to a lockstep node with --out: its trajectories.csv and events.jsonl are the offline runner's,
 // byte for byte (the control events in them are pinned by tests/scenario/control_logs_test).
 TEST_F(PhysicsNodeTest, EachControlLogInLockstepWritesTheOfflineRunnersFilesByteForByte) {
-  for (const char* name : {"panel_switches", "panel_knobs"}) {
+  for (const char* name : {"panel_switches", "panel_knobs", "pedestal_levers"}) {
     SCOPED_TRACE(name);
     const std::string log = source_dir() + "/config/glove_logs/" + name + ".csv";
     physics_io::OfflineOptions offline;

@@ -123,5 +123,21 @@ TEST(ControlLogs, PanelKnobsTurnTheSelectorTwoDetentsAndTheHeadingKnobTenClicks)
               "grasp heading_bug", "release heading_bug"});
 }
 
+// The throttle: lifted over its gate back to cutoff and forward again, on to full, back unlifted
+// (the gate stops it at idle); the flaps: stopped by the gate at approach both ways, lifted over
+// it. Both grasped by the power grip of config/gestures/pedestal_levers.yaml.
+TEST(ControlLogs, PedestalLeversPassTheirGatesOnlyWhenLifted) {
+  expect_log("pedestal_levers",
+             {{"throttle", "idle", "cutoff", "grasped", ""},
+              {"throttle", "cutoff", "idle", "grasped", ""},
+              {"throttle", "idle", "full", "grasped", ""},
+              {"throttle", "full", "idle", "grasped", ""},
+              {"flaps", "up", "approach", "grasped", ""},
+              {"flaps", "approach", "landing", "grasped", ""},
+              {"flaps", "landing", "approach", "grasped", ""},
+              {"flaps", "approach", "up", "grasped", ""}},
+             {"grasp throttle", "release throttle", "grasp flaps", "release flaps"});
+}
+
 }  // namespace
 }  // namespace vcockpit::test

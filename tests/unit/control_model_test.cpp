@@ -74,6 +74,15 @@ TEST(ControlModel, AGateStopsTheLeverUnlessLifted) {
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
   X_GH.translation() = Eigen::Vector3d(0.012, 0, 0);
   EXPECT_NEAR(grasped_lift_m(c, held, X_GH, p_held_H), 0.012, 1e-12);
+  // a lever set exactly in the gate's notch (its initial position, or commanded there) leaves it
+  // neither way without the lift
+  for (double push : {-1.0, 1.0}) {
+    ControlState notched;
+    notched.q = 0.2;
+    for (int i = 0; i < 100; ++i) integrate_control(c, 1e-3, push, 1e-3, 0u, notched);
+    EXPECT_EQ(notched.q, 0.2) << push;
+    EXPECT_EQ(reachable_q(c, 0.2, 0.2 + 0.1 * push, 1u), 0.2 + 0.1 * push) << "lifted, it goes";
+  }
 }
 
 TEST(ControlModel, APositionChangesOnceWhenTheCoordinateHoversAtAThreshold) {
