@@ -56,13 +56,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0x7c8c7e27ce84cf21") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0x06c6330645d0bd80") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0xf21684cb8a8a16c5") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0xf5b8991d5af0f690") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x1e2d3b3dfae61281") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0x107df7910a016795") << "final state";
 }
 
 }  // namespace
