@@ -80,25 +80,26 @@ double generalised_force(const ControlSpec& c, const Eigen::Vector3d& c_G,
   return a.dot(M_G + (c_G - joint_origin_G(c)).cross(F_G));
 }
 
+// The detents acting at q, each with q's offset from it: a continuous knob's one detent repeats.
+template <class F>
+void for_each_detent(const ControlSpec& c, double q, F f) {
+  if (c.detent_period > 0.0 && !c.detents.empty()) {
+    f(c.detents.front(), std::remainder(q - c.detents.front().q, c.detent_period));
+  } else {
+    for (const Detent& d : c.detents) f(d, q - d.q);
+  }
+}
+
 double mechanism_force(const ControlSpec& c, double q) {
   double Q = 0.0;
-  if (c.detent_period > 0.0 && !c.detents.empty()) {
-    const double x = std::remainder(q - c.detents.front().q, c.detent_period);
-    Q += detent_force(c.detents.front(), x);
-  } else {
-    for (const Detent& d : c.detents) Q += detent_force(d, q - d.q);
-  }
+  for_each_detent(c, q, [&](const Detent& d, double x) { Q += detent_force(d, x); });
   if (c.snap > 0.0) Q += c.snap * sign(q - c.snap_centre);  // over-centre: toward the nearer end
   return Q;
 }
 
 double mechanism_stiffness(const ControlSpec& c, double q) {
   double k = 0.0;
-  if (c.detent_period > 0.0 && !c.detents.empty()) {
-    k = detent_stiffness(c.detents.front(), std::remainder(q - c.detents.front().q, c.detent_period));
-  } else {
-    for (const Detent& d : c.detents) k += detent_stiffness(d, q - d.q);
-  }
+  for_each_detent(c, q, [&](const Detent& d, double x) { k += detent_stiffness(d, x); });
   return k;
 }
 

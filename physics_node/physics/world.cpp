@@ -95,6 +95,7 @@ World::World(Scene scene)
   const int control_count = static_cast<int>(scene_.controls.size());
   state_.controls.resize(control_count);
   control_inertia_.resize(control_count);
+  control_grasp_joint_.resize(control_count);
   control_push_link_.assign(control_count, -1);
   control_push_N_.assign(control_count, 0.0);
   control_touched_.assign(control_count, 0);
@@ -108,6 +109,10 @@ World::World(Scene scene)
                     "a control moves a dynamic object of its own and has positions");
     const ObjectSpec& o = scene_.objects[c.body];
     control_inertia_[ci] = joint_inertia(c, o.mass_kg, o.I_O);
+    GraspJoint& joint = control_grasp_joint_[ci];
+    joint.revolute = c.joint == JointKind::kRevolute;
+    joint.axis_G = joint_axis_G(c);
+    joint.origin_G = joint_origin_G(c);
     ControlState& s = state_.controls[ci];
     s.q = c.q_initial;
     // the position nearest the initial coordinate, then the one it is in (no event)
@@ -614,15 +619,9 @@ void World::grasp_stage() {
   const auto grasp_object = [&](int object, const HandContact* contacts, std::size_t count) {
     GraspHold& hold = state_.grasp[object];
     const ObjectSpec& o = scene_.objects[object];
-    GraspJoint joint;
-    if (o.control >= 0) {
-      const ControlSpec& c = scene_.controls[o.control];
-      joint.revolute = c.joint == JointKind::kRevolute;
-      joint.axis_G = joint_axis_G(c);
-      joint.origin_G = joint_origin_G(c);
-    }
     grasp_tracker_.update(object, o, contacts, count, hand, glove_links_inside(object, hold), hold,
-                          state_.bodies[object], events_, o.control >= 0 ? &joint : nullptr);
+                          state_.bodies[object], events_,
+                          o.control >= 0 ? &control_grasp_joint_[o.control] : nullptr);
   };
   // hand contacts of the last substep, grouped by object (contacts are sorted by body_a)
   std::size_t i = 0;

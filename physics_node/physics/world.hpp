@@ -153,6 +153,7 @@ class World {
   int64_t step_ns_;
   std::vector<Eigen::Matrix3d> I_O_inv_;  // inverse body-frame inertia, dynamic objects
   std::vector<double> control_inertia_;    // per control: its body's inertia along the joint
+  std::vector<GraspJoint> control_grasp_joint_;  // per control: its joint, for the grasp test
 
   WorldState state_;
 
