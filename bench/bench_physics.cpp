@@ -55,7 +55,7 @@ void scene_counters(benchmark::State& state, const physics::World& world) {
 
 void BM_HandForwardKinematics(benchmark::State& state) {
   HeldWorld& held = held_world(0);
-  const hand::HandModel& hand = *held.world->scene().hand;
+  const hand::HandModel& hand = held.world->scene().hands[0];
   hand::JointAngles q = held.hand.q_rad;
   hand::HandLinkPoses poses;
   for (auto _ : state) {

@@ -87,7 +87,7 @@ physics::Scene crowded_cockpit_scene(int loose_objects, uint32_t seed) {
 }
 
 physics::HandInput step_to_hold(physics::World& world) {
-  const hand::HandModel& hand = *world.scene().hand;
+  const hand::HandModel& hand = world.scene().hands[0];
   const auto samples = hand::read_glove_log(source_path(kGraspLog), hand).samples;
   const int64_t hold_ns = std::llround(kHoldTime_s * 1e9);
   physics_io::ReplayDriver driver(world, hand);
@@ -99,7 +99,7 @@ physics::HandInput step_to_hold(physics::World& world) {
     driver.feed(sample, [&] { world.step(); });
   }
   driver.step_until(hold_ns, [&] { world.step(); });
-  const physics::HandInput input = world.state().hand_to;  // the hand the last step went to
+  const physics::HandInput input = world.state().hands[0].to;  // the hand the last step went to
   const int cup = world.scene().find_object("cup");
   if (cup < 0 || world.bodies()[static_cast<std::size_t>(cup)].held_by == physics::kNotHeld)
     throw std::runtime_error("step_to_hold: the cup is not held at the hold time");

@@ -182,7 +182,7 @@ void write_control(Xml& xml, const physics::ControlSpec& c, const physics::Objec
 }
 
 void write_hand(Xml& xml, const physics::Scene& scene, const Names& names) {
-  const hand::HandModel& hand = *scene.hand;
+  const hand::HandModel& hand = scene.hands[0];
   const double mu_s = scene.hand_material.mu_s;
   const std::array<float, 4> skin{0.85f, 0.7f, 0.6f, 1.0f};
   auto& out = xml.out();
@@ -210,7 +210,7 @@ void write_hand(Xml& xml, const physics::Scene& scene, const Names& names) {
 
 std::string mjcf_from_scene(const physics::Scene& scene) {
   const Names names = scene_names(scene);
-  const int bodies = dynamic_count(scene) + (scene.hand ? kLinkCount : 0);
+  const int bodies = dynamic_count(scene) + (scene.has_hands() ? kLinkCount : 0);
   const int nconmax = std::max(kMinContacts, kContactsPerBody * bodies);
 
   Xml xml;
@@ -250,9 +250,9 @@ std::string mjcf_from_scene(const physics::Scene& scene) {
     write_rgba(xml, o.color_rgba);
     out << "/>\n    </body>\n";
   }
-  if (scene.hand) write_hand(xml, scene, names);
+  if (scene.has_hands()) write_hand(xml, scene, names);
   out << "  </worldbody>\n";
-  if (scene.hand) {
+  if (scene.has_hands()) {
     // one weld per dynamic object to the palm, off until the object is held (set_object_states)
     out << "  <equality>\n";
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -312,11 +312,11 @@ MujocoWorld::MujocoWorld(const physics::Scene& scene) {
     }
   }
   object_weld_.assign(n, -1);
-  if (scene.hand)
+  if (scene.has_hands())
     for (std::size_t i = 0; i < n; ++i)
       if (scene.objects[i].dynamic && scene.objects[i].control < 0)
         object_weld_[i] = mj_name2id(m_, mjOBJ_EQUALITY, ("hold_" + names.objects[i]).c_str());
-  has_hand_ = scene.hand.has_value();
+  has_hand_ = scene.has_hands();
   hand_mocap_.fill(-1);
   hand_geom_.fill(-1);
   if (has_hand_)

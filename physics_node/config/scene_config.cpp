@@ -248,7 +248,7 @@ void parse_hand(const ConfigNode& node, const std::string& base_dir, Scene& scen
   if (path.is_relative() && !base_dir.empty()) path = fs::path(base_dir) / path;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) node.fail("cannot open hand file '" + path.string() + "'");
-  scene.hand = load_hand_model(path.string());  // its errors name the hand file itself
+  scene.hands = {load_hand_model(path.string())};  // its errors name the hand file itself
 }
 
 GraspParams parse_grasp(const ConfigNode& node) {

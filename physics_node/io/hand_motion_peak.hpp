@@ -19,7 +19,7 @@ class HandMotionPeak {
   void record(const physics::World& world) {
     if (!world.hand_active()) return;
     const Eigen::Vector3d p_m = world.X_GH().translation();
-    const auto& q_rad = world.state().hand_to.q_rad;
+    const auto& q_rad = world.state().hands[0].to.q_rad;
     const int64_t t_ns = world.time_ns();
     if (have_last_ && t_ns > last_t_ns_) {
       const double dt_s = static_cast<double>(t_ns - last_t_ns_) * 1e-9;

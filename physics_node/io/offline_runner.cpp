@@ -23,14 +23,14 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   std::vector<hand::GloveSample> samples;
   hand::InputCounts input_counts;
   if (!options.log_path.empty()) {
-    if (!scene.hand) {
+    if (!scene.has_hands()) {
       throw std::invalid_argument(options.scene_path + ": the scene has no hand, so a glove log "
                                                        "cannot drive it");
     }
-    hand::GloveLog log = hand::read_glove_log(options.log_path, *scene.hand);
+    hand::GloveLog log = hand::read_glove_log(options.log_path, scene.hands[0]);
     for (const std::string& warning : hand::glove_log_warnings(log)) spdlog::warn("{}", warning);
     // the checks a live node makes (the reader has already refused what a file cannot hold)
-    hand::SampleValidator validator(*scene.hand);
+    hand::SampleValidator validator(scene.hands[0]);
     for (hand::GloveSample& s : log.samples) {
       if (validator.accept(s)) samples.push_back(s);
     }
@@ -91,7 +91,7 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   } else {
     // the first sample sets the hand before the first row; the world then steps through each
     // interval with the hand interpolated, up to the last sample or the end
-    ReplayDriver driver(world, *world.scene().hand, options.timing);
+    ReplayDriver driver(world, world.scene().hands[0], options.timing);
     driver.feed(samples.front(), step);
     recorder.start(world);
     for (std::size_t i = 1; i < samples.size(); ++i) {

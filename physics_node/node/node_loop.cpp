@@ -34,7 +34,7 @@ class Node {
   Node(DdsParticipant& participant, physics::Scene scene, const NodeOptions& options)
       : options_(options),
         world_(std::move(scene)),
-        hand_(*world_.scene().hand),
+        hand_(world_.scene().hands[0]),
         gate_(hand_),
         replay_(world_, hand_, options.timing),
         follower_(follower_options(options)),
@@ -416,7 +416,7 @@ int Node::run_lockstep() {
 }  // namespace
 
 int run_node(DdsParticipant& participant, physics::Scene scene, const NodeOptions& options) {
-  if (!scene.hand) throw std::invalid_argument("the scene has no hand for the glove to drive");
+  if (!scene.has_hands()) throw std::invalid_argument("the scene has no hand for the glove to drive");
   Node node(participant, std::move(scene), options);
   return options.lockstep ? node.run_lockstep() : node.run_realtime();
 }

@@ -144,9 +144,9 @@ void StatePublisher::publish_object_info(const physics::World& world) {
 }
 
 void StatePublisher::publish_hand_info(const physics::World& world) {
-  if (!world.scene().hand) return;
+  if (!world.scene().has_hands()) return;
   const auto hand_id = static_cast<uint32_t>(world.hand_id());
-  hand_info_writer_.write(to_hand_info(*world.scene().hand, hand_id));
+  hand_info_writer_.write(to_hand_info(world.scene().hands[0], hand_id));
 }
 
 void StatePublisher::publish_state(const physics::World& world, const InputStamps& stamps,

@@ -15,7 +15,12 @@ struct BodyState {
   Eigen::Isometry3d X_GO = Eigen::Isometry3d::Identity();  // centroid frame in world
   Eigen::Vector3d v_G = Eigen::Vector3d::Zero();            // centroid velocity (m/s)
   Eigen::Vector3d w_G = Eigen::Vector3d::Zero();            // angular velocity (rad/s)
-  int held_by = kNotHeld;                                   // hand id holding it
+  // The hands holding it: bit h for the world's hand h (World::hand_count()); two bits while
+  // it is held with both hands. held_by is the id (0 right, 1 left) of the first of them, for
+  // the outputs, or kNotHeld; the world keeps the two in step.
+  uint8_t holders = 0;
+  int held_by = kNotHeld;
+  bool held() const { return holders != 0; }
 };
 
 // A body as the contact model sees it during one substep.

@@ -32,7 +32,9 @@ Aabb shape_aabb(const Shape& shape, const Eigen::Isometry3d& X_GS) {
 }
 
 SweepAndPrune::SweepAndPrune(std::vector<BroadphaseBody> kinds)
-    : kinds_(std::move(kinds)), boxes_(kinds_.size()) {
+    : kinds_(std::move(kinds)), boxes_(kinds_.size()), enabled_(kinds_.size(), 1) {
+  for (std::size_t i = 0; i < kinds_.size(); ++i)
+    if (kinds_[i] == BroadphaseBody::kHand) enabled_[i] = 0;  // until its hand is active
   for (std::size_t i = 0; i < kinds_.size(); ++i)
     (kinds_[i] == BroadphaseBody::kStatic ? statics_ : order_).push_back(static_cast<int>(i));
 }
@@ -41,7 +43,8 @@ bool SweepAndPrune::can_act(int a, int b) const {
   const BroadphaseBody ka = kinds_[static_cast<std::size_t>(a)];
   const BroadphaseBody kb = kinds_[static_cast<std::size_t>(b)];
   const bool hand = ka == BroadphaseBody::kHand || kb == BroadphaseBody::kHand;
-  if (hand && !hand_enabled_) return false;
+  if (enabled_[static_cast<std::size_t>(a)] == 0 || enabled_[static_cast<std::size_t>(b)] == 0)
+    return false;
   if (ka == BroadphaseBody::kDynamic || kb == BroadphaseBody::kDynamic) return true;
   // a control acts with the hand only (and with free objects, above): its joint holds it in its
   // panel, and a cockpit's controls are laid out not to touch one another
@@ -81,8 +84,7 @@ void SweepAndPrune::find_pairs(std::vector<BodyPair>& out) {
   }
   for (std::size_t i = 0; i < order_.size(); ++i) {
     const int a = order_[i];
-    const BroadphaseBody ka = kinds_[static_cast<std::size_t>(a)];
-    if (ka == BroadphaseBody::kHand && !hand_enabled_) continue;
+    if (enabled_[static_cast<std::size_t>(a)] == 0) continue;
     const Aabb& box_a = boxes_[static_cast<std::size_t>(a)];
     for (std::size_t j = i + 1; j < order_.size(); ++j) {
       const int b = order_[j];
@@ -98,7 +100,8 @@ void SweepAndPrune::find_pairs(std::vector<BodyPair>& out) {
   for (const int a : order_) {
     const BroadphaseBody ka = kinds_[static_cast<std::size_t>(a)];
     const bool acts = ka == BroadphaseBody::kDynamic ||
-                      (ka == BroadphaseBody::kHand && hand_enabled_ && report_hand_static_);
+                      (ka == BroadphaseBody::kHand && enabled_[static_cast<std::size_t>(a)] != 0 &&
+                       report_hand_static_);
     if (!acts) continue;
     const Aabb& box_a = boxes_[static_cast<std::size_t>(a)];
     for (const int b : statics_)

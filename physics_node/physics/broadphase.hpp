@@ -6,8 +6,8 @@
 // substep to substep, so re-sorting after a small motion is an insertion sort of a nearly
 // sorted list: O(n) plus the few swaps.
 //
-// Pairs that cannot act are never reported: static-static, hand-hand, the hand while it is
-// disabled, and hand-static unless asked for (the proxy hand needs them to stay out of panels;
+// Pairs that cannot act are never reported: static-static, hand-hand (a hand's own links, and
+// two hands' links), a hand while it is disabled, and hand-static unless asked for (the proxy hand needs them to stay out of panels;
 // no force acts on such a pair). The output is sorted by (lo, hi), whatever the sweep order.
 
 #include <Eigen/Geometry>
@@ -54,7 +54,9 @@ class SweepAndPrune {
 
   void set_box(int body, const Aabb& box) { boxes_[static_cast<std::size_t>(body)] = box; }
   const Aabb& box(int body) const { return boxes_[static_cast<std::size_t>(body)]; }
-  void set_hand_enabled(bool enabled) { hand_enabled_ = enabled; }
+  // A hand link takes part only while enabled (its hand is active); hand links start disabled,
+  // every other body enabled.
+  void set_enabled(int body, bool enabled) { enabled_[static_cast<std::size_t>(body)] = enabled ? 1 : 0; }
   void set_report_hand_static(bool report) { report_hand_static_ = report; }
 
   // The overlapping pairs that can act, into `out` (cleared first). No allocation once `out`
@@ -68,8 +70,8 @@ class SweepAndPrune {
   std::vector<Aabb> boxes_;
   std::vector<int> order_;    // the moving bodies by the lower end of their box on the sweep axis
   std::vector<int> statics_;  // the static bodies, in body order
+  std::vector<uint8_t> enabled_;  // per body
   int axis_ = -1;           // chosen on the first sweep: where the boxes are spread the most
-  bool hand_enabled_ = false;
   bool report_hand_static_ = false;
 };
 

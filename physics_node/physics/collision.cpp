@@ -120,7 +120,8 @@ struct CollisionWorld::Impl {
   std::vector<Body> bodies;  // never resized after construction: user data points into it
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // body order
   std::vector<Shape> shapes;                                      // body order
-  std::array<Eigen::Isometry3d, kLinkCount> X_LC{};  // link frame -> collision geometry frame
+  // per hand: link frame -> collision geometry frame
+  std::vector<std::array<Eigen::Isometry3d, kLinkCount>> X_LC;
   std::unique_ptr<SweepAndPrune> broadphase;
   const std::vector<uint8_t>* skip_hand = nullptr;  // objects whose hand pairs are left out
 
@@ -391,11 +392,11 @@ struct CollisionWorld::Impl {
 CollisionWorld::CollisionWorld(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   object_count_ = static_cast<int>(scene.objects.size());
-  has_hand_ = scene.hand.has_value();
+  hand_count_ = static_cast<int>(scene.hands.size());
   require(scene.contact.max_points_per_pair >= 1, "contact.max_points_per_pair must be >= 1");
 
   const std::size_t body_count =
-      scene.objects.size() + (has_hand_ ? static_cast<std::size_t>(kLinkCount) : 0);
+      scene.objects.size() + static_cast<std::size_t>(hand_count_ * kLinkCount);
   m.bodies.reserve(body_count);
   m.objects.reserve(body_count);
 
@@ -405,11 +406,13 @@ CollisionWorld::CollisionWorld(const Scene& scene) : impl_(std::make_unique<Impl
                                  : (spec.dynamic ? BodyKind::kDynamic : BodyKind::kStatic),
                spec.shape);
 
-  if (has_hand_) {
-    const HandModel& hand = *scene.hand;
+  m.X_LC.resize(scene.hands.size());
+  for (std::size_t h = 0; h < scene.hands.size(); ++h) {
+    const HandModel& hand = scene.hands[h];
+    std::array<Eigen::Isometry3d, kLinkCount>& X_LC_h = m.X_LC[h];
     require((hand.palm_size_m.array() > 0.0).all(), "hand palm size must be positive");
     // link frames start at the identity; the hand stays disabled until the first set_poses
-    m.X_LC[static_cast<std::size_t>(Link::kPalm)] = Eigen::Isometry3d::Identity();
+    X_LC_h[static_cast<std::size_t>(Link::kPalm)] = Eigen::Isometry3d::Identity();
     m.add_body(std::make_shared<fcl::Boxd>(hand.palm_size_m), Eigen::Isometry3d::Identity(),
                BodyKind::kHand, Shape::box(hand.palm_size_m));
     for (int l = 1; l < kLinkCount; ++l) {
@@ -420,7 +423,7 @@ CollisionWorld::CollisionWorld(const Scene& scene) : impl_(std::make_unique<Impl
       Eigen::Isometry3d X_LC = Eigen::Isometry3d::Identity();
       X_LC.translation() = Eigen::Vector3d(0.5 * capsule.length_m, 0.0, 0.0);
       X_LC.linear() = z_onto_x();
-      m.X_LC[static_cast<std::size_t>(l)] = X_LC;
+      X_LC_h[static_cast<std::size_t>(l)] = X_LC;
       m.add_body(std::make_shared<fcl::Capsuled>(capsule.radius_m, capsule.length_m), X_LC,
                  BodyKind::kHand, Shape::capsule(capsule.radius_m, capsule.length_m));
     }
@@ -431,7 +434,7 @@ CollisionWorld::CollisionWorld(const Scene& scene) : impl_(std::make_unique<Impl
   std::vector<BodyKind> kinds;
   for (const Body& b : m.bodies) kinds.push_back(b.kind);
   m.broadphase = std::make_unique<SweepAndPrune>(std::move(kinds));
-  report_hand_static_ = has_hand_ && scene.proxy.enabled;
+  report_hand_static_ = hand_count_ > 0 && scene.proxy.enabled;
   m.broadphase->set_report_hand_static(report_hand_static_);
   for (std::size_t i = 0; i < m.objects.size(); ++i)
     m.place(static_cast<int>(i), m.objects[i]->getTransform());
@@ -446,8 +449,7 @@ CollisionWorld::CollisionWorld(const Scene& scene) : impl_(std::make_unique<Impl
 
 CollisionWorld::~CollisionWorld() = default;
 
-void CollisionWorld::set_poses(const std::vector<Eigen::Isometry3d>& X_GO,
-                               const std::array<Eigen::Isometry3d, kLinkCount>* X_GL) {
+void CollisionWorld::set_object_poses(const std::vector<Eigen::Isometry3d>& X_GO) {
   Impl& m = *impl_;
   VCOCKPIT_ASSERT(static_cast<int>(X_GO.size()) == object_count_, "one pose per object");
   const int n = std::min(object_count_, static_cast<int>(X_GO.size()));
@@ -458,14 +460,25 @@ void CollisionWorld::set_poses(const std::vector<Eigen::Isometry3d>& X_GO,
         !(m.objects[k]->getTransform().matrix() == X_GO[k].matrix()))
       m.place(i, X_GO[k]);
   }
+}
 
-  const bool hand_enabled = has_hand_ && X_GL != nullptr;
-  m.broadphase->set_hand_enabled(hand_enabled);
-  if (hand_enabled) {
-    for (int l = 0; l < kLinkCount; ++l)
-      m.place(hand_link_body(static_cast<Link>(l)),
-              (*X_GL)[static_cast<std::size_t>(l)] * m.X_LC[static_cast<std::size_t>(l)]);
+void CollisionWorld::set_hand_poses(int hand, const std::array<Eigen::Isometry3d, kLinkCount>* X_GL) {
+  Impl& m = *impl_;
+  VCOCKPIT_ASSERT(0 <= hand && hand < hand_count_, "a hand of this world");
+  const bool enabled = X_GL != nullptr;
+  for (int l = 0; l < kLinkCount; ++l) {
+    const int body = hand_link_body(hand, static_cast<Link>(l));
+    m.broadphase->set_enabled(body, enabled);
+    if (enabled)
+      m.place(body, (*X_GL)[static_cast<std::size_t>(l)] *
+                        m.X_LC[static_cast<std::size_t>(hand)][static_cast<std::size_t>(l)]);
   }
+}
+
+void CollisionWorld::set_poses(const std::vector<Eigen::Isometry3d>& X_GO,
+                               const std::array<Eigen::Isometry3d, kLinkCount>* X_GL) {
+  set_object_poses(X_GO);
+  if (hand_count_ > 0) set_hand_poses(0, X_GL);
 }
 
 void CollisionWorld::find_candidate_pairs() {
@@ -495,17 +508,19 @@ void CollisionWorld::compute_contacts(std::vector<ContactPoint>& out,
 }
 
 void CollisionWorld::compute_hand_static_contacts(
-    const std::array<Eigen::Isometry3d, kLinkCount>& X_GL, std::vector<ContactPoint>& out) {
+    int hand, const std::array<Eigen::Isometry3d, kLinkCount>& X_GL, std::vector<ContactPoint>& out) {
   Impl& m = *impl_;
   out.clear();
-  if (!has_hand_) return;
+  if (hand < 0 || hand >= hand_count_) return;
   for (int l = 0; l < kLinkCount; ++l) {
-    const int body = hand_link_body(static_cast<Link>(l));
+    const int body = hand_link_body(hand, static_cast<Link>(l));
     m.objects[static_cast<std::size_t>(body)]->setTransform(
-        X_GL[static_cast<std::size_t>(l)] * m.X_LC[static_cast<std::size_t>(l)]);
+        X_GL[static_cast<std::size_t>(l)] *
+        m.X_LC[static_cast<std::size_t>(hand)][static_cast<std::size_t>(l)]);
   }
+  const int first = hand_link_body(hand, Link::kPalm);
   for (const BodyPair& pair : m.pairs) {
-    if (pair.lo < object_count_ && pair.hi >= object_count_ &&
+    if (pair.lo < object_count_ && pair.hi >= first && pair.hi < first + kLinkCount &&
         m.bodies[static_cast<std::size_t>(pair.lo)].kind == BodyKind::kStatic)
       m.narrowphase(pair, out);
   }
@@ -515,23 +530,26 @@ void CollisionWorld::skip_hand_pairs_with(const std::vector<uint8_t>* objects) {
   impl_->skip_hand = objects;
 }
 
-Aabb CollisionWorld::hand_link_box(Link link, const Eigen::Isometry3d& X_GL) const {
+Aabb CollisionWorld::hand_link_box(int hand, Link link, const Eigen::Isometry3d& X_GL) const {
   const Impl& m = *impl_;
   const auto l = static_cast<std::size_t>(link);
-  return shape_aabb(m.shapes[static_cast<std::size_t>(hand_link_body(link))], X_GL * m.X_LC[l]);
+  return shape_aabb(m.shapes[static_cast<std::size_t>(hand_link_body(hand, link))],
+                    X_GL * m.X_LC[static_cast<std::size_t>(hand)][l]);
 }
 
-bool CollisionWorld::link_overlaps(Link link, const Eigen::Isometry3d& X_GL, int object) const {
+bool CollisionWorld::link_overlaps(int hand, Link link, const Eigen::Isometry3d& X_GL,
+                                   int object) const {
   const Impl& m = *impl_;
-  VCOCKPIT_ASSERT(has_hand_ && 0 <= object && object < object_count_, "a hand link and an object");
-  const auto body = static_cast<std::size_t>(hand_link_body(link));
+  VCOCKPIT_ASSERT(0 <= hand && hand < hand_count_ && 0 <= object && object < object_count_,
+                  "a hand link and an object");
+  const auto body = static_cast<std::size_t>(hand_link_body(hand, link));
   const auto o = static_cast<std::size_t>(object);
-  if (!hand_link_box(link, X_GL).overlaps(shape_aabb(m.shapes[o], m.objects[o]->getTransform())))
+  if (!hand_link_box(hand, link, X_GL).overlaps(shape_aabb(m.shapes[o], m.objects[o]->getTransform())))
     return false;
   // (FCL hands out its geometry as const; the probe never changes it)
   const fcl::CollisionObjectd probe(
       std::const_pointer_cast<fcl::CollisionGeometryd>(m.objects[body]->collisionGeometry()),
-                                    X_GL * m.X_LC[static_cast<std::size_t>(link)]);
+      X_GL * m.X_LC[static_cast<std::size_t>(hand)][static_cast<std::size_t>(link)]);
   const fcl::CollisionRequestd request;  // yes or no: no contacts wanted
   fcl::CollisionResultd result;
   fcl::collide(&probe, m.objects[o].get(), request, result);

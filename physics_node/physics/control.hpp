@@ -103,6 +103,7 @@ struct ControlState {
   // The hand link whose push last drove it, and that motion's sign: a toggle pushed over its
   // hump or a guard past its snap centre finishes the move on its mechanism, and the change it
   // makes is still the push's, until the control stops or turns back (push_direction 0).
+  int push_hand = -1;  // the world's hand index of push_link
   int push_link = -1;
   int push_direction = 0;
   // While a hand holds it: the hand's pose and q when it grasped (the projection's reference).

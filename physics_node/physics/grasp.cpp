@@ -17,8 +17,35 @@ const char* grasp_reason_name(GraspReason reason) {
     case GraspReason::kTorqueResidual: return "torque residual too large";
     case GraspReason::kGloveLost: return "glove lost";
     case GraspReason::kHandOpened: return "hand opened";
+    case GraspReason::kHandedOver: return "handed over";
   }
   return "unknown";
+}
+
+Residuals grasp_residuals(const HandContact* contacts, std::size_t count,
+                          const Eigen::Vector3d& centroid_G, double mass_kg,
+                          const Eigen::Vector3d& gravity_mps2, const GraspJoint* joint) {
+  Eigen::Vector3d F = mass_kg * gravity_mps2;
+  Eigen::Vector3d M = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < count; ++i) {
+    F += contacts[i].F_G;
+    M += (contacts[i].p_G - centroid_G).cross(contacts[i].F_G);
+  }
+  Residuals r;
+  if (joint == nullptr) {
+    r.force_N = F.norm();
+    r.torque_Nm = M.norm();
+  } else if (joint->revolute) {  // the moment about the axis: M is about the centroid
+    r.torque_Nm = std::abs(joint->axis_G.dot(M + (centroid_G - joint->origin_G).cross(F)));
+  } else {
+    r.force_N = std::abs(joint->axis_G.dot(F));
+  }
+  return r;
+}
+
+bool residuals_hold(const Residuals& r, const GraspParams& params, bool held) {
+  const double scale = held ? params.exit_scale : 1.0;
+  return r.force_N <= params.xi_N * scale && r.torque_Nm <= params.eta_Nm * scale;
 }
 
 GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
@@ -29,27 +56,17 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
   std::array<bool, kLinkCount> touching{};
   std::array<Eigen::Vector3d, kLinkCount> normal_sum;
   normal_sum.fill(Eigen::Vector3d::Zero());
-  Eigen::Vector3d F = mass_kg * gravity_mps2;
-  Eigen::Vector3d M = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < count; ++i) {
     const HandContact& c = contacts[i];
     const int l = static_cast<int>(c.link);
     touching[l] = true;
     normal_sum[l] += (1e-6 + c.F_G.norm()) * c.n_G;
-    F += c.F_G;
-    M += (c.p_G - centroid_G).cross(c.F_G);
   }
 
   GraspCheck check;
-  if (joint == nullptr) {
-    check.residual_force_N = F.norm();
-    check.residual_torque_Nm = M.norm();
-  } else if (joint->revolute) {  // the moment about the axis: M is about the centroid
-    check.residual_torque_Nm =
-        std::abs(joint->axis_G.dot(M + (centroid_G - joint->origin_G).cross(F)));
-  } else {
-    check.residual_force_N = std::abs(joint->axis_G.dot(F));
-  }
+  const Residuals residuals = grasp_residuals(contacts, count, centroid_G, mass_kg, gravity_mps2, joint);
+  check.residual_force_N = residuals.force_N;
+  check.residual_torque_Nm = residuals.torque_Nm;
   // a finger touches if any of its phalanges does; its normal is the sum over them
   std::array<Eigen::Vector3d, kFingerCount> finger_normal;
   std::array<bool, kFingerCount> finger_touching{};

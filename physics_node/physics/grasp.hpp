@@ -38,6 +38,7 @@ enum class GraspReason : uint8_t {
   kTorqueResidual,     // eq. 31 fails
   kGloveLost,          // RELEASE: the hand is not tracked any more
   kHandOpened,         // RELEASE: the tracked fingers opened from their grip (release_opening_deg)
+  kHandedOver,         // RELEASE: the other hand took it (its own grasp holds it alone)
 };
 
 const char* grasp_reason_name(GraspReason reason);
@@ -63,6 +64,11 @@ struct GraspCheck {
   double residual_torque_Nm = 0.0;
   GraspReason verdict = GraspReason::kTooFewContacts;  // kStableGrasp when it holds
   bool holds() const { return verdict == GraspReason::kStableGrasp; }
+  // The gesture rule holds (contacts, thumb or palm, opposition); eqs. 30-31 may not.
+  bool gesture_holds() const {
+    return verdict == GraspReason::kStableGrasp || verdict == GraspReason::kForceResidual ||
+           verdict == GraspReason::kTorqueResidual;
+  }
 };
 
 // A control's joint, for the grasp test restricted to it.
@@ -71,6 +77,19 @@ struct GraspJoint {
   Eigen::Vector3d axis_G = Eigen::Vector3d::UnitZ();    // unit
   Eigen::Vector3d origin_G = Eigen::Vector3d::Zero();   // a point on the axis
 };
+
+// Eqs. 30-31 alone over `contacts` and gravity: |sum F| and |sum M| (about the centroid), or on
+// a control's joint the generalised one (in `force_N` for a slider, `torque_Nm` for a knob).
+struct Residuals {
+  double force_N = 0.0;
+  double torque_Nm = 0.0;
+};
+Residuals grasp_residuals(const HandContact* contacts, std::size_t count,
+                          const Eigen::Vector3d& centroid_G, double mass_kg,
+                          const Eigen::Vector3d& gravity_mps2, const GraspJoint* joint = nullptr);
+
+// Whether residuals are within eqs. 30-31's thresholds (held: exit_scale looser).
+bool residuals_hold(const Residuals& r, const GraspParams& params, bool held);
 
 GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
                           const Eigen::Vector3d& centroid_G, double mass_kg,

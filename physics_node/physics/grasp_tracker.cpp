@@ -24,11 +24,10 @@ double finger_flexion_rad(const JointAngles& q_rad, Finger finger) {
 }
 
 GraspTracker::GraspTracker(const GraspParams& params, double step_s,
-                           const Eigen::Vector3d& gravity_mps2, int hand_id)
+                           const Eigen::Vector3d& gravity_mps2)
     : params_(params),
       step_s_(step_s),
       gravity_mps2_(gravity_mps2),
-      hand_id_(hand_id),
       velocity_span_(std::max<std::size_t>(
           1, static_cast<std::size_t>(std::llround(params.velocity_window_s / step_s)))),
       settle_span_(std::max<std::size_t>(
@@ -50,40 +49,204 @@ void GraspTracker::update(int object, const ObjectSpec& o, const HandContact* co
                           std::size_t count, const HandNow& hand, uint32_t glove_links_inside,
                           GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events,
                           const GraspJoint* joint) const {
-  if (!o.dynamic) return;
-  const bool held = body.held_by == hand_id_;
-  if (hold.hand_clearing && !held) {
-    // For the cooldown after a release, every link whose glove link passes through the object
-    // rests off it: the hand does not push what it has just let go of. After it, if the pilot
-    // let go (the glove opened from its grip) they rest until the glove is clear of it;
-    // otherwise (the grip loosened with the glove still closed) they all end, so the same grip
-    // can take the object again.
-    const bool cooled = hand.t_ns - hold.released_at_ns >= regrab_cooldown_ns_;
-    if (!cooled) {
-      hold.resting_links |= glove_links_inside;
-    } else {
-      const bool let_go = params_.release_opening_deg > 0.0 &&
-                          grip_opening_rad(hand, hold) > deg_to_rad(params_.release_opening_deg);
-      hold.resting_links = let_go ? glove_links_inside : 0u;
-    }
-    if (cooled && hold.resting_links == 0) hold.hand_clearing = false;
+  HandOnObject one{hand, contacts, count, glove_links_inside, &hold};
+  update_hands(object, o, &one, 1, body, events, joint);
+}
+
+void GraspTracker::clear_hand(const HandOnObject& h, bool held) const {
+  GraspHold& hold = *h.hold;
+  if (!hold.hand_clearing || held) return;
+  // For the cooldown after a release, every link whose glove link passes through the object
+  // rests off it: the hand does not push what it has just let go of. After it, if the pilot
+  // let go (the glove opened from its grip) they rest until the glove is clear of it;
+  // otherwise (the grip loosened with the glove still closed) they all end, so the same grip
+  // can take the object again.
+  const bool cooled = h.hand.t_ns - hold.released_at_ns >= regrab_cooldown_ns_;
+  if (!cooled) {
+    hold.resting_links |= h.glove_links_inside;
+  } else {
+    const bool let_go = params_.release_opening_deg > 0.0 &&
+                        grip_opening_rad(h.hand, hold) > deg_to_rad(params_.release_opening_deg);
+    hold.resting_links = let_go ? h.glove_links_inside : 0u;
   }
-  if (!held && count == 0) return;
-  const GraspCheck check = evaluate_grasp(contacts, count, body.X_GO.translation(), o.mass_kg,
-                                          gravity_mps2_, params_, held, joint);
-  decide(object, check, hand, hold, body, events);
-  if (held && body.held_by == kNotHeld) {  // let go this step: name the links that touched it
-    hold.hand_clearing = true;
-    hold.resting_links = 0;
-    for (std::size_t i = 0; i < count; ++i)
-      hold.resting_links |= 1u << static_cast<int>(contacts[i].link);
+  if (cooled && hold.resting_links == 0) hold.hand_clearing = false;
+}
+
+void GraspTracker::note_let_go(const HandOnObject& h) {
+  h.hold->hand_clearing = true;
+  h.hold->resting_links = 0;
+  for (std::size_t i = 0; i < h.count; ++i)
+    h.hold->resting_links |= 1u << static_cast<int>(h.contacts[i].link);
+}
+
+bool GraspTracker::may_take(const HandOnObject& h) const {
+  return h.hand.tracking && h.hand.t_ns - h.hold->released_at_ns >= regrab_cooldown_ns_;
+}
+
+void GraspTracker::update_hands(int object, const ObjectSpec& o, HandOnObject* hands,
+                                std::size_t hand_count, BodyState& body,
+                                std::vector<GraspEvent>& events, const GraspJoint* joint) const {
+  if (!o.dynamic) return;
+  VCOCKPIT_ASSERT(hand_count <= kMaxHands, "at most kMaxHands hands");
+  std::array<bool, kMaxHands> was_held{};
+  std::array<GraspCheck, kMaxHands> checks{};
+  bool any = false;
+  int holders = 0;
+  for (std::size_t k = 0; k < hand_count; ++k) {
+    was_held[k] = (body.holders & hands[k].hand.holder_bit) != 0;
+    clear_hand(hands[k], was_held[k]);
+    if (!was_held[k] && hands[k].count == 0) continue;
+    any = true;
+    holders += was_held[k] ? 1 : 0;
+    checks[k] = evaluate_grasp(hands[k].contacts, hands[k].count, body.X_GO.translation(),
+                               o.mass_kg, gravity_mps2_, params_, was_held[k], joint);
+  }
+  if (!any) return;
+  if (holders >= 2) {
+    update_two_handed(object, o, hands, hand_count, checks.data(), body, events, joint);
+  } else {
+    // a handover: a hand that does not hold it and whose own test takes it, from the holder
+    std::size_t holder = hand_count;
+    for (std::size_t k = 0; k < hand_count; ++k)
+      if (was_held[k]) holder = k;
+    bool handed_over = false;
+    if (holder < hand_count) {
+      for (std::size_t k = 0; k < hand_count && !handed_over; ++k) {
+        if (k == holder || hands[k].count == 0 || !may_take(hands[k]) || !checks[k].holds()) continue;
+        HandOnObject& from = hands[holder];
+        body.holders |= hands[k].hand.holder_bit;  // it never leaves a hand: no release velocity
+        release(object, GraspReason::kHandedOver, checks[holder], from.hand, *from.hold, body, events,
+                hands[k].hand.hand_id);
+        attach(object, checks[k], hands[k].hand, *hands[k].hold, body, events, from.hand.hand_id);
+        handed_over = true;
+      }
+    }
+    if (!handed_over) {
+      // the single-hand rules: the holder's decision, or the first hand whose test takes it
+      for (std::size_t k = 0; k < hand_count; ++k) {
+        if (!was_held[k] && hands[k].count == 0) continue;
+        if (holder == hand_count && body.held()) break;  // taken by an earlier hand this step
+        if (holder < hand_count && k != holder) continue;
+        decide(object, checks[k], hands[k].hand, *hands[k].hold, body, events);
+      }
+      // no hand alone: two hands together (eqs. 30-31 over both, each with its own gesture)
+      if (holder == hand_count && !body.held() && joint == nullptr && hand_count >= 2) {
+        for (std::size_t a = 0; a < hand_count && !body.held(); ++a) {
+          if (hands[a].count == 0 || !may_take(hands[a]) || !checks[a].gesture_holds()) continue;
+          for (std::size_t b = a + 1; b < hand_count && !body.held(); ++b) {
+            if (hands[b].count == 0 || !may_take(hands[b]) || !checks[b].gesture_holds()) continue;
+            const Residuals both = two_hand_residuals(hands[a], hands[b], body, o);
+            if (!residuals_hold(both, params_, false)) continue;
+            GraspCheck ca = checks[a], cb = checks[b];
+            ca.residual_force_N = cb.residual_force_N = both.force_N;
+            ca.residual_torque_Nm = cb.residual_torque_Nm = both.torque_Nm;
+            attach(object, ca, hands[a].hand, *hands[a].hold, body, events, hands[b].hand.hand_id);
+            attach(object, cb, hands[b].hand, *hands[b].hold, body, events, hands[a].hand.hand_id);
+          }
+        }
+      }
+    }
+  }
+  for (std::size_t k = 0; k < hand_count; ++k)
+    if (was_held[k] && (body.holders & hands[k].hand.holder_bit) == 0) note_let_go(hands[k]);
+}
+
+Residuals GraspTracker::two_hand_residuals(const HandOnObject& a, const HandOnObject& b,
+                                           const BodyState& body, const ObjectSpec& o) const {
+  // eqs. 30-31 over both hands' contacts, gravity once
+  const Eigen::Vector3d c_G = body.X_GO.translation();
+  Eigen::Vector3d F = o.mass_kg * gravity_mps2_;
+  Eigen::Vector3d M = Eigen::Vector3d::Zero();
+  for (const HandOnObject* h : {&a, &b}) {
+    for (std::size_t i = 0; i < h->count; ++i) {
+      F += h->contacts[i].F_G;
+      M += (h->contacts[i].p_G - c_G).cross(h->contacts[i].F_G);
+    }
+  }
+  return {F.norm(), M.norm()};
+}
+
+GraspReason GraspTracker::held_verdict(const HandOnObject& h, const GraspCheck& check) const {
+  if (!h.hand.tracking) return GraspReason::kGloveLost;
+  if (params_.release_opening_deg > 0.0 &&
+      grip_opening_rad(h.hand, *h.hold) > deg_to_rad(params_.release_opening_deg))
+    return GraspReason::kHandOpened;
+  return check.verdict;
+}
+
+bool GraspTracker::failed_long_enough(const HandOnObject& h, GraspReason verdict) const {
+  GraspHold& hold = *h.hold;
+  if (verdict == GraspReason::kGloveLost) return true;
+  if (verdict == GraspReason::kStableGrasp) {
+    hold.failing_since_ns = -1;
+    return false;
+  }
+  if (hold.failing_since_ns < 0) hold.failing_since_ns = h.hand.t_ns;
+  return h.hand.t_ns - hold.failing_since_ns >= release_delay_ns_ &&
+         h.hand.t_ns - hold.held_since_ns >= min_hold_ns_;
+}
+
+// Both hands hold it. Each keeps its own gesture, glove and opening rules; eqs. 30-31 are over
+// both hands' contacts. One that fails long enough lets go; the other keeps it if its own test
+// (held thresholds) holds alone, else lets go too.
+void GraspTracker::update_two_handed(int object, const ObjectSpec& o, HandOnObject* hands,
+                                     std::size_t hand_count, const GraspCheck* checks,
+                                     BodyState& body, std::vector<GraspEvent>& events,
+                                     const GraspJoint* joint) const {
+  std::array<std::size_t, 2> held{};
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < hand_count && n < 2; ++k)
+    if ((body.holders & hands[k].hand.holder_bit) != 0) held[n++] = k;
+  HandOnObject& a = hands[held[0]];
+  HandOnObject& b = hands[held[1]];
+  const Residuals both = two_hand_residuals(a, b, body, o);
+  const bool together = residuals_hold(both, params_, true);
+  std::array<GraspReason, 2> verdict{};
+  std::array<bool, 2> lets_go{};
+  for (int i = 0; i < 2; ++i) {
+    const HandOnObject& h = hands[held[static_cast<std::size_t>(i)]];
+    const GraspCheck& check = checks[held[static_cast<std::size_t>(i)]];
+    GraspReason v = held_verdict(h, check);
+    if (v == GraspReason::kStableGrasp || v == GraspReason::kForceResidual ||
+        v == GraspReason::kTorqueResidual)
+      v = together ? GraspReason::kStableGrasp
+                   : (both.force_N > params_.xi_N * params_.exit_scale ? GraspReason::kForceResidual
+                                                                        : GraspReason::kTorqueResidual);
+    verdict[static_cast<std::size_t>(i)] = v;
+    lets_go[static_cast<std::size_t>(i)] = failed_long_enough(h, v);
+  }
+  (void)joint;
+  if (!lets_go[0] && !lets_go[1]) return;
+  const auto figures = [&](GraspCheck c) {
+    c.residual_force_N = both.force_N;
+    c.residual_torque_Nm = both.torque_Nm;
+    return c;
+  };
+  // the hand that keeps it alone, if one does: its own test at the held thresholds
+  for (int i = 0; i < 2; ++i) {
+    const std::size_t k = held[static_cast<std::size_t>(i)];
+    const std::size_t other = held[static_cast<std::size_t>(1 - i)];
+    if (!lets_go[static_cast<std::size_t>(i)]) continue;
+    const bool other_keeps = !lets_go[static_cast<std::size_t>(1 - i)] && checks[other].holds() &&
+                             held_verdict(hands[other], checks[other]) == GraspReason::kStableGrasp;
+    release(object, verdict[static_cast<std::size_t>(i)], figures(checks[k]), hands[k].hand,
+            *hands[k].hold, body, events, hands[other].hand.hand_id);
+    if (!other_keeps && (body.holders & hands[other].hand.holder_bit) != 0) {
+      const GraspReason why = lets_go[static_cast<std::size_t>(1 - i)]
+                                  ? verdict[static_cast<std::size_t>(1 - i)]
+                                  : (checks[other].holds() ? held_verdict(hands[other], checks[other])
+                                                           : checks[other].verdict);
+      release(object, why, checks[other], hands[other].hand, *hands[other].hold, body, events,
+              hands[k].hand.hand_id);
+    }
+    break;
   }
 }
 
 void GraspTracker::decide(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
                           BodyState& body, std::vector<GraspEvent>& events) const {
   VCOCKPIT_ASSERT(hold.history.size() >= 2, "grasp decisions are for dynamic objects only");
-  const bool held = body.held_by == hand_id_;
+  const bool held = (body.holders & hand.holder_bit) != 0;
   if (!held) {
     const bool cooled = hand.t_ns - hold.released_at_ns >= regrab_cooldown_ns_;
     if (hand.tracking && cooled && check.holds()) attach(object, check, hand, hold, body, events);
@@ -129,7 +292,8 @@ double GraspTracker::grip_opening_rad(const HandNow& hand, GraspHold& hold) cons
 }
 
 void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
-                          BodyState& body, std::vector<GraspEvent>& events) const {
+                          BodyState& body, std::vector<GraspEvent>& events,
+                          int other_hand_id) const {
   hold.X_HO = hand.X_GH.inverse() * body.X_GO;  // eq. 28
   hold.held_since_ns = hand.t_ns;
   hold.failing_since_ns = -1;
@@ -142,13 +306,20 @@ void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& ha
     hold.grip_flexion_rad[static_cast<std::size_t>(f)] =
         hand.tracked_q_rad != nullptr ? finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f))
                                       : 0.0;
-  body.held_by = hand_id_;
-  events.push_back(event(object, true, GraspReason::kStableGrasp, check, hand));
+  body.holders |= hand.holder_bit;
+  if (body.held_by == kNotHeld) body.held_by = hand.hand_id;
+  events.push_back(event(object, true, GraspReason::kStableGrasp, check, hand, other_hand_id));
 }
 
 void GraspTracker::release(int object, GraspReason reason, const GraspCheck& check,
                            const HandNow& hand, GraspHold& hold, BodyState& body,
-                           std::vector<GraspEvent>& events) const {
+                           std::vector<GraspEvent>& events, int other_hand_id) const {
+  body.holders = static_cast<uint8_t>(body.holders & ~hand.holder_bit);
+  if (body.held_by == hand.hand_id) body.held_by = kNotHeld;  // the world names the one left
+  hold.released_at_ns = hand.t_ns;
+  hold.failing_since_ns = -1;
+  events.push_back(event(object, false, reason, check, hand, other_hand_id));
+  if (body.held()) return;  // the other hand has it
   // the object leaves with the hand's motion over the last window (no jump, can be thrown),
   // or over the settle window when the hand was setting it down
   if (hold.history_count >= 2) {
@@ -162,10 +333,6 @@ void GraspTracker::release(int object, GraspReason reason, const GraspCheck& che
       }
     }
   }
-  body.held_by = kNotHeld;
-  hold.released_at_ns = hand.t_ns;
-  hold.failing_since_ns = -1;
-  events.push_back(event(object, false, reason, check, hand));
 }
 
 void GraspTracker::held_velocity(const GraspHold& hold, std::size_t span_steps,
@@ -179,11 +346,12 @@ void GraspTracker::held_velocity(const GraspHold& hold, std::size_t span_steps,
 }
 
 GraspEvent GraspTracker::event(int object, bool grasp, GraspReason reason, const GraspCheck& check,
-                               const HandNow& hand) const {
+                               const HandNow& hand, int other_hand_id) const {
   GraspEvent e;
   e.t_ns = hand.t_ns;
   e.grasp = grasp;
-  e.hand_id = hand_id_;
+  e.hand_id = hand.hand_id;
+  e.other_hand_id = other_hand_id;
   e.object = object;
   e.reason = reason;
   e.contacts = check.links_in_contact;

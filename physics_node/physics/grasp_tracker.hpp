@@ -1,6 +1,6 @@
 #pragma once
 // The grasp tracker (paper §4.4, and what DESIGN.md adds against the chatter the paper
-// describes): per object, its grasp state and the decision to attach or release it.
+// describes): per object, its grasp state for each hand and the decision to attach or release it.
 //   attach   the stable-grasp test holds (grasp.hpp), the glove is tracked and the re-grab
 //            cooldown since the object's last release has passed: X_HO = X_GH^-1 X_GO (eq. 28),
 //            and the object follows the hand, X_GO = X_GH X_HO (eq. 29, the world's motion stage);
@@ -9,6 +9,15 @@
 //            leaves with the hand's motion over velocity_window_s (its held poses), so it can be
 //            set down or thrown without a jump; a hand slower than settle_speed_mps over
 //            settle_window_s is setting it down, and that window's mean is taken instead.
+// With several hands, a hand's contacts count only for its own test, and:
+//   handover  an object one hand holds that another hand's own test holds (unheld thresholds)
+//             goes to that hand in the same step: RELEASE "handed over" by the first, GRASP by
+//             the second, the object where it is (no jump);
+//   two hands an object no hand holds, that no hand's test holds alone but two hands' do
+//             together (eqs. 30-31 over both hands' contacts, each hand meeting the gesture rule
+//             on its own), is held by both: it follows both (the world's motion stage). Each hand
+//             keeps its own gesture and release rules; when one lets go the other keeps it if
+//             its own test (held thresholds) holds alone, else lets go in the same step.
 // Events are data: the figures behind each decision. Adapters put them in words
 // (physics_node/io/grasp_event_text.hpp).
 
@@ -30,6 +39,9 @@ struct GraspEvent {
   int hand_id = 0;
   int object = -1;
   GraspReason reason = GraspReason::kStableGrasp;
+  // the other hand in a handover (where the object went to or came from) or a two-handed hold
+  // (the hand holding it too); -1: none
+  int other_hand_id = -1;
   // the stable-grasp test at the decision (for a lost glove: of the last contacts)
   int contacts = 0;  // hand links touching the object
   bool thumb_touching = false;
@@ -65,12 +77,28 @@ struct GraspHold {
   bool hand_clearing = false;
 };
 
-// The hand at the end of a step, as the decisions see it.
+// A hand at the end of a step, as the decisions see it.
 struct HandNow {
   int64_t t_ns = 0;
   bool tracking = true;
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
   const JointAngles* tracked_q_rad = nullptr;  // the glove's joints (null: not known)
+  int hand_id = 0;        // on the topics: 0 right, 1 left
+  uint8_t holder_bit = 1;  // its bit in BodyState::holders
+};
+
+// The most hands a world simulates (BodyState::holders has a bit per hand).
+inline constexpr std::size_t kMaxHands = 8;
+
+// One hand's part in one object's step.
+struct HandOnObject {
+  HandNow hand;
+  const HandContact* contacts = nullptr;  // this hand's links on the object (last substep)
+  std::size_t count = 0;
+  // the links of this hand's glove (tracked) hand that overlap the object now (bit l; needed
+  // only while hold->hand_clearing)
+  uint32_t glove_links_inside = 0;
+  GraspHold* hold = nullptr;  // this hand's grasp state of the object
 };
 
 // A finger's flexion: the sum of its flexion joints' angles (rad), abduction left out.
@@ -78,10 +106,7 @@ double finger_flexion_rad(const JointAngles& q_rad, Finger finger);
 
 class GraspTracker {
  public:
-  GraspTracker(const GraspParams& params, double step_s, const Eigen::Vector3d& gravity_mps2,
-               int hand_id);
-
-  int hand_id() const { return hand_id_; }
+  GraspTracker(const GraspParams& params, double step_s, const Eigen::Vector3d& gravity_mps2);
 
   // An object's state at the start: a ring of held poses over the velocity window if dynamic.
   GraspHold initial_hold(const ObjectSpec& o) const;
@@ -94,6 +119,13 @@ class GraspTracker {
   void update(int object, const ObjectSpec& o, const HandContact* contacts, std::size_t count,
               const HandNow& hand, uint32_t glove_links_inside, GraspHold& hold, BodyState& body,
               std::vector<GraspEvent>& events, const GraspJoint* joint = nullptr) const;
+  // The same for every hand at once (`hands`, in the world's hand order, each with its own
+  // contacts and grasp state): the single-hand rules per hand, plus the handover and the
+  // two-handed hold (above). A control (`joint`) is held by one hand at a time (handed over,
+  // never held with two).
+  void update_hands(int object, const ObjectSpec& o, HandOnObject* hands, std::size_t hand_count,
+                    BodyState& body, std::vector<GraspEvent>& events,
+                    const GraspJoint* joint = nullptr) const;
 
   // The attach/release decision for one dynamic object given its test: attaches (eq. 28) or
   // releases it, appending the event.
@@ -105,9 +137,26 @@ class GraspTracker {
 
  private:
   void attach(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
-              BodyState& body, std::vector<GraspEvent>& events) const;
+              BodyState& body, std::vector<GraspEvent>& events, int other_hand_id = -1) const;
+  // While another hand still holds it, the object keeps following that hand: no velocity of
+  // its own.
   void release(int object, GraspReason reason, const GraspCheck& check, const HandNow& hand,
-               GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events) const;
+               GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events,
+               int other_hand_id = -1) const;
+  // The cooldown's resting links after a release (GraspHold::resting_links), before the test.
+  void clear_hand(const HandOnObject& h, bool held) const;
+  // After the decisions: a hand that let go this step names the links that touched it.
+  static void note_let_go(const HandOnObject& h);
+  bool may_take(const HandOnObject& h) const;  // tracked and past its cooldown
+  // The verdict of a held hand's own rules this step (glove lost and hand opened first), and
+  // whether it has failed long enough to let go.
+  GraspReason held_verdict(const HandOnObject& h, const GraspCheck& check) const;
+  bool failed_long_enough(const HandOnObject& h, GraspReason verdict) const;
+  Residuals two_hand_residuals(const HandOnObject& a, const HandOnObject& b, const BodyState& body,
+                               const ObjectSpec& o) const;
+  void update_two_handed(int object, const ObjectSpec& o, HandOnObject* hands,
+                         std::size_t hand_count, const GraspCheck* checks, BodyState& body,
+                         std::vector<GraspEvent>& events, const GraspJoint* joint) const;
   // The held object's velocity over the last `span_steps` steps of its held poses (fewer if it
   // has not been held that long; at least two poses).
   void held_velocity(const GraspHold& hold, std::size_t span_steps, Eigen::Vector3d& v_G,
@@ -115,12 +164,11 @@ class GraspTracker {
   // How far the gripping fingers opened (rad, mean over them), raising their tightest closure.
   double grip_opening_rad(const HandNow& hand, GraspHold& hold) const;
   GraspEvent event(int object, bool grasp, GraspReason reason, const GraspCheck& check,
-                   const HandNow& hand) const;
+                   const HandNow& hand, int other_hand_id) const;
 
   GraspParams params_;
   double step_s_;
   Eigen::Vector3d gravity_mps2_;
-  int hand_id_;
   std::size_t velocity_span_;  // steps of the release velocity's window
   std::size_t settle_span_;    // ... and of the settle window
   std::size_t window_;         // poses in the release-velocity ring: the longer span + 1

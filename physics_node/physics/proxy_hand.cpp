@@ -28,12 +28,12 @@ void drop_separated(std::vector<ContactPoint>& contacts) {
 
 }  // namespace
 
-ProxyHand::ProxyHand(const Scene& scene)
+ProxyHand::ProxyHand(const Scene& scene, int hand)
     : scene_(scene),
-      hand_(*scene.hand),
+      hand_(scene.hands.at(static_cast<std::size_t>(hand))),
       params_(scene.proxy),
-      object_count_(static_cast<int>(scene.objects.size())) {
-  VCOCKPIT_ASSERT(scene.hand.has_value(), "a proxy hand needs a hand");
+      object_count_(static_cast<int>(scene.objects.size())),
+      link_base_(object_count_ + hand * kLinkCount) {
   depth_limit_m_.resize(scene.objects.size());
   dynamic_.resize(scene.objects.size());
   grip_balance_.assign(scene.objects.size(), GripBalance{});
@@ -240,7 +240,7 @@ void ProxyHand::balance_held_grips(const std::vector<ContactPoint>& contacts,
     for (std::size_t k = i; k < end; ++k) {
       const ContactPoint& c = contacts[k];
       if (!is_link(c.body_b) || !opposes_fingers(link_of(c.body_b))) continue;
-      const auto l = static_cast<uint32_t>(c.body_b - object_count_);
+      const auto l = static_cast<uint32_t>(c.body_b - link_base_);
       if ((opposing >> l & 1u) == 0) axis -= c.n_G;  // n points from the object into the link
       opposing |= 1u << l;
     }
@@ -254,7 +254,7 @@ void ProxyHand::balance_held_grips(const std::vector<ContactPoint>& contacts,
       for (std::size_t k = i; k < end; ++k) {
         const ContactPoint& c = contacts[k];
         if (!is_link(c.body_b) || opposes_fingers(link_of(c.body_b))) continue;
-        const auto l = static_cast<uint32_t>(c.body_b - object_count_);
+        const auto l = static_cast<uint32_t>(c.body_b - link_base_);
         if ((counted >> l & 1u) != 0) continue;
         counted |= 1u << l;
         finger_capacity += std::max(0.0, c.n_G.dot(axis));  // the link pushes along -n

@@ -66,8 +66,9 @@ struct ProxyConstraint {
 
 class ProxyHand {
  public:
-  // `scene` must have a hand and outlive this.
-  explicit ProxyHand(const Scene& scene);
+  // The proxy of the scene's hand `hand`; `scene` must outlive this. Its contact lists hold
+  // this hand's links (bodies link_base + link, CollisionWorld's numbering) and no other hand's.
+  explicit ProxyHand(const Scene& scene, int hand = 0);
 
   // The pose the proxy heads for over the coming step of `step_s`: the tracked hand, approached
   // at the free speeds, or the pushing speed when `pushing`.
@@ -132,7 +133,7 @@ class ProxyHand {
   double depth_limit_m(int object, int link_body) const {
     if (!is_link(link_body)) return depth_limit_m(object);
     const auto o = static_cast<std::size_t>(object);
-    const int l = link_body - object_count_;
+    const int l = link_body - link_base_;
     if (resting_links_ != nullptr && ((*resting_links_)[o] >> l & 1u) != 0)
       return -kLetGoClearance_m;
     const GripBalance& g = grip_balance_[o];
@@ -164,7 +165,7 @@ class ProxyHand {
   // with the tracked one at bounded speed, as the wrist does, so a finger that the world held
   // back and then lets go does not jump through a panel in one step.
   void limit_finger_speed(const JointAngles& now_rad, double reach_m, JointAngles& goal_rad) const;
-  Link link_of(int body) const { return static_cast<Link>(body - object_count_); }
+  Link link_of(int body) const { return static_cast<Link>(body - link_base_); }
   void hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& prev_links, ProxyPose& pose,
                          HandLinkPoses& links, std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
                          const std::vector<uint8_t>& held, std::vector<ContactPoint>& contacts,
@@ -195,6 +196,7 @@ class ProxyHand {
   const HandModel& hand_;
   const ProxyParams& params_;
   int object_count_;
+  int link_base_;  // body of this hand's palm
   std::vector<double> depth_limit_m_;                        // per object
   const std::vector<uint32_t>* resting_links_ = nullptr;     // per object
   std::vector<uint8_t> dynamic_;                             // per object

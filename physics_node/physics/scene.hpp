@@ -137,7 +137,10 @@ struct Scene {
   double step_s = 0.001;
   std::vector<ObjectSpec> objects;
   std::vector<ControlSpec> controls;  // each moves one dynamic object (ControlSpec::body)
-  std::optional<HandModel> hand;       // no hand: objects only
+  // The simulated hands, each with its own model (hand.yaml, or its mirror for a left hand):
+  // none (objects only), one, or a right and a left (hand_id_of: 0 right, 1 left, as the topics
+  // name them; no two of the same side).
+  std::vector<HandModel> hands;
   Material hand_material{2.0e4, 0.7, 1.0, 0.8};  // skin on a glove: grippy and soft
   GraspParams grasp;
   ContactParams contact;
@@ -147,7 +150,11 @@ struct Scene {
   // -1 when no object has that name.
   int find_object(const std::string& name) const;
   int find_control(const std::string& name) const;
+  bool has_hands() const { return !hands.empty(); }
 };
+
+// A hand's id on the topics: 0 for a right hand, 1 for a left one.
+inline int hand_id_of(const HandModel& hand) { return hand.left ? 1 : 0; }
 
 // Mass properties from density: mass and inertia about the centroid.
 void mass_properties_from_density(const Shape& shape, double density_kgpm3, double& mass_kg,

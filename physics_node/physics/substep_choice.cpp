@@ -8,13 +8,13 @@
 namespace vcockpit::physics {
 namespace {
 
-// The reach broadphase's bodies: the objects, then the hand's links.
+// The reach broadphase's bodies: the objects, then each hand's links.
 std::vector<BroadphaseBody> reach_kinds(const Scene& scene) {
   std::vector<BroadphaseBody> kinds;
   for (const ObjectSpec& o : scene.objects)
     kinds.push_back(o.control >= 0 ? BroadphaseBody::kControl
                                    : (o.dynamic ? BroadphaseBody::kDynamic : BroadphaseBody::kStatic));
-  if (scene.hand) kinds.insert(kinds.end(), kLinkCount, BroadphaseBody::kHand);
+  kinds.insert(kinds.end(), scene.hands.size() * kLinkCount, BroadphaseBody::kHand);
   return kinds;
 }
 
@@ -61,9 +61,7 @@ SubstepChoice::SubstepChoice(const Scene& scene, const CollisionWorld& collision
 // Boxes around each body's sweep over the step (a dynamic body: where it is, grown by how far it
 // can move; a hand link: its box at the start and at the end of the step), plus a margin.
 void SubstepChoice::find_reachable_pairs(const std::vector<BodyState>& bodies,
-                                         const std::array<Eigen::Isometry3d, kLinkCount>* X_GL_now,
-                                         const Eigen::Isometry3d& X_GH_end,
-                                         const JointAngles& q_end) {
+                                         const std::vector<HandSweep>& hands) {
   const double step_s = scene_.step_s;
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
@@ -77,35 +75,36 @@ void SubstepChoice::find_reachable_pairs(const std::vector<BodyState>& bodies,
     box.hi.array() += reach_m;
     reach_.set_box(i, box);
   }
-  const bool hand_active = X_GL_now != nullptr;
-  reach_.set_hand_enabled(hand_active);
-  if (hand_active) {
+  for (std::size_t h = 0; h < scene_.hands.size(); ++h) {
+    const HandSweep* sweep = h < hands.size() ? &hands[h] : nullptr;
+    const bool active = sweep != nullptr && sweep->X_GL_now != nullptr;
+    const int first = object_count_ + static_cast<int>(h) * kLinkCount;
+    for (int l = 0; l < kLinkCount; ++l) reach_.set_enabled(first + l, active);
+    if (!active) continue;
     HandLinkPoses end;
-    forward_kinematics(*scene_.hand, q_end, end);
+    forward_kinematics(scene_.hands[h], sweep->q_end, end);
     for (int l = 0; l < kLinkCount; ++l) {
       const Link link = static_cast<Link>(l);
-      const Aabb now = collision_.hand_link_box(link, (*X_GL_now)[l]);
-      const Aabb then = collision_.hand_link_box(link, X_GH_end * end.X_HL[l]);
-      reach_.set_box(object_count_ + l,
-                     {now.lo.cwiseMin(then.lo).array() - kReachMargin_m,
-                      now.hi.cwiseMax(then.hi).array() + kReachMargin_m});
+      const int hand = static_cast<int>(h);
+      const Aabb now = collision_.hand_link_box(hand, link, (*sweep->X_GL_now)[l]);
+      const Aabb then = collision_.hand_link_box(hand, link, sweep->X_GH_end * end.X_HL[l]);
+      reach_.set_box(first + l, {now.lo.cwiseMin(then.lo).array() - kReachMargin_m,
+                                 now.hi.cwiseMax(then.hi).array() + kReachMargin_m});
     }
   }
   reach_.find_pairs(reach_pairs_);
 }
 
-int SubstepChoice::choose(const std::vector<BodyState>& bodies,
-                          const std::array<Eigen::Isometry3d, kLinkCount>* X_GL_now,
-                          const Eigen::Isometry3d& X_GH_end, const JointAngles& q_end) {
+int SubstepChoice::choose(const std::vector<BodyState>& bodies, const std::vector<HandSweep>& hands) {
   VCOCKPIT_ASSERT(static_cast<int>(bodies.size()) == object_count_, "one body state per object");
-  VCOCKPIT_ASSERT(X_GL_now == nullptr || scene_.hand.has_value(), "a hand pose without a hand");
-  find_reachable_pairs(bodies, X_GL_now, X_GH_end, q_end);
+  VCOCKPIT_ASSERT(hands.size() <= scene_.hands.size(), "a hand sweep per hand of the scene");
+  find_reachable_pairs(bodies, hands);
   double dt_max = scene_.step_s;
   for (const BodyPair& pair : reach_pairs_) {
     const bool a_free = pair.lo < object_count_ && scene_.objects[pair.lo].dynamic &&
-                        bodies[pair.lo].held_by == kNotHeld;
+                        !bodies[pair.lo].held();
     const bool b_free = pair.hi < object_count_ && scene_.objects[pair.hi].dynamic &&
-                        bodies[pair.hi].held_by == kNotHeld;
+                        !bodies[pair.hi].held();
     if (!a_free && !b_free) continue;  // held objects move with the hand: nothing to integrate
     const Material& ma = pair.lo < object_count_ ? scene_.objects[pair.lo].material
                                                  : scene_.hand_material;

@@ -29,19 +29,20 @@ class SubstepChoice {
   SubstepChoice(const Scene& scene, const CollisionWorld& collision);
 
   // The substep count, in [1, contact.max_substeps], for the step that starts with the bodies in
-  // `bodies` and, when the hand is active (X_GL_now not null), its links at X_GL_now moving to
-  // the wrist pose X_GH_end with the joint angles q_end.
-  int choose(const std::vector<BodyState>& bodies,
-             const std::array<Eigen::Isometry3d, kLinkCount>* X_GL_now,
-             const Eigen::Isometry3d& X_GH_end, const JointAngles& q_end);
+  // `bodies` and each hand (`hands`, in the scene's hand order; fewer or an inactive one: not
+  // in the step) sweeping from its links now to the wrist pose and joint angles at its end.
+  struct HandSweep {
+    const std::array<Eigen::Isometry3d, kLinkCount>* X_GL_now = nullptr;  // null: not active
+    Eigen::Isometry3d X_GH_end = Eigen::Isometry3d::Identity();
+    JointAngles q_end{};
+  };
+  int choose(const std::vector<BodyState>& bodies, const std::vector<HandSweep>& hands);
 
-  // The pairs that could touch within the last chosen step: objects, then the hand's links.
+  // The pairs that could touch within the last chosen step: objects, then the hands' links.
   const std::vector<BodyPair>& reachable_pairs() const { return reach_pairs_; }
 
  private:
-  void find_reachable_pairs(const std::vector<BodyState>& bodies,
-                            const std::array<Eigen::Isometry3d, kLinkCount>* X_GL_now,
-                            const Eigen::Isometry3d& X_GH_end, const JointAngles& q_end);
+  void find_reachable_pairs(const std::vector<BodyState>& bodies, const std::vector<HandSweep>& hands);
 
   static constexpr double kReachMargin_m = 0.002;
 

@@ -46,8 +46,46 @@ void limit_link_speed(double length_m, double max_mps, Eigen::Vector3d& v_G, Eig
   w_G *= scale;
 }
 
-// 0 for a right hand, 1 for a left one (as the topics name them).
-int hand_id_of(const Scene& scene) { return scene.hand && scene.hand->left ? 1 : 0; }
+// Where two poses are halfway: the mean translation, the rotation halfway along the slerp.
+Eigen::Isometry3d halfway(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return interpolate(a, b, 0.5);
+}
+
+int lowest_bit(unsigned mask) {
+  int b = 0;
+  while (b < 8 && (mask & (1u << b)) == 0) ++b;
+  return b;
+}
+
+int bit_count(unsigned mask) {
+  int n = 0;
+  for (; mask != 0; mask &= mask - 1) ++n;
+  return n;
+}
+
+// Merges lists each sorted by (body_a, body_b), no pair in two of them, into `out` (cleared
+// first): the order one sorted list split in parts had.
+void merge_by_pair(const std::vector<const std::vector<ContactPoint>*>& lists,
+                   std::vector<ContactPoint>& out) {
+  out.clear();
+  std::array<std::size_t, kMaxHands + 1> at{};
+  VCOCKPIT_ASSERT(lists.size() <= at.size(), "a list per hand and one more");
+  for (;;) {
+    std::size_t best = lists.size();
+    for (std::size_t k = 0; k < lists.size(); ++k) {
+      if (at[k] >= lists[k]->size()) continue;
+      const ContactPoint& c = (*lists[k])[at[k]];
+      if (best == lists.size()) {
+        best = k;
+        continue;
+      }
+      const ContactPoint& b = (*lists[best])[at[best]];
+      if (c.body_a < b.body_a || (c.body_a == b.body_a && c.body_b < b.body_b)) best = k;
+    }
+    if (best == lists.size()) return;
+    out.push_back((*lists[best])[at[best]++]);
+  }
+}
 
 }  // namespace
 
@@ -62,26 +100,48 @@ World::World(Scene scene)
       collision_(scene_),
       substep_choice_(scene_, collision_),
       forces_(scene_.contact.slip_speed_mps),
-      grasp_tracker_(scene_.grasp, scene_.step_s, scene_.gravity_mps2, hand_id_of(scene_)),
+      grasp_tracker_(scene_.grasp, scene_.step_s, scene_.gravity_mps2),
       body_check_(scene_),
       object_count_(static_cast<int>(scene_.objects.size())),
       step_ns_(std::llround(scene_.step_s * 1e9)) {
   if (scene_.contact.max_substeps < 1 || !(scene_.step_s > 0.0))
     throw std::invalid_argument("World: the step and max_substeps must be positive");
-  hand_id_ = grasp_tracker_.hand_id();
-  if (scene_.hand && scene_.proxy.enabled) {
-    proxy_.emplace(scene_);
-    proxy_->set_resting_links(&resting_links_);
-  }
+  const std::size_t hand_count = scene_.hands.size();
+  if (hand_count > kMaxHands) throw std::invalid_argument("World: more hands than kMaxHands");
+  for (std::size_t a = 0; a < hand_count; ++a)
+    for (std::size_t b = a + 1; b < hand_count; ++b)
+      if (hand_id_of(scene_.hands[a]) == hand_id_of(scene_.hands[b]))
+        throw std::invalid_argument("World: two hands of the same side (one right, one left)");
   state_.bodies.resize(object_count_);
   X_GO_.resize(object_count_);
   X_GO_before_.resize(object_count_);
-  state_.grasp.resize(object_count_);
   I_O_inv_.resize(object_count_);
   held_mask_.assign(object_count_, 0);
-  resting_links_.assign(object_count_, 0);
-  state_.blocking_out_G.reserve(kMaxBlockingPlanes);
   start_bodies_.resize(object_count_);
+  hands_.resize(hand_count);  // never again: each proxy keeps a pointer to its hand's vectors
+  state_.hands.resize(hand_count);
+  sweeps_.resize(hand_count);
+  on_object_.resize(hand_count);
+  for (std::size_t h = 0; h < hand_count; ++h) {
+    HandSim& sim = hands_[h];
+    HandState& hs = state_.hands[h];
+    sim.hand_id = hand_id_of(scene_.hands[h]);
+    sim.holder_bit = static_cast<uint8_t>(1u << h);
+    sim.held_mask.assign(object_count_, 0);
+    sim.resting_links.assign(object_count_, 0);
+    if (scene_.proxy.enabled) {
+      sim.proxy.emplace(scene_, static_cast<int>(h));
+      sim.proxy->set_resting_links(&sim.resting_links);
+    }
+    hs.blocking_out_G.reserve(kMaxBlockingPlanes);
+    hs.grasp.resize(object_count_);
+    hs.X_GL.fill(Eigen::Isometry3d::Identity());
+    sim.X_GL_before = hs.X_GL;
+    sim.tracked_X_GL = hs.X_GL;
+    sim.contacts.reserve(256);
+    sim.hand_static.reserve(64);
+    sim.on_object.reserve(64);
+  }
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
     state_.bodies[i].X_GO = o.X_GO;
@@ -89,7 +149,7 @@ World::World(Scene scene)
     state_.bodies[i].w_G = o.w_G;
     X_GO_[i] = o.X_GO;
     X_GO_before_[i] = o.X_GO;
-    state_.grasp[i] = grasp_tracker_.initial_hold(o);
+    for (HandState& hs : state_.hands) hs.grasp[i] = grasp_tracker_.initial_hold(o);
     I_O_inv_[i] = o.dynamic ? Eigen::Matrix3d(o.I_O.inverse()) : Eigen::Matrix3d::Zero();
   }
   const int control_count = static_cast<int>(scene_.controls.size());
@@ -97,6 +157,7 @@ World::World(Scene scene)
   control_inertia_.resize(control_count);
   control_grasp_joint_.resize(control_count);
   control_push_link_.assign(control_count, -1);
+  control_push_hand_.assign(control_count, -1);
   control_push_N_.assign(control_count, 0.0);
   control_touched_.assign(control_count, 0);
   control_commanded_.assign(control_count, -1);
@@ -129,50 +190,73 @@ World::World(Scene scene)
     X_GO_[c.body] = state_.bodies[c.body].X_GO;
     X_GO_before_[c.body] = X_GO_[c.body];
   }
-  state_.X_GL.fill(Eigen::Isometry3d::Identity());
-  X_GL_before_ = state_.X_GL;
-  tracked_X_GL_ = state_.X_GL;
   state_.substeps = choose_substeps(false);  // for the initial state: the count the first step will use
-  const int body_count = object_count_ + (scene_.hand ? kLinkCount : 0);
+  const int body_count = object_count_ + static_cast<int>(hand_count) * kLinkCount;
   contact_bodies_.resize(body_count);
   F_G_.resize(body_count);
   M_G_.resize(body_count);
   contacts_.reserve(256);
+  merged_.reserve(256);
   applied_.reserve(256);
-  hand_contacts_.reserve(64);
   events_.reserve(16);
   state_.anchors.reserve(256);
 }
 
 World::~World() = default;
 
-// Substeps for the coming step (substep_choice.hpp): the hand sweeps from its links now to the
-// latest input, or the proxy to where it heads (never farther than its speeds allow).
+int World::hand_index(int hand_id) const {
+  for (std::size_t h = 0; h < hands_.size(); ++h)
+    if (hands_[h].hand_id == hand_id) return static_cast<int>(h);
+  return -1;
+}
+
+int World::holder_of(const BodyState& body) const {
+  return body.held() ? lowest_bit(body.holders) : -1;
+}
+
+// Substeps for the coming step (substep_choice.hpp): each hand sweeps from its links now to the
+// latest input, or its proxy to where it heads (never farther than its speeds allow).
 int World::choose_substeps(bool holding) {
-  if (proxy_ && state_.hand_active) {
-    proxy_start_ = {state_.X_GH, state_.q_rad};
-    fingers_kept_ = 0;
-    proxy_goal_ = proxy_->step_goal(proxy_start_, state_.hand_from, state_.hand_to,
-                                    state_.pushing, holding, state_.blocking_out_G, scene_.step_s);
-    return substep_choice_.choose(state_.bodies, &state_.X_GL, proxy_goal_.X_GH,
-                                  proxy_goal_.q_rad);
+  for (std::size_t h = 0; h < hands_.size(); ++h) {
+    HandSim& sim = hands_[h];
+    HandState& hs = state_.hands[h];
+    SubstepChoice::HandSweep& sweep = sweeps_[h];
+    if (!hs.active) {
+      sweep = {};
+      continue;
+    }
+    if (sim.proxy) {
+      const bool this_holds =
+          holding && std::find(sim.held_mask.begin(), sim.held_mask.end(), 1) != sim.held_mask.end();
+      sim.proxy_start = {hs.X_GH, hs.q_rad};
+      sim.fingers_kept = 0;
+      sim.proxy_goal = sim.proxy->step_goal(sim.proxy_start, hs.from, hs.to, hs.pushing, this_holds,
+                                            hs.blocking_out_G, scene_.step_s);
+      sweep = {&hs.X_GL, sim.proxy_goal.X_GH, sim.proxy_goal.q_rad};
+    } else {
+      sweep = {&hs.X_GL, hs.to.X_GH, hs.to.q_rad};
+    }
   }
-  return substep_choice_.choose(state_.bodies, state_.hand_active ? &state_.X_GL : nullptr,
-                                state_.hand_to.X_GH, state_.hand_to.q_rad);
+  return substep_choice_.choose(state_.bodies, sweeps_);
 }
 
 void World::restore(const WorldState& state) {
   VCOCKPIT_ASSERT(state.bodies.size() == state_.bodies.size() &&
-                      state.grasp.size() == state_.grasp.size() &&
-                      state.controls.size() == state_.controls.size(),
-                  "a world state of another scene (object count)");
-  for (int i = 0; i < object_count_; ++i)
-    VCOCKPIT_ASSERT(state.grasp[i].history.size() == state_.grasp[i].history.size(),
-                    "a world state of another scene (grasp velocity window)");
-  VCOCKPIT_ASSERT(!state.hand_active || scene_.hand.has_value(), "a hand state without a hand");
+                      state.controls.size() == state_.controls.size() &&
+                      state.hands.size() == state_.hands.size(),
+                  "a world state of another scene (object, control or hand count)");
+  for (std::size_t h = 0; h < state.hands.size(); ++h) {
+    VCOCKPIT_ASSERT(state.hands[h].grasp.size() == state_.hands[h].grasp.size(),
+                    "a world state of another scene (object count)");
+    for (int i = 0; i < object_count_; ++i)
+      VCOCKPIT_ASSERT(state.hands[h].grasp[i].history.size() == state_.hands[h].grasp[i].history.size(),
+                      "a world state of another scene (grasp velocity window)");
+  }
   state_ = state;
-  proxy_prev_links_valid_ = false;
-  tracked_observed_ = false;
+  for (HandSim& sim : hands_) {
+    sim.proxy_prev_links_valid = false;
+    sim.tracked_observed = false;
+  }
   // the last step's observations belong to the world the state came from
   applied_.clear();
   events_.clear();
@@ -184,16 +268,18 @@ void World::restore(const WorldState& state) {
   body_check_.clear_new_faults();
 }
 
-void World::set_hand_input(const HandInput& input) {
-  if (!scene_.hand) return;
-  state_.hand_to = input;
-  if (!state_.hand_active) {
-    state_.hand_from = input;  // first sample: no sweep from nowhere
-    state_.hand_active = true;
-    place_hand(input.X_GH, input.q_rad);
-    X_GL_before_ = state_.X_GL;
-    proxy_prev_links_valid_ = false;
-    tracked_observed_ = false;
+void World::set_hand_input(const HandInput& input, int hand) {
+  if (hand < 0 || hand >= hand_count()) return;
+  HandSim& sim = hands_[static_cast<std::size_t>(hand)];
+  HandState& hs = state_.hands[static_cast<std::size_t>(hand)];
+  hs.to = input;
+  if (!hs.active) {
+    hs.from = input;  // first sample: no sweep from nowhere
+    hs.active = true;
+    place_hand(hand, input.X_GH, input.q_rad);
+    sim.X_GL_before = hs.X_GL;
+    sim.proxy_prev_links_valid = false;
+    sim.tracked_observed = false;
   }
 }
 
@@ -207,7 +293,7 @@ void World::step() {
     control_commanded_[ci] = -1;
     const ControlSpec& c = scene_.controls[ci];
     ControlState& s = state_.controls[ci];
-    if (state_.bodies[c.body].held_by != kNotHeld) continue;  // a hand took it meanwhile
+    if (state_.bodies[c.body].held()) continue;  // a hand took it meanwhile
     if (c.latching) {
       s.latched = position == 1;
       s.q = spring_rest(c, s);
@@ -215,6 +301,7 @@ void World::step() {
       s.q = c.positions[static_cast<std::size_t>(position)].q;
     }
     s.qd = 0.0;
+    s.push_hand = -1;
     s.push_link = -1;
     s.push_direction = 0;
     place_control(ci);
@@ -228,9 +315,13 @@ void World::step() {
   // anchors carry over) -- but for a proxy hand, whose fingers stop at the held object's surface
   bool any_held = false;
   for (int i = 0; i < object_count_; ++i) {
-    held_mask_[i] = state_.bodies[i].held_by != kNotHeld ? 1 : 0;
-    resting_links_[i] = state_.grasp[i].resting_links;
+    const BodyState& body = state_.bodies[i];
+    held_mask_[i] = body.held() ? 1 : 0;
     any_held = any_held || held_mask_[i] != 0;
+    for (std::size_t h = 0; h < hands_.size(); ++h) {
+      hands_[h].held_mask[i] = (body.holders & hands_[h].holder_bit) != 0 ? 1 : 0;
+      hands_[h].resting_links[i] = state_.hands[h].grasp[i].resting_links;
+    }
   }
   {
     StageTimer timer(stage_times_, Stage::kBroadphase);
@@ -238,9 +329,13 @@ void World::step() {
   }
   VCOCKPIT_ASSERT(state_.substeps >= 1 && state_.substeps <= scene_.contact.max_substeps,
                   "substeps in [1, max_substeps]");
-  if (proxy_ && state_.hand_active && !proxy_prev_links_valid_) {
-    forward_kinematics(*scene_.hand, state_.q_rad, proxy_prev_links_);
-    proxy_prev_links_valid_ = true;
+  for (std::size_t h = 0; h < hands_.size(); ++h) {
+    HandSim& sim = hands_[h];
+    const HandState& hs = state_.hands[h];
+    if (sim.proxy && hs.active && !sim.proxy_prev_links_valid) {
+      forward_kinematics(scene_.hands[h], hs.q_rad, sim.proxy_prev_links);
+      sim.proxy_prev_links_valid = true;
+    }
   }
   const double dt_s = scene_.step_s / state_.substeps;
   for (int s = 1; s <= state_.substeps; ++s)
@@ -250,7 +345,7 @@ void World::step() {
   // into a panel and be shifted back out substep by substep, which is no motion of the object
   for (int i = 0; i < object_count_; ++i) {
     BodyState& body = state_.bodies[i];
-    if (held_mask_[i] == 0 || body.held_by == kNotHeld) continue;
+    if (held_mask_[i] == 0 || !body.held()) continue;
     finite_difference_velocity(start_bodies_[i].X_GO, body.X_GO, scene_.step_s, body.v_G, body.w_G);
   }
   state_.time_ns += step_ns_;
@@ -260,31 +355,36 @@ void World::step() {
     body_check_.check(state_.bodies, start_bodies_, state_.time_ns);
   }
   grasp_stage();
-  tracked_observed_ = false;
-  state_.hand_from = state_.hand_to;
+  for (std::size_t h = 0; h < hands_.size(); ++h) {
+    hands_[h].tracked_observed = false;
+    state_.hands[h].from = state_.hands[h].to;
+  }
 }
 
 void World::substep(double dt_s, double alpha, int remaining, bool skip_held_hand_pairs) {
   held_pairs_skipped_ = skip_held_hand_pairs;
   {
     StageTimer timer(stage_times_, Stage::kHandKinematics);
-    if (state_.hand_active) move_hand(alpha, remaining);
+    for (int h = 0; h < hand_count(); ++h)
+      if (hand_state(h).active) move_hand(h, alpha, remaining);
     move_held_objects(dt_s);
   }
   {
     StageTimer timer(stage_times_, Stage::kBroadphase);
     for (int i = 0; i < object_count_; ++i) X_GO_[i] = state_.bodies[i].X_GO;
-    collision_.set_poses(X_GO_, state_.hand_active ? &state_.X_GL : nullptr);
+    collision_.set_object_poses(X_GO_);
+    for (int h = 0; h < hand_count(); ++h)
+      collision_.set_hand_poses(h, hand_state(h).active ? &hand_state(h).X_GL : nullptr);
     collision_.find_candidate_pairs();
   }
   {
     StageTimer timer(stage_times_, Stage::kNarrowphase);
     collision_.skip_hand_pairs_with(skip_held_hand_pairs ? &held_mask_ : nullptr);
-    collision_.compute_contacts(contacts_, proxy_ ? &hand_static_ : nullptr);
+    collision_.compute_contacts(contacts_, has_proxy() ? &hand_static_ : nullptr);
   }
-  if (proxy_ && state_.hand_active) {
+  if (has_proxy()) {
     StageTimer timer(stage_times_, Stage::kHandKinematics);
-    constrain_proxy(dt_s);
+    constrain_proxies(dt_s);
   }
   {
     StageTimer timer(stage_times_, Stage::kForces);
@@ -304,99 +404,159 @@ void World::substep(double dt_s, double alpha, int remaining, bool skip_held_han
   }
 }
 
-void World::move_hand(double alpha, int remaining) {
-  X_GL_before_ = state_.X_GL;
-  if (proxy_) {
+void World::move_hand(int hand, double alpha, int remaining) {
+  HandSim& sim = hands_[static_cast<std::size_t>(hand)];
+  const HandState& hs = hand_state(hand);
+  sim.X_GL_before = hs.X_GL;
+  if (sim.proxy) {
     // the proxy's tentative pose; constrain_proxy holds it back after the narrowphase
-    proxy_prev_ = {state_.X_GH, state_.q_rad};
-    ProxyPose next = ProxyHand::advance(proxy_prev_, proxy_start_, proxy_goal_, state_.substeps);
+    sim.proxy_prev = {hs.X_GH, hs.q_rad};
+    ProxyPose next = ProxyHand::advance(sim.proxy_prev, sim.proxy_start, sim.proxy_goal, state_.substeps);
     // a finger on a held object waits for the last substep, where their contacts are known,
     // and then takes the step's whole motion
     if (remaining > 1 && held_pairs_skipped_) {
-      proxy_->keep_fingers(state_.fingers_on_held, proxy_prev_, next);
-      fingers_kept_ = state_.fingers_on_held;
-    } else if (remaining == 1 && fingers_kept_ != 0) {
-      proxy_->catch_up_fingers(fingers_kept_, proxy_prev_, proxy_start_, proxy_goal_, next);
+      sim.proxy->keep_fingers(hs.fingers_on_held, sim.proxy_prev, next);
+      sim.fingers_kept = hs.fingers_on_held;
+    } else if (remaining == 1 && sim.fingers_kept != 0) {
+      sim.proxy->catch_up_fingers(sim.fingers_kept, sim.proxy_prev, sim.proxy_start, sim.proxy_goal, next);
     }
-    place_hand(next.X_GH, next.q_rad);
+    place_hand(hand, next.X_GH, next.q_rad);
     return;
   }
   JointAngles q;
-  for (int j = 0; j < kJointCount; ++j) {
-    q[j] = state_.hand_from.q_rad[j] + alpha * (state_.hand_to.q_rad[j] - state_.hand_from.q_rad[j]);
+  for (int j = 0; j < kJointCount; ++j)
+    q[j] = hs.from.q_rad[j] + alpha * (hs.to.q_rad[j] - hs.from.q_rad[j]);
+  place_hand(hand, interpolate(hs.from.X_GH, hs.to.X_GH, alpha), q);
+}
+
+void World::place_hand(int hand, const Eigen::Isometry3d& X_GH, const JointAngles& q_rad) {
+  HandSim& sim = hands_[static_cast<std::size_t>(hand)];
+  HandState& hs = state_.hands[static_cast<std::size_t>(hand)];
+  hs.X_GH = X_GH;
+  hs.q_rad = q_rad;
+  forward_kinematics(scene_.hands[static_cast<std::size_t>(hand)], q_rad, sim.link_poses);
+  for (int l = 0; l < kLinkCount; ++l) hs.X_GL[l] = hs.X_GH * sim.link_poses.X_HL[l];
+}
+
+// Each active proxy takes its share of the contacts: its own links' (never another hand's) and
+// those of the objects it alone or first holds (which move with it), constrains them, and the
+// shares go back into one list in the order the narrowphase gave.
+void World::constrain_proxies(double dt_s) {
+  for (HandSim& sim : hands_) {
+    sim.contacts.clear();
+    sim.hand_static.clear();
   }
-  place_hand(interpolate(state_.hand_from.X_GH, state_.hand_to.X_GH, alpha), q);
+  const auto proxied = [&](int hand) {
+    return hands_[static_cast<std::size_t>(hand)].proxy.has_value() && hand_state(hand).active;
+  };
+  bool any = false;
+  for (int h = 0; h < hand_count(); ++h) any = any || proxied(h);
+  if (!any) return;
+  for (const ContactPoint& c : hand_static_) {
+    const int h = collision_.hand_of_body(c.body_b);
+    if (proxied(h)) hands_[static_cast<std::size_t>(h)].hand_static.push_back(c);
+  }
+  merged_.clear();  // first the contacts no proxy takes
+  for (const ContactPoint& c : contacts_) {
+    // a hand link is always body_b (links come after the objects); an object pair goes to the
+    // first hand holding one of its objects (held objects move with their hand's proxy)
+    int owner = -1;
+    if (collision_.is_hand_body(c.body_b)) {
+      owner = collision_.hand_of_body(c.body_b);
+    } else {
+      for (const int body : {c.body_a, c.body_b})
+        if (owner < 0) owner = holder_of(state_.bodies[static_cast<std::size_t>(body)]);
+    }
+    if (owner >= 0 && proxied(owner))
+      hands_[static_cast<std::size_t>(owner)].contacts.push_back(c);
+    else
+      merged_.push_back(c);
+  }
+  for (int h = 0; h < hand_count(); ++h)
+    if (proxied(h)) constrain_proxy(h, dt_s);
+  merge_lists_.clear();
+  merge_lists_.push_back(&merged_);
+  for (const HandSim& sim : hands_) merge_lists_.push_back(&sim.contacts);
+  merge_by_pair(merge_lists_, contacts_);
 }
 
-void World::place_hand(const Eigen::Isometry3d& X_GH, const JointAngles& q_rad) {
-  state_.X_GH = X_GH;
-  state_.q_rad = q_rad;
-  forward_kinematics(*scene_.hand, q_rad, link_poses_);
-  for (int l = 0; l < kLinkCount; ++l) state_.X_GL[l] = state_.X_GH * link_poses_.X_HL[l];
-}
-
-void World::constrain_proxy(double dt_s) {
-  ProxyPose pose{state_.X_GH, state_.q_rad};
+void World::constrain_proxy(int hand, double dt_s) {
+  HandSim& sim = hands_[static_cast<std::size_t>(hand)];
+  HandState& hs = state_.hands[static_cast<std::size_t>(hand)];
+  ProxyPose pose{hs.X_GH, hs.q_rad};
   const bool fingers_moved =
-      proxy_->constrain_fingers(proxy_prev_, proxy_prev_links_, pose, link_poses_, state_.X_GL,
-                                held_mask_, contacts_, hand_static_, dt_s);
+      sim.proxy->constrain_fingers(sim.proxy_prev, sim.proxy_prev_links, pose, sim.link_poses, hs.X_GL,
+                                   sim.held_mask, sim.contacts, sim.hand_static, dt_s);
   // the links' static contacts afresh: the wrist's shift must see exactly how deep they are
-  if (fingers_moved) collision_.compute_hand_static_contacts(state_.X_GL, hand_static_);
-  const ProxyConstraint r =
-      proxy_->constrain_wrist(pose, state_.X_GL, held_mask_, contacts_, hand_static_,
-                              state_.blocking_out_G);
-  state_.X_GH = pose.X_GH;
-  state_.q_rad = pose.q_rad;
-  state_.pushing = r.pushing;
-  if (!held_pairs_skipped_) state_.fingers_on_held = proxy_->fingers_touching(contacts_, held_mask_);
-  proxy_prev_links_ = link_poses_;
+  if (fingers_moved) collision_.compute_hand_static_contacts(hand, hs.X_GL, sim.hand_static);
+  const ProxyConstraint r = sim.proxy->constrain_wrist(pose, hs.X_GL, sim.held_mask, sim.contacts,
+                                                       sim.hand_static, hs.blocking_out_G);
+  hs.X_GH = pose.X_GH;
+  hs.q_rad = pose.q_rad;
+  hs.pushing = r.pushing;
+  if (!held_pairs_skipped_) hs.fingers_on_held = sim.proxy->fingers_touching(sim.contacts, held_mask_);
+  sim.proxy_prev_links = sim.link_poses;
   if (r.shift_G.squaredNorm() == 0.0) return;
-  // the held objects move with the proxy (eq. 29)
+  // the held objects move with the proxy (eq. 29; one held with both hands, halfway)
   for (int i = 0; i < object_count_; ++i) {
     BodyState& body = state_.bodies[i];
-    if (body.held_by == kNotHeld || scene_.objects[i].control >= 0) continue;  // a joint holds a control
-    body.X_GO.translation() += r.shift_G;
+    if ((body.holders & sim.holder_bit) == 0 || scene_.objects[i].control >= 0) continue;  // a joint holds a control
+    body.X_GO.translation() += r.shift_G / bit_count(body.holders);
     finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
   }
 }
 
-uint32_t World::glove_links_inside(int object, const GraspHold& hold) const {
-  if (!proxy_ || !state_.hand_active || !hold.hand_clearing) return 0;
-  observe_tracked_hand();
+uint32_t World::glove_links_inside(int hand, int object, const GraspHold& hold) const {
+  const HandSim& sim = hands_[static_cast<std::size_t>(hand)];
+  if (!sim.proxy || !hand_state(hand).active || !hold.hand_clearing) return 0;
+  observe_tracked_hand(hand);
   uint32_t inside = 0;
   for (int l = 0; l < kLinkCount; ++l)
-    if (collision_.link_overlaps(static_cast<Link>(l), tracked_X_GL_[l], object)) inside |= 1u << l;
+    if (collision_.link_overlaps(hand, static_cast<Link>(l), sim.tracked_X_GL[l], object))
+      inside |= 1u << l;
   return inside;
 }
 
-void World::observe_tracked_hand() const {
-  if (tracked_observed_) return;
-  tracked_observed_ = true;
-  tracked_offset_m_ = 0.0;
-  if (!proxy_ || !state_.hand_active) return;
+void World::observe_tracked_hand(int hand) const {
+  const HandSim& sim = hands_[static_cast<std::size_t>(hand)];
+  const HandState& hs = hand_state(hand);
+  if (sim.tracked_observed) return;
+  sim.tracked_observed = true;
+  sim.tracked_offset_m = 0.0;
+  if (!sim.proxy || !hs.active) return;
   HandLinkPoses tracked;
-  forward_kinematics(*scene_.hand, state_.hand_to.q_rad, tracked);
-  const Eigen::Isometry3d& X_GT = state_.hand_to.X_GH;
+  forward_kinematics(scene_.hands[static_cast<std::size_t>(hand)], hs.to.q_rad, tracked);
+  const Eigen::Isometry3d& X_GT = hs.to.X_GH;
   double offset_m = 0.0;
   for (int l = 0; l < kLinkCount; ++l) {
-    tracked_X_GL_[l] = X_GT * tracked.X_HL[l];
-    offset_m = std::max(offset_m, (tracked_X_GL_[l].translation() - state_.X_GL[l].translation()).norm());
+    sim.tracked_X_GL[l] = X_GT * tracked.X_HL[l];
+    offset_m = std::max(offset_m, (sim.tracked_X_GL[l].translation() - hs.X_GL[l].translation()).norm());
   }
   for (int f = 0; f < kFingerCount; ++f)
-    offset_m = std::max(offset_m, (X_GT * tracked.p_H_tip[f] - state_.X_GH * link_poses_.p_H_tip[f]).norm());
-  tracked_offset_m_ = offset_m;
+    offset_m = std::max(offset_m, (X_GT * tracked.p_H_tip[f] - hs.X_GH * sim.link_poses.p_H_tip[f]).norm());
+  sim.tracked_offset_m = offset_m;
+}
+
+Eigen::Isometry3d World::held_pose(int object) const {
+  const BodyState& body = state_.bodies[static_cast<std::size_t>(object)];
+  const int a = lowest_bit(body.holders);
+  const Eigen::Isometry3d X_a = hand_state(a).X_GH * X_HO(object, a);  // eq. 29
+  const unsigned rest = body.holders & ~(1u << a);
+  if (rest == 0) return X_a;
+  const int b = lowest_bit(rest);
+  return halfway(X_a, hand_state(b).X_GH * X_HO(object, b));
 }
 
 void World::move_held_objects(double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
     BodyState& body = state_.bodies[i];
-    if (body.held_by == kNotHeld) continue;
+    if (!body.held()) continue;
     if (scene_.objects[i].control >= 0) {
       move_held_control(scene_.objects[i].control, dt_s);
       continue;
     }
     X_GO_before_[i] = body.X_GO;
-    body.X_GO = state_.X_GH * state_.grasp[i].X_HO;  // eq. 29
+    body.X_GO = held_pose(i);
     finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
   }
 }
@@ -410,41 +570,45 @@ void World::build_contact_bodies() {
     c.v_G = s.v_G;
     c.w_G = s.w_G;
     c.material = &o.material;
-    c.dynamic = o.dynamic && s.held_by == kNotHeld;
+    c.dynamic = o.dynamic && !s.held();
     c.inv_mass = c.dynamic ? 1.0 / o.mass_kg : 0.0;
     c.mass_for_damping = c.dynamic ? o.mass_kg : 0.0;
     c.inv_I_O = c.dynamic ? I_O_inv_[i] : Eigen::Matrix3d::Zero();
   }
-  if (!scene_.hand) return;
-  // a link's velocity only where it touches something (the rotation's log is not free)
-  std::array<bool, kLinkCount> touching{};
-  std::array<bool, kLinkCount> touching_free{};
-  for (const ContactPoint& c : contacts_) {
-    if (c.body_b < object_count_) continue;
-    const auto l = static_cast<std::size_t>(c.body_b - object_count_);
-    touching[l] = true;
-    if (c.body_a < object_count_ && contact_bodies_[c.body_a].dynamic) touching_free[l] = true;
-  }
   const double dt_s = scene_.step_s / state_.substeps;
-  for (int l = 0; l < kLinkCount; ++l) {
-    ContactBody& c = contact_bodies_[object_count_ + l];
-    c.X_GB = state_.X_GL[l];
-    if (touching[static_cast<std::size_t>(l)]) {
-      finite_difference_velocity(X_GL_before_[l], state_.X_GL[l], dt_s, c.v_G, c.w_G);
-      // a proxy link pushes a free object no faster than push_speed_mps, however fast the
-      // tracked hand (or a 30 Hz glove's jump) moved it: its speed feeds the contact damping
-      if (proxy_ && touching_free[static_cast<std::size_t>(l)])
-        limit_link_speed(scene_.hand->capsules[static_cast<std::size_t>(l)].length_m,
-                         scene_.proxy.push_speed_mps, c.v_G, c.w_G);
-    } else {
-      c.v_G.setZero();
-      c.w_G.setZero();
+  for (int h = 0; h < hand_count(); ++h) {
+    const HandSim& sim = hands_[static_cast<std::size_t>(h)];
+    const HandState& hs = hand_state(h);
+    const int first = collision_.hand_link_body(h, Link::kPalm);
+    // a link's velocity only where it touches something (the rotation's log is not free)
+    std::array<bool, kLinkCount> touching{};
+    std::array<bool, kLinkCount> touching_free{};
+    for (const ContactPoint& c : contacts_) {
+      if (c.body_b < first || c.body_b >= first + kLinkCount) continue;
+      const auto l = static_cast<std::size_t>(c.body_b - first);
+      touching[l] = true;
+      if (c.body_a < object_count_ && contact_bodies_[c.body_a].dynamic) touching_free[l] = true;
     }
-    c.material = &scene_.hand_material;
-    c.dynamic = false;
-    c.inv_mass = 0.0;
-    c.mass_for_damping = 0.0;
-    c.inv_I_O.setZero();
+    for (int l = 0; l < kLinkCount; ++l) {
+      ContactBody& c = contact_bodies_[first + l];
+      c.X_GB = hs.X_GL[l];
+      if (touching[static_cast<std::size_t>(l)]) {
+        finite_difference_velocity(sim.X_GL_before[l], hs.X_GL[l], dt_s, c.v_G, c.w_G);
+        // a proxy link pushes a free object no faster than push_speed_mps, however fast the
+        // tracked hand (or a 30 Hz glove's jump) moved it: its speed feeds the contact damping
+        if (sim.proxy && touching_free[static_cast<std::size_t>(l)])
+          limit_link_speed(scene_.hands[static_cast<std::size_t>(h)].capsules[static_cast<std::size_t>(l)].length_m,
+                           scene_.proxy.push_speed_mps, c.v_G, c.w_G);
+      } else {
+        c.v_G.setZero();
+        c.w_G.setZero();
+      }
+      c.material = &scene_.hand_material;
+      c.dynamic = false;
+      c.inv_mass = 0.0;
+      c.mass_for_damping = 0.0;
+      c.inv_I_O.setZero();
+    }
   }
 }
 
@@ -452,7 +616,7 @@ void World::integrate(double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
     BodyState& body = state_.bodies[i];
-    if (!o.dynamic || body.held_by != kNotHeld || o.control >= 0) continue;
+    if (!o.dynamic || body.held() || o.control >= 0) continue;
     const Eigen::Vector3d F = total_force_G(F_G_[i], o.mass_kg, scene_.gravity_mps2);  // eq. 18
     integrate_body(body, F, M_G_[i], o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
   }
@@ -463,7 +627,7 @@ bool World::command_control(int control, int position) {
   if (control < 0 || control >= static_cast<int>(scene_.controls.size())) return false;
   const ControlSpec& c = scene_.controls[control];
   if (position < 0 || position >= static_cast<int>(c.positions.size())) return false;
-  if (state_.bodies[c.body].held_by != kNotHeld) return false;
+  if (state_.bodies[c.body].held()) return false;
   control_commanded_[control] = position;
   return true;
 }
@@ -472,7 +636,7 @@ void World::integrate_controls(double dt_s) {
   for (int ci = 0; ci < static_cast<int>(scene_.controls.size()); ++ci) {
     const ControlSpec& c = scene_.controls[ci];
     BodyState& body = state_.bodies[c.body];
-    if (body.held_by != kNotHeld) continue;  // moved with the hand (move_held_control)
+    if (body.held()) continue;  // moved with the hand (move_held_control)
     const ObjectSpec& o = scene_.objects[c.body];
     // a control its last substep left where it was, at rest, with nothing touching it now, stays
     // there exactly (the same inputs give the same step): most of a cockpit's controls, always
@@ -491,14 +655,16 @@ void World::integrate_controls(double dt_s) {
     // withdrawing fingertip is returned by its spring), or drove it and the control goes on the
     // same way (a toggle snapping over once the finger has pushed it past its centre)
     if (control_push_link_[ci] >= 0 && control_push_Q_[ci] * s.qd > 0.0) {
+      s.push_hand = control_push_hand_[ci];
       s.push_link = control_push_link_[ci];
       s.push_direction = s.qd > 0.0 ? 1 : -1;
     } else if (s.push_direction * s.qd <= 0.0) {
+      s.push_hand = -1;
       s.push_link = -1;
       s.push_direction = 0;
     }
     if (s.push_direction != 0) {
-      note_control_position(ci, ControlCause::kPushed, hand_id_, s.push_link);
+      note_control_position(ci, ControlCause::kPushed, hand_id(s.push_hand), s.push_link);
     } else {
       note_control_position(ci, control_touched_[ci] != 0 ? ControlCause::kObject
                                                           : ControlCause::kMechanism,
@@ -512,19 +678,22 @@ void World::integrate_controls(double dt_s) {
 void World::move_held_control(int control, double dt_s) {
   const ControlSpec& c = scene_.controls[control];
   ControlState& s = state_.controls[control];
-  const Eigen::Vector3d p_held_H = state_.grasp[c.body].X_HO.translation();
-  const double lift_m = grasped_lift_m(c, s, state_.X_GH, p_held_H);
+  const int hand = holder_of(state_.bodies[c.body]);
+  const Eigen::Isometry3d& X_GH = hand_state(hand).X_GH;
+  const Eigen::Vector3d p_held_H = X_HO(c.body, hand).translation();
+  const double lift_m = grasped_lift_m(c, s, X_GH, p_held_H);
   uint32_t gates_open = 0;
   for (std::size_t g = 0; g < c.gates.size(); ++g)
     if (lift_m >= c.gates[g].lift_m) gates_open |= 1u << g;
-  const double q = reachable_q(c, s.q, grasped_q(c, s, state_.X_GH, p_held_H), gates_open);
+  const double q = reachable_q(c, s.q, grasped_q(c, s, X_GH, p_held_H), gates_open);
   s.qd = (q - s.q) / dt_s;
   s.q = q;
+  s.push_hand = -1;
   s.push_link = -1;
   s.push_direction = 0;
   place_control(control);
   control_at_rest_[control] = 0;
-  note_control_position(control, ControlCause::kGrasped, state_.bodies[c.body].held_by, -1);
+  note_control_position(control, ControlCause::kGrasped, hand_id(hand), -1);
 }
 
 void World::place_control(int control) {
@@ -561,6 +730,7 @@ void World::note_control_position(int control, ControlCause cause, int hand_id, 
 // body, or another object
 void World::find_control_pushers() {
   std::fill(control_push_link_.begin(), control_push_link_.end(), -1);
+  std::fill(control_push_hand_.begin(), control_push_hand_.end(), -1);
   std::fill(control_push_N_.begin(), control_push_N_.end(), 0.0);
   std::fill(control_touched_.begin(), control_touched_.end(), 0);
   std::fill(control_push_Q_.begin(), control_push_Q_.end(), 0.0);
@@ -574,7 +744,8 @@ void World::find_control_pushers() {
       if (collision_.is_hand_body(other)) {
         if (a.normal_N > control_push_N_[ci]) {
           control_push_N_[ci] = a.normal_N;
-          control_push_link_[ci] = other - object_count_;
+          control_push_link_[ci] = static_cast<int>(collision_.link_of_body(other));
+          control_push_hand_[ci] = collision_.hand_of_body(other);
         }
         // the hand's generalised force on the control: its contact force at the contact point
         const Eigen::Vector3d F_G = body == body_b ? a.F_on_b_G : Eigen::Vector3d(-a.F_on_b_G);
@@ -600,9 +771,9 @@ void World::controls_after_grasp_stage() {
     ControlState& s = state_.controls[ci];
     const BodyState& body = state_.bodies[c.body];
     if (e.grasp) {
-      s.X_GH_grasp = state_.X_GH;
+      s.X_GH_grasp = hand_state(hand_index(e.hand_id)).X_GH;
       s.q_grasp = s.q;
-    } else {
+    } else if (!body.held()) {  // (handed over: the other hand's grasp follows)
       const Eigen::Vector3d a = joint_axis_G(c);
       s.qd = c.joint == JointKind::kPrismatic ? a.dot(body.v_G) : a.dot(body.w_G);
       place_control(ci);
@@ -614,50 +785,76 @@ void World::controls_after_grasp_stage() {
 void World::grasp_stage() {
   StageTimer timer(stage_times_, Stage::kGrasp);
   penetration_ = PenetrationStats{};
-  if (!scene_.hand) return;
-  const HandNow hand{state_.time_ns, state_.hand_to.tracking, state_.X_GH, &state_.hand_to.q_rad};
-  const auto grasp_object = [&](int object, const HandContact* contacts, std::size_t count) {
-    GraspHold& hold = state_.grasp[object];
+  if (hands_.empty()) return;
+  for (std::size_t h = 0; h < hands_.size(); ++h) {
+    const HandSim& sim = hands_[h];
+    HandState& hs = state_.hands[h];
+    on_object_[h].hand = {state_.time_ns, hs.to.tracking, hs.X_GH, &hs.to.q_rad, sim.hand_id,
+                          sim.holder_bit};
+  }
+  const auto grasp_object = [&](int object) {
     const ObjectSpec& o = scene_.objects[object];
-    grasp_tracker_.update(object, o, contacts, count, hand, glove_links_inside(object, hold), hold,
-                          state_.bodies[object], events_,
-                          o.control >= 0 ? &control_grasp_joint_[o.control] : nullptr);
+    if (!o.dynamic) return;
+    for (std::size_t h = 0; h < hands_.size(); ++h) {
+      HandOnObject& on = on_object_[h];
+      GraspHold& hold = state_.hands[h].grasp[static_cast<std::size_t>(object)];
+      on.contacts = hands_[h].on_object.data();
+      on.count = hands_[h].on_object.size();
+      on.hold = &hold;
+      on.glove_links_inside = glove_links_inside(static_cast<int>(h), object, hold);
+    }
+    grasp_tracker_.update_hands(object, o, on_object_.data(), on_object_.size(), state_.bodies[object],
+                                events_, o.control >= 0 ? &control_grasp_joint_[o.control] : nullptr);
   };
-  // hand contacts of the last substep, grouped by object (contacts are sorted by body_a)
+  const auto clear_hand_contacts = [&] {
+    for (HandSim& sim : hands_) sim.on_object.clear();
+  };
+  // hand contacts of the last substep, grouped by object (contacts are sorted by body_a), and
+  // by hand: a hand's contacts count only for its own grasp test
   std::size_t i = 0;
   int next_object = 0;  // objects before it have had their grasp test this step
   auto grasp_untouched_up_to = [&](int end) {
-    for (; next_object < end; ++next_object) grasp_object(next_object, nullptr, 0);
+    clear_hand_contacts();
+    for (; next_object < end; ++next_object) grasp_object(next_object);
   };
   while (i < applied_.size()) {
     const int object = applied_[i].contact.body_a;
-    hand_contacts_.clear();
+    if (object >= object_count_) break;  // link-link pairs never occur; nothing further
+    grasp_untouched_up_to(object);
     for (; i < applied_.size() && applied_[i].contact.body_a == object; ++i) {
       const AppliedContact& a = applied_[i];
-      if (!collision_.is_hand_body(a.contact.body_b) || collision_.is_hand_body(object)) continue;
+      if (!collision_.is_hand_body(a.contact.body_b)) continue;
       HandContact hc;
-      hc.link = static_cast<Link>(a.contact.body_b - object_count_);
+      hc.link = collision_.link_of_body(a.contact.body_b);
       hc.p_G = a.contact.p_G;
       hc.n_G = -a.contact.n_G;  // from the link into the object
       hc.F_G = -a.F_on_b_G;     // the link's force on the object
-      hand_contacts_.push_back(hc);
+      hands_[static_cast<std::size_t>(collision_.hand_of_body(a.contact.body_b))].on_object.push_back(hc);
       penetration_.max_m = std::max(penetration_.max_m, a.contact.depth_m);
       penetration_.sum_m += a.contact.depth_m;
       ++penetration_.points;
     }
-    if (object >= object_count_) break;  // link-link pairs never occur; nothing further
-    grasp_untouched_up_to(object);
-    grasp_object(object, hand_contacts_.data(), hand_contacts_.size());
+    grasp_object(object);
     next_object = object + 1;
   }
   grasp_untouched_up_to(object_count_);
-  for (const ContactPoint& c : hand_static_)
-    penetration_.static_max_m = std::max(penetration_.static_max_m, c.depth_m);
+  for (const HandSim& sim : hands_)
+    for (const ContactPoint& c : sim.hand_static)
+      penetration_.static_max_m = std::max(penetration_.static_max_m, c.depth_m);
   // held poses for the release velocity
-  for (int o = 0; o < object_count_; ++o)
-    if (state_.bodies[o].held_by != kNotHeld)
-      grasp_tracker_.record_held_pose(state_.grasp[o], state_.bodies[o]);
+  for (int o = 0; o < object_count_; ++o) {
+    const BodyState& body = state_.bodies[o];
+    for (std::size_t h = 0; h < hands_.size(); ++h)
+      if ((body.holders & hands_[h].holder_bit) != 0)
+        grasp_tracker_.record_held_pose(state_.hands[h].grasp[o], body);
+  }
+  name_holders();
   if (!scene_.controls.empty()) controls_after_grasp_stage();
+}
+
+void World::name_holders() {
+  for (BodyState& body : state_.bodies)
+    body.held_by = body.held() ? hand_id(lowest_bit(body.holders)) : kNotHeld;
 }
 
 }  // namespace vcockpit::physics

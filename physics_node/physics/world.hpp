@@ -60,8 +60,15 @@ class World {
   explicit World(Scene scene);
   ~World();
 
-  // The hand from now on (applied over the next step, interpolated across its substeps).
-  void set_hand_input(const HandInput& input);
+  // Hands are numbered 0 .. hand_count() - 1 in the scene's order (Scene::hands); hand_id(h) is
+  // the id the topics use (0 right, 1 left). Accessors taking a hand default to the first.
+  int hand_count() const { return static_cast<int>(hands_.size()); }
+  int hand_id(int hand = 0) const { return hands_[static_cast<std::size_t>(hand)].hand_id; }
+  // The hand with topic id `hand_id`, or -1.
+  int hand_index(int hand_id) const;
+
+  // Hand `hand` from now on (applied over the next step, interpolated across its substeps).
+  void set_hand_input(const HandInput& input, int hand = 0);
   void step();
 
   // Everything that carries from step to step; a world restored to it (from this world or
@@ -74,26 +81,32 @@ class World {
   int64_t time_ns() const { return state_.time_ns; }
   uint64_t step_count() const { return state_.steps; }
   int substeps() const { return state_.substeps; }  // of the last step (chosen every step)
-  int hand_id() const { return hand_id_; }
-  bool hand_active() const { return state_.hand_active; }
+  bool hand_active(int hand = 0) const {
+    return !hands_.empty() && state_.hands[static_cast<std::size_t>(hand)].active;
+  }
 
   const std::vector<BodyState>& bodies() const { return state_.bodies; }
   // The hand that touches the world (the proxy's, when the scene has one): what is drawn.
-  const Eigen::Isometry3d& X_GH() const { return state_.X_GH; }
-  const std::array<Eigen::Isometry3d, kLinkCount>& X_GL() const { return state_.X_GL; }
+  const Eigen::Isometry3d& X_GH(int hand = 0) const { return hand_state(hand).X_GH; }
+  const std::array<Eigen::Isometry3d, kLinkCount>& X_GL(int hand = 0) const {
+    return hand_state(hand).X_GL;
+  }
   // The tracked hand's links at the end of the last step, and how far the farthest link origin
   // or fingertip of the proxy is from them (m; 0 without a proxy).
-  bool has_proxy() const { return proxy_.has_value(); }
-  const std::array<Eigen::Isometry3d, kLinkCount>& tracked_X_GL() const {
-    observe_tracked_hand();
-    return proxy_ ? tracked_X_GL_ : state_.X_GL;
+  bool has_proxy() const { return !hands_.empty() && hands_[0].proxy.has_value(); }
+  const std::array<Eigen::Isometry3d, kLinkCount>& tracked_X_GL(int hand = 0) const {
+    observe_tracked_hand(hand);
+    const HandSim& sim = hands_[static_cast<std::size_t>(hand)];
+    return sim.proxy ? sim.tracked_X_GL : hand_state(hand).X_GL;
   }
-  double tracked_offset_m() const {
-    observe_tracked_hand();
-    return tracked_offset_m_;
+  double tracked_offset_m(int hand = 0) const {
+    observe_tracked_hand(hand);
+    return hands_[static_cast<std::size_t>(hand)].tracked_offset_m;
   }
-  // Pose of the held object in the hand frame (eq. 28), valid while held.
-  const Eigen::Isometry3d& X_HO(int object) const { return state_.grasp[object].X_HO; }
+  // Pose of the held object in hand `hand`'s frame (eq. 28), valid while that hand holds it.
+  const Eigen::Isometry3d& X_HO(int object, int hand = 0) const {
+    return hand_state(hand).grasp[static_cast<std::size_t>(object)].X_HO;
+  }
 
   // Sets control `control` to its position `position` (a flight model's or an instructor's
   // command): the coordinate goes to the position's (a latching button's latch with it), at
@@ -107,6 +120,7 @@ class World {
   const std::vector<ControlEvent>& control_events() const { return control_events_; }
   const std::vector<AppliedContact>& contacts() const { return applied_; }
   const StageTimes& stage_times() const { return stage_times_; }
+  // over every hand
   const PenetrationStats& hand_penetration() const { return penetration_; }
 
   // Bodies found broken after a step and put back (body_check.hpp): every object ever found,
@@ -116,19 +130,51 @@ class World {
   const std::vector<BodyFault>& step_faults() const { return body_check_.new_faults(); }
 
  private:
-  int choose_substeps(bool holding);  // holding: the hand holds an object
+  // One simulated hand: its model's id, proxy and per-step scratch (its state is in
+  // WorldState::hands).
+  struct HandSim {
+    int hand_id = 0;
+    uint8_t holder_bit = 1;  // BodyState::holders
+    std::optional<ProxyHand> proxy;  // a scene with proxy.enabled
+    std::vector<uint8_t> held_mask;      // 1 for the objects it held at the start of this step
+    std::vector<uint32_t> resting_links;  // GraspHold::resting_links at the start of this step
+    std::array<Eigen::Isometry3d, kLinkCount> X_GL_before;  // the links one substep ago
+    HandLinkPoses link_poses;
+    HandLinkPoses proxy_prev_links;  // the proxy's links one substep ago, in H
+    ProxyPose proxy_prev;            // the proxy one substep ago
+    ProxyPose proxy_start;           // the proxy at the start of this step
+    ProxyPose proxy_goal;            // where the proxy heads over this step
+    uint8_t fingers_kept = 0;        // fingers kept still in this step's earlier substeps
+    bool proxy_prev_links_valid = false;  // false after a restore: recomputed from the state
+    std::vector<ContactPoint> contacts;     // its share of this substep's contacts (the proxy's)
+    std::vector<ContactPoint> hand_static;  // its links against static objects
+    std::vector<HandContact> on_object;     // the grasp stage's: its contacts on one object
+    mutable std::array<Eigen::Isometry3d, kLinkCount> tracked_X_GL;
+    mutable double tracked_offset_m = 0.0;
+    mutable bool tracked_observed = false;
+  };
+
+  const HandState& hand_state(int hand) const { return state_.hands[static_cast<std::size_t>(hand)]; }
+  int choose_substeps(bool holding);  // holding: a hand holds an object
   void substep(double dt_s, double alpha, int remaining, bool skip_held_hand_pairs);
-  void move_hand(double alpha, int remaining);
-  void place_hand(const Eigen::Isometry3d& X_GH, const JointAngles& q_rad);
-  void constrain_proxy(double dt_s);
-  void observe_tracked_hand() const;  // on demand: one forward kinematics a step
-  // The links of the glove's (tracked) hand that overlap `object` now (bit l); 0 unless the
-  // hand is clearing it after a release (GraspHold::hand_clearing), the only time they matter.
-  uint32_t glove_links_inside(int object, const GraspHold& hold) const;
+  void move_hand(int hand, double alpha, int remaining);
+  void place_hand(int hand, const Eigen::Isometry3d& X_GH, const JointAngles& q_rad);
+  // The proxies after the narrowphase: each hand's share of the contacts, constrained, then
+  // put back in order.
+  void constrain_proxies(double dt_s);
+  void constrain_proxy(int hand, double dt_s);
+  void observe_tracked_hand(int hand) const;  // on demand: one forward kinematics a step
+  // The links of hand `hand`'s glove (tracked) hand that overlap `object` now (bit l); 0 unless
+  // that hand is clearing it after a release (GraspHold::hand_clearing), the only time they
+  // matter.
+  uint32_t glove_links_inside(int hand, int object, const GraspHold& hold) const;
+  // Where a held object is: eq. 29 for one hand, the mean of both hands' held poses for two.
+  Eigen::Isometry3d held_pose(int object) const;
   void move_held_objects(double dt_s);
   void build_contact_bodies();
   void integrate(double dt_s);
   void grasp_stage();
+  void name_holders();  // BodyState::held_by from holders
   // controls (control.hpp): the free motion of each one not held, the held ones projected from
   // the hand, the pose and velocity of a control's body from its coordinate, and its discrete
   // position's change as an event
@@ -138,6 +184,7 @@ class World {
   void note_control_position(int control, ControlCause cause, int hand_id, int link);
   void find_control_pushers();
   void controls_after_grasp_stage();
+  int holder_of(const BodyState& body) const;  // the first hand holding it, or -1
 
   // the model and the stages: built once; what they keep between steps (sweep orders, work
   // space) never changes a result, which is why a restored world steps like the original
@@ -147,9 +194,8 @@ class World {
   ContactForceModel forces_;
   GraspTracker grasp_tracker_;
   BodyCheck body_check_;
-  std::optional<ProxyHand> proxy_;  // a scene with a hand and proxy.enabled
+  std::vector<HandSim> hands_;  // per hand; never resized after construction (proxies point in)
   int object_count_;
-  int hand_id_ = 0;
   int64_t step_ns_;
   std::vector<Eigen::Matrix3d> I_O_inv_;  // inverse body-frame inertia, dynamic objects
   std::vector<double> control_inertia_;    // per control: its body's inertia along the joint
@@ -160,39 +206,31 @@ class World {
   // scratch: rebuilt every step or substep before it is read
   std::vector<Eigen::Isometry3d> X_GO_;         // collision input, all objects
   std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
-  std::vector<uint8_t> held_mask_;              // 1 for the objects held at the start of this step
-  std::vector<uint32_t> resting_links_;         // GraspHold::resting_links at the start of this step
+  std::vector<uint8_t> held_mask_;              // 1 for the objects any hand held at the start of this step
   std::vector<BodyState> start_bodies_;         // the bodies at the start of this step
-  std::array<Eigen::Isometry3d, kLinkCount> X_GL_before_;  // the links one substep ago
-  HandLinkPoses link_poses_;
-  HandLinkPoses proxy_prev_links_;  // the proxy's links one substep ago, in H
-  ProxyPose proxy_prev_;            // the proxy one substep ago
-  ProxyPose proxy_start_;           // the proxy at the start of this step
-  ProxyPose proxy_goal_;            // where the proxy heads over this step
-  uint8_t fingers_kept_ = 0;        // fingers kept still in this step's earlier substeps
-  bool proxy_prev_links_valid_ = false;  // false after a restore: recomputed from the state
+  std::vector<SubstepChoice::HandSweep> sweeps_;
+  std::vector<HandOnObject> on_object_;         // the grasp stage's, per hand
   bool held_pairs_skipped_ = false;      // in this substep
   std::vector<ContactPoint> contacts_;
-  std::vector<ContactPoint> hand_static_;  // the proxy's links against static objects
+  std::vector<ContactPoint> hand_static_;  // every hand's links against static objects
+  std::vector<ContactPoint> merged_;       // the contacts no proxy takes, in a substep
+  std::vector<const std::vector<ContactPoint>*> merge_lists_;  // merged_ and each hand's share
   std::vector<ContactBody> contact_bodies_;
   std::vector<Eigen::Vector3d> F_G_;
   std::vector<Eigen::Vector3d> M_G_;
-  std::vector<HandContact> hand_contacts_;
   // observations of the last step
   std::vector<AppliedContact> applied_;
   std::vector<GraspEvent> events_;
   std::vector<ControlEvent> control_events_;
   std::vector<int> control_push_link_;    // per control, this substep: the hand link pushing it hardest
+  std::vector<int> control_push_hand_;    // ... and its hand
   std::vector<double> control_push_N_;    // ... and its normal force
-  std::vector<double> control_push_Q_;    // ... and the hand's generalised force on it
+  std::vector<double> control_push_Q_;    // ... and the hands' generalised force on it
   std::vector<uint8_t> control_touched_;  // ... touched by another object
   std::vector<int> control_commanded_;    // per control: the position commanded since the last step, -1
   std::vector<uint8_t> control_at_rest_;  // per control: its last free substep changed nothing
   StageTimes stage_times_;
   PenetrationStats penetration_;
-  mutable std::array<Eigen::Isometry3d, kLinkCount> tracked_X_GL_;
-  mutable double tracked_offset_m_ = 0.0;
-  mutable bool tracked_observed_ = false;
 };
 
 }  // namespace vcockpit::physics

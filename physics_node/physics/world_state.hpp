@@ -23,18 +23,11 @@ struct HandInput {
   bool tracking = true;  // false: glove lost; the hand stays, held objects are let go
 };
 
-struct WorldState {
-  int64_t time_ns = 0;
-  uint64_t steps = 0;
-  int substeps = 1;  // the last step's count (chosen afresh every step: an observation)
-
-  std::vector<BodyState> bodies;  // per object, the scene's order
-  std::vector<GraspHold> grasp;   // per object: the grasp tracker's state
-  std::vector<ControlState> controls;  // per control (Scene::controls)
-
-  bool hand_active = false;  // a hand input has arrived (and the scene has a hand)
-  HandInput hand_from;       // the hand at the start of the coming step
-  HandInput hand_to;         // at its end: the latest input
+// One simulated hand's state.
+struct HandState {
+  bool active = false;  // an input has arrived for it
+  HandInput from;       // the hand at the start of the coming step
+  HandInput to;         // at its end: the latest input
   // the hand now (after the last substep), the proxy's when the scene has one (proxy_hand.hpp):
   // the coming step's link velocities and reach start here
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
@@ -49,6 +42,17 @@ struct WorldState {
   // the proxy slides along a panel it touches (a god-object) instead of going in and being
   // shifted back out every step.
   std::vector<Eigen::Vector3d> blocking_out_G;
+  std::vector<GraspHold> grasp;  // per object: this hand's grasp of it
+};
+
+struct WorldState {
+  int64_t time_ns = 0;
+  uint64_t steps = 0;
+  int substeps = 1;  // the last step's count (chosen afresh every step: an observation)
+
+  std::vector<BodyState> bodies;  // per object, the scene's order
+  std::vector<ControlState> controls;  // per control (Scene::controls)
+  std::vector<HandState> hands;   // per hand (Scene::hands)
 
   std::vector<StickAnchor> anchors;  // friction stick anchors of the last substep, by pair
 };

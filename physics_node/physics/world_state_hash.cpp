@@ -72,23 +72,30 @@ uint64_t hash_world_state(const WorldState& s) {
     h.pose(b.X_GO);
     h.vec(b.v_G);
     h.vec(b.w_G);
+    h.u64(b.holders);
     h.i64(b.held_by);
   }
-  h.flag(s.hand_active);
-  hash_hand(h, s.hand_from);
-  hash_hand(h, s.hand_to);
-  h.pose(s.X_GH);
-  h.size(s.q_rad.size());
-  for (double q : s.q_rad)
-    h.f64(q);
-  h.size(s.X_GL.size());
-  for (const Eigen::Isometry3d& X : s.X_GL)
-    h.pose(X);
-  h.flag(s.pushing);
-  h.u64(s.fingers_on_held);
-  h.size(s.blocking_out_G.size());
-  for (const Eigen::Vector3d& n : s.blocking_out_G)
-    h.vec(n);
+  h.size(s.hands.size());
+  for (const HandState& hand : s.hands) {
+    h.flag(hand.active);
+    hash_hand(h, hand.from);
+    hash_hand(h, hand.to);
+    h.pose(hand.X_GH);
+    h.size(hand.q_rad.size());
+    for (double q : hand.q_rad)
+      h.f64(q);
+    h.size(hand.X_GL.size());
+    for (const Eigen::Isometry3d& X : hand.X_GL)
+      h.pose(X);
+    h.flag(hand.pushing);
+    h.u64(hand.fingers_on_held);
+    h.size(hand.blocking_out_G.size());
+    for (const Eigen::Vector3d& n : hand.blocking_out_G)
+      h.vec(n);
+    h.size(hand.grasp.size());
+    for (const GraspHold& g : hand.grasp)
+      hash_hold(h, g);
+  }
   h.size(s.controls.size());
   for (const ControlState& c : s.controls) {
     h.f64(c.q);
@@ -96,14 +103,12 @@ uint64_t hash_world_state(const WorldState& s) {
     h.i64(c.position);
     h.flag(c.latched);
     h.flag(c.pressed);
+    h.i64(c.push_hand);
     h.i64(c.push_link);
     h.i64(c.push_direction);
     h.pose(c.X_GH_grasp);
     h.f64(c.q_grasp);
   }
-  h.size(s.grasp.size());
-  for (const GraspHold& g : s.grasp)
-    hash_hold(h, g);
   h.size(s.anchors.size());
   for (const StickAnchor& a : s.anchors) {
     h.i64(a.body_a);

@@ -211,7 +211,7 @@ TEST_F(PhysicsNodeTest, RealTimeHoldsOneKilohertzAndTheHandFollowsTheSamples) {
 
   // every hand_state shows the wrist at the source time it names: the log interpolated there
   physics::Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
-  const auto log = hand::read_glove_log(sweep_log(), *scene.hand);
+  const auto log = hand::read_glove_log(sweep_log(), scene.hands[0]);
   const int64_t t0 = log.samples.front().t_ns;
   const int64_t pass_ns = log.samples.back().t_ns - t0 + 1'000'000;
   auto looped = [&](int64_t pass, std::size_t i) {  // sample i of pass `pass` as replayed
@@ -227,7 +227,7 @@ TEST_F(PhysicsNodeTest, RealTimeHoldsOneKilohertzAndTheHandFollowsTheSamples) {
     ASSERT_LT(index, log.samples.size());
     const auto shown = physics_io::interpolate_sample(looped(pass, index), looped(pass, index + 1),
                                                       h.sample_time_ns);
-    const auto expected = physics_io::hand_input_from_glove(*scene.hand, shown);
+    const auto expected = physics_io::hand_input_from_glove(scene.hands[0], shown);
     const double error_m = (h.position - expected.X_GH.translation()).norm();
     // a sample lost on the best-effort stream is interpolated across: within a micrometre. A node
     // that falls behind (the sanitizers, or a busy machine: a late step) resynchronises with a

@@ -32,8 +32,8 @@ TEST(CockpitGrasp, CupIsGraspedLiftedReleasedAndComesToRest) {
   physics::Scene scene = load_scene(scene_path());
   const int cup = scene.find_object("cup");
   ASSERT_GE(cup, 0);
-  const auto log = hand::read_glove_log(grasp_log_path(), *scene.hand);
-  const hand::HandModel hand = *scene.hand;
+  const auto log = hand::read_glove_log(grasp_log_path(), scene.hands[0]);
+  const hand::HandModel hand = scene.hands[0];
   physics::World world(scene);
   const double rest_z = world.bodies()[cup].X_GO.translation().z();
 

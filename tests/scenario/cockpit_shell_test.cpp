@@ -92,7 +92,7 @@ TEST(CockpitShell, TheBundledGesturesKeepClearOfTheShell) {
   for (const char* log_name : {"reach_grasp_lift_release.csv", "open_hand_sweep.csv"}) {
     SCOPED_TRACE(log_name);
     physics::World world(cockpit());
-    const hand::HandModel& hand = *world.scene().hand;
+    const hand::HandModel& hand = world.scene().hands[0];
     const auto log =
         hand::read_glove_log(source_dir() + "/config/glove_logs/" + log_name, hand);
     physics_io::ReplayDriver driver(world, hand);

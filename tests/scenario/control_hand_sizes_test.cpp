@@ -33,8 +33,8 @@ std::string changes_of(physics::World& world, const std::vector<hand::GloveSampl
               physics::control_cause_name(e.cause) + ")\n";
     }
   };
-  physics_io::ReplayDriver driver(world, *scene.hand);
-  hand::SampleValidator validator(*scene.hand);
+  physics_io::ReplayDriver driver(world, scene.hands[0]);
+  hand::SampleValidator validator(scene.hands[0]);
   for (hand::GloveSample sample : samples) {
     if (validator.accept(sample)) driver.feed(sample, step);
   }
@@ -43,8 +43,8 @@ std::string changes_of(physics::World& world, const std::vector<hand::GloveSampl
 
 std::string with_hand(const std::string& script, const std::string& hand_file) {
   physics::Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
-  scene.hand = load_hand_model(source_dir() + "/config/" + hand_file);
-  const hand::HandModel hand = *scene.hand;
+  scene.hands = {load_hand_model(source_dir() + "/config/" + hand_file)};
+  const hand::HandModel hand = scene.hands[0];
   physics::World world(std::move(scene));
   return changes_of(world, script_samples(source_dir() + "/config/gestures/" + script + ".yaml", hand));
 }

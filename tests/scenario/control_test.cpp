@@ -164,7 +164,7 @@ TEST(Controls, AFingertipPressesTheMasterCautionButtonAndItsSpringReturnsIt) {
   const int button = scene.find_control("master_caution");
   ASSERT_GE(button, 0);
   const physics::ControlSpec& c = scene.controls[static_cast<std::size_t>(button)];
-  const hand::HandModel& model = *scene.hand;
+  const hand::HandModel& model = scene.hands[0];
   // a pointing hand: index straight, the other fingers and the thumb curled in
   physics::HandInput input;
   input.q_rad = model.rest_pose();

@@ -37,7 +37,7 @@ constexpr double kConsoleTop_m = 0.70;
 // given objects.
 Scene console_scene(bool proxy) {
   Scene scene;
-  scene.hand = load_hand_model(source_dir() + "/config/hand.yaml");
+  scene.hands = {load_hand_model(source_dir() + "/config/hand.yaml")};
   scene.hand_material = test::material(2.0e4, 1.0, 0.8);
   scene.objects.push_back(test::floor_box(test::material(5.0e4, 0.7, 0.6, 0.9)));
   scene.objects.push_back(test::static_box("console", {0.6, 0.6, 0.7}, at(0.4, 0.0, 0.35),
@@ -49,7 +49,7 @@ Scene console_scene(bool proxy) {
 // How deep the hand's links are below the console's top (m; 0 when above it). Valid while the
 // hand is over the console's top face.
 double depth_below_top(const World& world) {
-  const HandModel& hand = *world.scene().hand;
+  const HandModel& hand = world.scene().hands[0];
   const auto& X_GL = world.X_GL();
   double lowest_m = 1e9;
   const Eigen::Vector3d half = 0.5 * hand.palm_size_m;
@@ -81,7 +81,7 @@ double lerp(double a, double b, double s) { return a + std::clamp(s, 0.0, 1.0) *
 
 TEST(ProxyHand, PressedIntoTheConsoleTheHandRestsOnItAndSlides) {
   World world(console_scene(true));
-  const HandModel& hand = *world.scene().hand;
+  const HandModel& hand = world.scene().hands[0];
   double deepest_m = 0.0;
   double lowest_at_rest_m = 1.0;
   double offset_at_rest_m = 0.0;
@@ -114,7 +114,7 @@ double ball_speed_after_sweep(bool proxy) {
                                                at(0.45, 0.0, kConsoleTop_m + 0.03),
                                                test::material(2.0e4, 0.9, 0.8)));
   World world(std::move(scene));
-  const HandModel& hand = *world.scene().hand;
+  const HandModel& hand = world.scene().hands[0];
   const int ball = world.scene().find_object("ball");
   double fastest_mps = 0.0;
   for (int step = 0; step < 400; ++step) {
@@ -152,7 +152,7 @@ Squeeze squeeze_cup(bool proxy) {
                                                at(0.35, 0.0, kConsoleTop_m + 0.5 * height_m),
                                                test::material(3.0e4, 0.5, 0.4, 0.8)));
   World world(std::move(scene));
-  const HandModel& hand = *world.scene().hand;
+  const HandModel& hand = world.scene().hands[0];
   const int cup = world.scene().find_object("cup");
   const Eigen::Vector3d start = world.bodies()[cup].X_GO.translation();
   // palm centre over the cup (the palm box sits ahead of the wrist)
@@ -212,7 +212,7 @@ TEST(ProxyHand, ACupSqueezedAgainstTheConsoleIsNotCrushed) {
 
 TEST(ProxyHand, TheWristApproachesAFarTrackedPoseAtItsMaximumSpeed) {
   World world(console_scene(true));
-  const HandModel& hand = *world.scene().hand;
+  const HandModel& hand = world.scene().hands[0];
   world.set_hand_input(hand_at(hand, {0.2, 0.0, 1.2}));
   world.step();
   world.set_hand_input(hand_at(hand, {0.2, 1.0, 1.2}));  // a 1 m jump, e.g. a tracker glitch
@@ -227,7 +227,7 @@ TEST(ProxyHand, TheWristApproachesAFarTrackedPoseAtItsMaximumSpeed) {
 // more than max_speed_mps * step per step, and the fist is reached in the end.
 TEST(ProxyHand, TheFingersApproachAFarTrackedShapeAtTheMaximumSpeed) {
   World world(console_scene(true));
-  const HandModel& hand = *world.scene().hand;
+  const HandModel& hand = world.scene().hands[0];
   HandInput open = hand_at(hand, {0.2, 0.0, 1.2});
   world.set_hand_input(open);
   world.step();
@@ -237,18 +237,18 @@ TEST(ProxyHand, TheFingersApproachAFarTrackedShapeAtTheMaximumSpeed) {
   const double reach_m = world.scene().proxy.max_speed_mps * world.scene().step_s;
   HandLinkPoses before;
   HandLinkPoses now;
-  forward_kinematics(hand, world.state().q_rad, before);
+  forward_kinematics(hand, world.state().hands[0].q_rad, before);
   double fastest_m = 0.0;
   for (int step = 0; step < 200; ++step) {
     world.step();
-    forward_kinematics(hand, world.state().q_rad, now);
+    forward_kinematics(hand, world.state().hands[0].q_rad, now);
     for (int f = 0; f < kFingerCount; ++f)
       fastest_m = std::max(fastest_m, (now.p_H_tip[f] - before.p_H_tip[f]).norm());
     before = now;
   }
   EXPECT_LE(fastest_m, reach_m * 1.01);  // the shares are measured again to within this
   EXPECT_GT(fastest_m, 0.9 * reach_m);  // and it does move at that speed
-  for (int j = 0; j < kJointCount; ++j) EXPECT_NEAR(world.state().q_rad[j], fist.q_rad[j], 1e-9) << j;
+  for (int j = 0; j < kJointCount; ++j) EXPECT_NEAR(world.state().hands[0].q_rad[j], fist.q_rad[j], 1e-9) << j;
 }
 
 // A held torch gripped by the thumb on one side and three fingers on the other: the fingers go

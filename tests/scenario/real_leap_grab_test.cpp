@@ -25,7 +25,7 @@ std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
 
 TEST(RealLeapGrab, TheClosingFistGraspsTheBarWithoutFlingingItOrSinkingIntoTheTable) {
   physics::World world(load_scene(source_dir() + "/tests/data/real/leap_grab_scene.yaml"));
-  const hand::HandModel& hand = *world.scene().hand;
+  const hand::HandModel& hand = world.scene().hands[0];
   const auto log = hand::read_glove_log(source_dir() + "/tests/data/real/leap_grab.csv", hand);
   const int bar = world.scene().find_object("bar");
   ASSERT_GE(bar, 0);

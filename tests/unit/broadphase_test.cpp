@@ -51,7 +51,8 @@ TEST(SweepAndPrune, SamePairsAsBruteForceThroughRandomMotion) {
       boxes[i] = {centre[i] - half[i], centre[i] + half[i]};
       sap.set_box(static_cast<int>(i), boxes[i]);
     }
-    sap.set_hand_enabled(hand_enabled);
+    for (std::size_t i = 0; i < kinds.size(); ++i)
+      if (kinds[i] == Kind::kHand) sap.set_enabled(static_cast<int>(i), hand_enabled);
     sap.find_pairs(pairs);
     const auto expected = brute_force(kinds, boxes, hand_enabled);
     ASSERT_EQ(pairs, expected) << "round " << round;
@@ -68,7 +69,8 @@ TEST(SweepAndPrune, TouchingBoxesArePairsAndStaticOrHandPairsNever) {
   std::vector<BodyPair> pairs;
   sap.find_pairs(pairs);
   EXPECT_EQ(pairs, (std::vector<BodyPair>{{0, 2}, {1, 2}}));  // the hand is disabled
-  sap.set_hand_enabled(true);
+  sap.set_enabled(3, true);
+  sap.set_enabled(4, true);
   sap.find_pairs(pairs);
   EXPECT_EQ(pairs, (std::vector<BodyPair>{{0, 2}, {1, 2}, {2, 3}, {2, 4}}));
 }

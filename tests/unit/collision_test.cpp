@@ -763,11 +763,11 @@ TEST(CollisionHand, IndexTipDipsTwoMillimetresIntoABox) {
   constexpr double dip_m = 2e-3;
 
   Scene scene;
-  scene.hand = hand;
+  scene.hands = {hand};
   scene.objects = {box_under_index_tip(hand, X_GL, dip_m, true)};
   CollisionWorld world(scene);
   ASSERT_TRUE(world.has_hand());
-  EXPECT_EQ(world.hand_link_body(Link::kPalm), 1);
+  EXPECT_EQ(world.hand_link_body(0, Link::kPalm), 1);
   const auto contacts = step(world, initial_poses(scene), &X_GL);
 
   // the phalanx lies on the box: its underside line from the box's edge to the segment's end
@@ -776,7 +776,7 @@ TEST(CollisionHand, IndexTipDipsTwoMillimetresIntoABox) {
   const double r_m = hand.capsules[distal].radius_m, length_m = hand.capsules[distal].length_m;
   for (const ContactPoint& c : contacts) {
     EXPECT_EQ(c.body_a, 0);
-    EXPECT_EQ(c.body_b, world.hand_link_body(Link::kIndexDistal));
+    EXPECT_EQ(c.body_b, world.hand_link_body(0, Link::kIndexDistal));
     EXPECT_TRUE(world.is_hand_body(c.body_b));
     EXPECT_NEAR(c.depth_m, dip_m, 1e-6);
     expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal, box -> finger");
@@ -793,7 +793,7 @@ TEST(CollisionHand, DisabledHandGivesNoHandPairs) {
   const HandModel& hand = shipped_hand();
   const auto X_GL = flat_hand_links(hand, pose(0.2, -0.1, 0.9));
   Scene scene;
-  scene.hand = hand;
+  scene.hands = {hand};
   scene.objects = {box_under_index_tip(hand, X_GL, 2e-3, true)};
   CollisionWorld world(scene);
   const auto X_GO = initial_poses(scene);
@@ -809,7 +809,7 @@ TEST(CollisionHand, HandAgainstStaticObjectAndLinkAgainstLinkAreNeverPairs) {
   const HandModel& hand = shipped_hand();
   const auto X_GL = flat_hand_links(hand, pose(0.2, -0.1, 0.9));
   Scene scene;
-  scene.hand = hand;
+  scene.hands = {hand};
   scene.proxy.enabled = false;  // the paper's kinematic hand: no hand-static pairs at all
   scene.objects = {box_under_index_tip(hand, X_GL, 2e-3, false)};
   CollisionWorld world(scene);
@@ -822,7 +822,7 @@ TEST(CollisionHand, AProxyHandGetsItsStaticContactsApart) {
   const HandModel& hand = shipped_hand();
   const auto X_GL = flat_hand_links(hand, pose(0.2, -0.1, 0.9));
   Scene scene;
-  scene.hand = hand;
+  scene.hands = {hand};
   scene.objects = {box_under_index_tip(hand, X_GL, 2e-3, false)};
   CollisionWorld world(scene);
   ASSERT_TRUE(world.reports_hand_static());
@@ -834,13 +834,13 @@ TEST(CollisionHand, AProxyHandGetsItsStaticContactsApart) {
   ASSERT_FALSE(hand_static.empty());
   for (const ContactPoint& c : hand_static) {
     EXPECT_EQ(c.body_a, 0) << "the box first";
-    EXPECT_EQ(c.body_b, world.hand_link_body(Link::kIndexDistal));
+    EXPECT_EQ(c.body_b, world.hand_link_body(0, Link::kIndexDistal));
     EXPECT_NEAR(c.depth_m, 2e-3, 1e-6);
   }
   // the same contacts again for links moved 1 mm up: 1 mm shallower
   auto X_GL_up = X_GL;
   for (auto& X : X_GL_up) X.translation().z() += 1e-3;
-  world.compute_hand_static_contacts(X_GL_up, hand_static);
+  world.compute_hand_static_contacts(0, X_GL_up, hand_static);
   ASSERT_FALSE(hand_static.empty());
   for (const ContactPoint& c : hand_static) EXPECT_NEAR(c.depth_m, 1e-3, 1e-6);
 }
@@ -858,7 +858,7 @@ Scene busy_scene(const Eigen::Isometry3d& X_GH) {
   const Eigen::Vector3d pad_size(0.08, 0.045, 0.02);
   Eigen::Isometry3d X_GPad = X_GH * pose(0.045, -0.0175, palm_bottom_m + d - 0.5 * pad_size.z());
   Scene scene;
-  scene.hand = hand;
+  scene.hands = {hand};
   scene.objects = {
       floor_box(),                                                                          // 0
       object("lid", true, Shape::box({0.1, 0.1, 0.02}), pose(-0.3, 0.2, 0.11 - 2 * d)),     // 1
@@ -880,7 +880,7 @@ TEST(Collision, SameSceneSamePosesGiveBitwiseIdenticalSortedContacts) {
   CollisionWorld world(scene);
   const auto first = step(world, X_GO, &X_GL);
 
-  const int palm = world.hand_link_body(Link::kPalm);
+  const int palm = world.hand_link_body(0, Link::kPalm);
   std::vector<std::pair<int, int>> pairs;
   for (const ContactPoint& c : first) {
     EXPECT_LT(c.body_a, c.body_b);

@@ -64,7 +64,7 @@ struct Rig {
   std::mt19937 rng{7};
   std::normal_distribution<double> noise{0.0, 1.0};
 
-  explicit Rig(const GraspParams& p = params()) : tracker(p, kStep_s, {0.0, 0.0, -9.81}, kHand) {
+  explicit Rig(const GraspParams& p = params()) : tracker(p, kStep_s, {0.0, 0.0, -9.81}) {
     cup.dynamic = true;
     cup.mass_kg = 0.2;
     hold = tracker.initial_hold(cup);
@@ -286,7 +286,7 @@ TEST(GraspTracker, AThumbGrippingAloneIsWatchedForOpening) {
 // The links that touched an object when it was let go stand off it until the regrab cooldown
 // ends (GraspHold::resting_links; the proxy reads them), whatever touches it afterwards.
 TEST(GraspTracker, TheLinksThatLetGoAreNamedUntilTheCooldownEnds) {
-  GraspTracker tracker(params(), kStep_s, {0.0, 0.0, -9.81}, kHand);
+  GraspTracker tracker(params(), kStep_s, {0.0, 0.0, -9.81});
   ObjectSpec cup;
   cup.dynamic = true;
   cup.mass_kg = 0.2;
@@ -346,7 +346,7 @@ TEST(GraspTracker, TheLinksThatLetGoAreNamedUntilTheCooldownEnds) {
 TEST(GraspTracker, ALinkStaysRestingWhileTheGlovesLinkIsStillInTheObject) {
   for (const bool glove_open : {true, false}) {
     SCOPED_TRACE(glove_open ? "the glove opened" : "the glove still closed");
-  GraspTracker tracker{GraspParams{}, kStep_s, {0.0, 0.0, -9.81}, kHand};
+  GraspTracker tracker{GraspParams{}, kStep_s, {0.0, 0.0, -9.81}};
   ObjectSpec ball;
   ball.dynamic = true;
   ball.mass_kg = 0.06;

@@ -231,7 +231,7 @@ TEST(MujocoScene, OddNamesAndNoHand) {
 TEST(MujocoScene, HandGeomsSitWhereOursDo) {
   const Held& held = held_cockpit();
   const physics::World& world = *held.world;
-  const hand::HandModel& hand = *world.scene().hand;
+  const hand::HandModel& hand = world.scene().hands[0];
   MujocoWorld mj(world.scene());
   mj.set_hand(world.X_GL());
   mj.forward();

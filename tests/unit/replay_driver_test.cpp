@@ -49,7 +49,7 @@ hand::GloveSample truth(const hand::HandModel& hand, int64_t t_ns) {
 
 TEST(ReplayDriver, A33HzStreamMovesTheHandOverTheWholeIntervalAtTheRecordedSpeed) {
   physics::World world(cockpit());
-  const hand::HandModel& hand = *world.scene().hand;
+  const hand::HandModel& hand = world.scene().hands[0];
   ReplayDriver driver(world, hand);
   HandMotionPeak peak;
   double worst_m = 0.0, worst_rad = 0.0;
@@ -60,7 +60,7 @@ TEST(ReplayDriver, A33HzStreamMovesTheHandOverTheWholeIntervalAtTheRecordedSpeed
     const Eigen::Isometry3d expected = hand::X_GH_from_sample(hand, truth(hand, world.time_ns()));
     worst_m = std::max(worst_m, (world.X_GH().translation() - expected.translation()).norm());
     worst_rad = std::max(
-        worst_rad, std::abs(world.state().hand_to.q_rad[static_cast<int>(hand::Joint::kIndexMcp)] -
+        worst_rad, std::abs(world.state().hands[0].to.q_rad[static_cast<int>(hand::Joint::kIndexMcp)] -
                             (0.1 + kCurl_radps * world.time_ns() * 1e-9)));
   };
   const int64_t interval_ns = 30'303'030;  // 33 Hz, off the 1 ms step grid
@@ -83,7 +83,7 @@ TEST(ReplayDriver, A33HzStreamMovesTheHandOverTheWholeIntervalAtTheRecordedSpeed
 
 TEST(ReplayDriver, MaxGapZeroTakesEachSampleInOneStepAsBefore) {
   physics::World world(cockpit());
-  const hand::HandModel& hand = *world.scene().hand;
+  const hand::HandModel& hand = world.scene().hands[0];
   InputTiming timing;
   timing.max_gap_ns = 0;
   ReplayDriver driver(world, hand, timing);
@@ -113,7 +113,7 @@ std::vector<hand::GloveSample> runs(const hand::HandModel& hand,
 
 TEST(ReplayDriver, GapsOverTheMaxGapHoldAndOverTheTimeoutLoseTheGloveUntilTheNextSample) {
   physics::World world(cockpit());
-  const hand::HandModel& hand = *world.scene().hand;
+  const hand::HandModel& hand = world.scene().hands[0];
   ReplayDriver driver(world, hand);  // max gap 0.25 s, glove timeout 1 s
   // 0.1 s gap (bridged), 0.3 s (held), 1.2 s (held, glove lost after 1 s)
   const auto samples = runs(hand, {{0, 100}, {200, 300}, {600, 700}, {1900, 2000}});
@@ -126,7 +126,7 @@ TEST(ReplayDriver, GapsOverTheMaxGapHoldAndOverTheTimeoutLoseTheGloveUntilTheNex
     world.step();
     const int64_t t = world.time_ns();
     const Eigen::Vector3d p = world.X_GH().translation();
-    const bool tracking = world.state().hand_to.tracking;
+    const bool tracking = world.state().hands[0].to.tracking;
     if (t > 100 * kMs && t < 200 * kMs) {  // bridged: on the line
       EXPECT_LT((p - position_at(t)).norm(), 1e-12) << t;
       EXPECT_TRUE(tracking);
@@ -161,7 +161,7 @@ TEST(ReplayDriver, GapsOverTheMaxGapHoldAndOverTheTimeoutLoseTheGloveUntilTheNex
 
 TEST(ReplayDriver, PastTheLastSampleTheHandHoldsItAndTheGloveIsLostAfterTheTimeout) {
   physics::World world(cockpit());
-  const hand::HandModel& hand = *world.scene().hand;
+  const hand::HandModel& hand = world.scene().hands[0];
   ReplayDriver driver(world, hand);
   auto step = [&] { world.step(); };
   for (const auto& s : runs(hand, {{0, 50}}))
@@ -176,7 +176,7 @@ TEST(ReplayDriver, PastTheLastSampleTheHandHoldsItAndTheGloveIsLostAfterTheTimeo
 
 TEST(ReplayDriver, ARestartedSourceStartsAtTheWorldsPresentWithNoIntervalFromTheOld) {
   physics::World world(cockpit());
-  const hand::HandModel& hand = *world.scene().hand;
+  const hand::HandModel& hand = world.scene().hands[0];
   ReplayDriver driver(world, hand);
   auto step = [&] { world.step(); };
   for (const auto& s : runs(hand, {{0, 100}}))
@@ -188,7 +188,7 @@ TEST(ReplayDriver, ARestartedSourceStartsAtTheWorldsPresentWithNoIntervalFromThe
   driver.feed(s, step);
   EXPECT_EQ(world.time_ns(), 100 * kMs);
   const Eigen::Isometry3d X_GH = hand::X_GH_from_sample(hand, s);
-  EXPECT_LT((world.state().hand_to.X_GH.translation() - X_GH.translation()).norm(), 1e-12);
+  EXPECT_LT((world.state().hands[0].to.X_GH.translation() - X_GH.translation()).norm(), 1e-12);
   EXPECT_EQ(driver.counts().intervals, 10u);
 }
 
@@ -196,7 +196,7 @@ TEST(ReplayDriver, AMaxGapLongerThanTheGloveTimeoutIsRefused) {
   physics::World world(cockpit());
   InputTiming timing;
   timing.max_gap_ns = 1100 * kMs;
-  EXPECT_THROW(ReplayDriver(world, *world.scene().hand, timing), std::invalid_argument);
+  EXPECT_THROW(ReplayDriver(world, world.scene().hands[0], timing), std::invalid_argument);
 }
 
 }  // namespace

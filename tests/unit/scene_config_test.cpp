@@ -103,10 +103,10 @@ constexpr double kConsoleTop_m = 0.70;
 TEST_F(ShippedCockpit, WorldAndHand) {
   EXPECT_EQ(scene_->gravity_mps2, Eigen::Vector3d(0.0, 0.0, -9.81));
   EXPECT_EQ(scene_->step_s, 0.001);
-  ASSERT_TRUE(scene_->hand.has_value());
+  ASSERT_EQ(scene_->hands.size(), 1u);
   const hand::HandModel hand = load_hand_model(source_dir() + "/config/hand.yaml");
-  EXPECT_EQ(scene_->hand->palm_size_m, hand.palm_size_m);
-  EXPECT_EQ(scene_->hand->left, hand.left);
+  EXPECT_EQ(scene_->hands[0].palm_size_m, hand.palm_size_m);
+  EXPECT_EQ(scene_->hands[0].left, hand.left);
   EXPECT_EQ(scene_->hand_material.stiffness_Npm, 2.0e4);
   EXPECT_EQ(scene_->hand_material.mu_s, 1.0);
 }
@@ -305,7 +305,7 @@ contact: {slip_speed_mps: 0.002, max_substeps: 16}
 TEST(SceneConfig, ValidSceneParses) {
   const Scene scene = parse_scene(ConfigNode::load_string(kValidScene, "inline.yaml"), "");
   ASSERT_EQ(scene.objects.size(), 4u);
-  EXPECT_FALSE(scene.hand.has_value());
+  EXPECT_FALSE(scene.has_hands());
   const ObjectSpec& table = scene.objects[0];
   EXPECT_FALSE(table.dynamic);
   EXPECT_EQ(table.material.damping_ratio, 0.9);
@@ -569,8 +569,8 @@ TEST(SceneConfig, HandIsLoadedRelativeToTheSceneFile) {
   const std::string scene_path =
       write_file("relative/scene.yaml", std::string("hand: hands/my_hand.yaml\n") + kValidScene);
   const Scene scene = load_scene(scene_path);
-  ASSERT_TRUE(scene.hand.has_value());
-  EXPECT_EQ(scene.hand->palm_size_m,
+  ASSERT_TRUE(scene.has_hands());
+  EXPECT_EQ(scene.hands[0].palm_size_m,
             load_hand_model(source_dir() + "/config/hand.yaml").palm_size_m);
 }
 

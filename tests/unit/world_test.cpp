@@ -36,7 +36,7 @@ struct Cockpit {
   Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
   std::vector<hand::GloveSample> samples =
       hand::read_glove_log(source_dir() + "/config/glove_logs/reach_grasp_lift_release.csv",
-                            *scene.hand)
+                            scene.hands[0])
           .samples;
   int cup = scene.find_object("cup");
 };
@@ -50,7 +50,7 @@ struct GloveFeed {
     const int64_t t0 = samples->front().t_ns;
     while (next < samples->size() && (*samples)[next].t_ns - t0 <= world.time_ns())
       world.set_hand_input(
-          physics_io::hand_input_from_glove(*world.scene().hand, (*samples)[next++]));
+          physics_io::hand_input_from_glove(world.scene().hands[0], (*samples)[next++]));
   }
   void run_until(World& world, double t_s) {
     while (world.time_ns() < std::llround(t_s * 1e9)) {
@@ -160,13 +160,14 @@ TEST(WorldState, HashSeesEveryPart) {
   EXPECT_TRUE(changed([](WorldState& s) { s.steps += 1; }));
   EXPECT_TRUE(changed([&](WorldState& s) { s.bodies[cockpit.cup].w_G.z() = 1e-300; }));
   EXPECT_TRUE(changed([&](WorldState& s) { s.bodies[cockpit.cup].held_by = 0; }));
-  EXPECT_TRUE(changed([](WorldState& s) { s.hand_active = true; }));
-  EXPECT_TRUE(changed([](WorldState& s) { s.hand_to.q_rad[5] = 0.1; }));
-  EXPECT_TRUE(changed([](WorldState& s) { s.hand_from.tracking = false; }));
-  EXPECT_TRUE(changed([](WorldState& s) { s.X_GL[3].translation().y() = 0.5; }));
-  EXPECT_TRUE(changed([&](WorldState& s) { s.grasp[cockpit.cup].released_at_ns = 0; }));
+  EXPECT_TRUE(changed([&](WorldState& s) { s.bodies[cockpit.cup].holders = 1; }));
+  EXPECT_TRUE(changed([](WorldState& s) { s.hands[0].active = true; }));
+  EXPECT_TRUE(changed([](WorldState& s) { s.hands[0].to.q_rad[5] = 0.1; }));
+  EXPECT_TRUE(changed([](WorldState& s) { s.hands[0].from.tracking = false; }));
+  EXPECT_TRUE(changed([](WorldState& s) { s.hands[0].X_GL[3].translation().y() = 0.5; }));
+  EXPECT_TRUE(changed([&](WorldState& s) { s.hands[0].grasp[cockpit.cup].released_at_ns = 0; }));
   EXPECT_TRUE(
-      changed([&](WorldState& s) { s.grasp[cockpit.cup].history[1].translation().z() = 1; }));
+      changed([&](WorldState& s) { s.hands[0].grasp[cockpit.cup].history[1].translation().z() = 1; }));
   EXPECT_TRUE(changed([](WorldState& s) { s.anchors.push_back(StickAnchor{}); }));
 }
 

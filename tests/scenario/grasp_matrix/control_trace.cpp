@@ -42,7 +42,7 @@ int run(int argc, char** argv) {
   const double to_s = argc > 5 ? std::atof(argv[5]) : 1e9;
   const int64_t every_ns = (argc > 6 ? std::atoll(argv[6]) : 10) * 1'000'000;
   physics::Scene loaded = load_scene(source_dir + "/config/cockpit.yaml");
-  if (const char* other = std::getenv("HAND")) loaded.hand = load_hand_model(source_dir + "/config/" + other);
+  if (const char* other = std::getenv("HAND")) loaded.hands = {load_hand_model(source_dir + "/config/" + other)};
   physics::World world(std::move(loaded));
   const physics::Scene& scene = world.scene();
   const int control = scene.find_control(argv[3]);
@@ -51,7 +51,7 @@ int run(int argc, char** argv) {
   const int body = c.body;
   const int objects = static_cast<int>(scene.objects.size());
   const double unit = c.joint == physics::JointKind::kRevolute ? 180.0 / M_PI : 1e3;
-  const hand::HandModel& hand = *scene.hand;
+  const hand::HandModel& hand = scene.hands[0];
   HandStaticClearance clearance(scene, hand);
   auto step = [&] {
     world.step();
@@ -113,7 +113,7 @@ int run(int argc, char** argv) {
         tips += text;
       }
       std::string planes;  // the static surfaces holding the drawn hand back (outward normals)
-      for (const Eigen::Vector3d& n : world.state().blocking_out_G) {
+      for (const Eigen::Vector3d& n : world.state().hands[0].blocking_out_G) {
         char text[64];
         std::snprintf(text, sizeof text, " (%.2f %.2f %.2f)", n.x(), n.y(), n.z());
         planes += text;

@@ -83,13 +83,13 @@ int run(int argc, char** argv) {
     if (std::getenv("TRACE_Q") != nullptr) {  // the thumb's joints (deg): proxy / tracked
       std::printf("        thumb q deg:");
       for (int j = 0; j < 4; ++j)
-        std::printf(" %.2f/%.2f", world.state().q_rad[j] * 180.0 / M_PI,
-                    world.state().hand_to.q_rad[j] * 180.0 / M_PI);
+        std::printf(" %.2f/%.2f", world.state().hands[0].q_rad[j] * 180.0 / M_PI,
+                    world.state().hands[0].to.q_rad[j] * 180.0 / M_PI);
       std::printf("\n");
     }
     if (std::getenv("TRACE_TIPS") != nullptr) {
       // each finger's distal link tip in the object's frame: proxy, then tracked
-      const auto& model = *world.scene().hand;
+      const auto& model = world.scene().hands[0];
       std::string tips;
       for (int l : {3, 6, 9, 12}) {
         const double len = model.capsules[l].length_m;
@@ -126,14 +126,14 @@ int run(int argc, char** argv) {
         others += s4;
       }
       std::string planes;
-      for (const auto& n : world.state().blocking_out_G) {
+      for (const auto& n : world.state().hands[0].blocking_out_G) {
         char s3[64];
         std::snprintf(s3, sizeof s3, " (%.2f %.2f %.2f)", n.x(), n.y(), n.z());
         planes += s3;
       }
       std::printf("        tips mm in O:%s | lowest %s z %.4f | %s blocking%s | others%s\n", tips.c_str(),
                   short_link(static_cast<physics::Link>(lowest)), lowest_z,
-                  world.state().pushing ? "pushing" : "", planes.c_str(), others.c_str());
+                  world.state().hands[0].pushing ? "pushing" : "", planes.c_str(), others.c_str());
     }
   };
   const ScenarioResult r = run_grasp_scenario(source_dir, gc, hand_sizes().at(cell.size),

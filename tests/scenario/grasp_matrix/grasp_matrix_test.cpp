@@ -106,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(Cells, GraspMatrix, ::testing::ValuesIn(grasp_cells()),
 // console's top reads 2 mm, in the console, by that link; 1 cm above it reads nothing.
 TEST(GraspMatrixClearance, MeasuresHowDeepTheHandIsInAStaticObject) {
   physics::Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
-  const hand::HandModel hand = *scene.hand;
+  const hand::HandModel hand = scene.hands[0];
   HandStaticClearance clearance(scene, hand);
   hand::HandLinkPoses poses;
   hand::forward_kinematics(hand, hand::JointAngles{}, poses);

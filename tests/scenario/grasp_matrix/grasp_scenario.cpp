@@ -35,10 +35,10 @@ ScenarioResult run_grasp_scenario(const std::string& source_dir, const GraspCase
                                   const std::string& hand_yaml, const degrade::DegradeSpec& spec,
                                   const std::function<void(const physics::World&)>& observe) {
   physics::Scene scene = load_scene(source_dir + "/config/cockpit.yaml");
-  scene.hand = load_hand_model(source_dir + "/config/" + hand_yaml);
+  scene.hands = {load_hand_model(source_dir + "/config/" + hand_yaml)};
   const int object = scene.find_object(grasp_case.object);
   if (object < 0) throw std::invalid_argument("no object '" + grasp_case.object + "'");
-  const hand::HandModel hand = *scene.hand;
+  const hand::HandModel hand = scene.hands[0];
   const auto rows = degrade::degrade(
       script_samples(source_dir + "/config/gestures/" + grasp_case.script, hand), hand, spec);
 
