@@ -71,7 +71,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--offline", offline,
                "no DDS: run --log (or --duration) as fast as possible and write --out DIR");
-  app.add_option("--log", offline_options.log_path, "offline: glove log CSV driving the hand")
+  app.add_option("--log", offline_options.log_paths,
+                 "offline: glove log CSV driving a hand; repeat for each hand (--log right.csv --log "
+                 "left.csv: each log's '# hand:' line names its hand)")
       ->check(CLI::ExistingFile);
   app.add_option("--duration", offline_options.duration_s,
                  "offline: simulated seconds (default: the log's span); DDS: stop by itself after "
@@ -146,7 +148,7 @@ int main(int argc, char** argv) {
       offline_options.scene_path = scene_path;
       return run_offline_mode(offline_options);
     }
-    if (!offline_options.log_path.empty()) throw CLI::ValidationError("--log belongs to --offline");
+    if (!offline_options.log_paths.empty()) throw CLI::ValidationError("--log belongs to --offline");
     if (!offline_options.out_dir.empty() && !node_options.lockstep) {
       throw CLI::ValidationError("--out belongs to --offline and --lockstep");
     }

@@ -241,14 +241,46 @@ void parse_objects(const ConfigNode& list, Scene& scene) {
 
 // ---- hand, grasp, contact ---------------------------------------------------------------------
 
-void parse_hand(const ConfigNode& node, const std::string& base_dir, Scene& scene) {
+// A hand file's model (relative to the scene's directory); its errors name the hand file.
+hand::HandModel load_hand_file(const ConfigNode& node, const std::string& base_dir) {
   const std::string name = node.as_string();
   if (name.empty()) node.fail("the hand file name must not be empty");
   fs::path path(name);
   if (path.is_relative() && !base_dir.empty()) path = fs::path(base_dir) / path;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) node.fail("cannot open hand file '" + path.string() + "'");
-  scene.hands = {load_hand_model(path.string())};  // its errors name the hand file itself
+  return load_hand_model(path.string());
+}
+
+void parse_hand(const ConfigNode& node, const std::string& base_dir, Scene& scene) {
+  scene.hands = {load_hand_file(node, base_dir)};
+}
+
+// hands: [file, {file: f, side: right|left}, ...]: a side given here overrides the file's (a
+// right hand's file mirrored to the left); at most one right and one left hand.
+void parse_hands(const ConfigNode& node, const std::string& base_dir, Scene& scene) {
+  if (!node.is_sequence() || node.size() == 0 || node.size() > 2)
+    node.fail("expected a list of one or two hands (a file, or {file, side})");
+  scene.hands.clear();
+  for (const ConfigNode& entry : node.elements()) {
+    hand::HandModel model;
+    if (entry.is_map()) {
+      entry.expect_keys({"file", "side"});
+      model = load_hand_file(entry["file"], base_dir);
+      if (auto side = entry.find("side")) {
+        const std::string text = side->as_string();
+        if (text != "right" && text != "left") side->fail("expected right or left, got '" + text + "'");
+        if ((text == "left") != model.left) model = hand::mirrored(model);
+      }
+    } else {
+      model = load_hand_file(entry, base_dir);
+    }
+    for (const hand::HandModel& other : scene.hands)
+      if (other.left == model.left)
+        entry.fail(std::string("a second ") + (model.left ? "left" : "right") +
+                   " hand: the hands are one right and one left");
+    scene.hands.push_back(std::move(model));
+  }
 }
 
 GraspParams parse_grasp(const ConfigNode& node) {
@@ -336,12 +368,16 @@ physics::ProxyParams parse_proxy(const ConfigNode& node) {
 
 physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) {
   using namespace scene_parts;
-  root.expect_keys({"gravity", "step_s", "hand", "hand_material", "objects", "controls", "grasp",
-                    "contact", "proxy"});
+  root.expect_keys({"gravity", "step_s", "hand", "hands", "hand_material", "objects", "controls",
+                    "grasp", "contact", "proxy"});
   Scene scene;
   scene.gravity_mps2 = vector3(root["gravity"].as_doubles<3>());
   scene.step_s = in_open_closed(root["step_s"], 0.0, kMaxStep_s);
   if (auto hand = root.find("hand")) parse_hand(*hand, base_dir, scene);
+  if (auto hands = root.find("hands")) {
+    if (root.has("hand")) hands->fail("give either hand or hands, not both");
+    parse_hands(*hands, base_dir, scene);
+  }
   if (auto m = root.find("hand_material"))
     scene.hand_material = parse_material(*m, scene.hand_material);
   parse_objects(root["objects"], scene);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <climits>
 #include <stdexcept>
 
 #include "common/clock.hpp"
@@ -18,40 +19,82 @@
 namespace vcockpit::physics_io {
 
 
-RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
-  check_input_timing(options.timing);
+namespace {
+
+// One glove log, read and validated, and the world's hand it drives.
+struct HandLog {
+  std::string path;
+  int hand = 0;  // World hand index
   std::vector<hand::GloveSample> samples;
-  hand::InputCounts input_counts;
-  if (!options.log_path.empty()) {
+  hand::InputCounts counts;
+};
+
+std::vector<HandLog> read_hand_logs(const physics::Scene& scene, const OfflineOptions& options) {
+  std::vector<HandLog> logs;
+  for (const std::string& path : options.log_paths) {
     if (!scene.has_hands()) {
       throw std::invalid_argument(options.scene_path + ": the scene has no hand, so a glove log "
                                                        "cannot drive it");
     }
-    hand::GloveLog log = hand::read_glove_log(options.log_path, scene.hands[0]);
+    // the log's hand (its `# hand:` line; a log without one is a right hand's): read once with
+    // the first hand's model to learn it, then with its own
+    int hand = -1;
+    {
+      const hand::GloveLog probe = hand::read_glove_log(path, scene.hands[0]);
+      for (std::size_t h = 0; h < scene.hands.size(); ++h)
+        if (scene.hands[h].left == probe.left_hand) hand = static_cast<int>(h);
+      if (hand < 0) {
+        throw std::invalid_argument(path + ": a " + (probe.left_hand ? "left" : "right") +
+                                    " hand's log, and the scene " + options.scene_path +
+                                    " has no such hand");
+      }
+    }
+    for (const HandLog& other : logs) {
+      if (other.hand == hand)
+        throw std::invalid_argument(path + ": the same hand as " + other.path + " (one log per hand)");
+    }
+    const hand::HandModel& model = scene.hands[static_cast<std::size_t>(hand)];
+    hand::GloveLog log = hand::read_glove_log(path, model);
     for (const std::string& warning : hand::glove_log_warnings(log)) spdlog::warn("{}", warning);
     // the checks a live node makes (the reader has already refused what a file cannot hold)
-    hand::SampleValidator validator(scene.hands[0]);
-    for (hand::GloveSample& s : log.samples) {
-      if (validator.accept(s)) samples.push_back(s);
+    hand::SampleValidator validator(model);
+    HandLog out{path, hand, {}, log.counts};
+    for (hand::GloveSample& sample : log.samples) {
+      if (validator.accept(sample)) out.samples.push_back(sample);
     }
-    input_counts = log.counts;
-    input_counts += validator.counts();
+    out.counts += validator.counts();
+    if (out.samples.empty()) throw std::invalid_argument(path + ": no valid sample to drive the hand");
+    logs.push_back(std::move(out));
   }
-  if (!options.duration_s && samples.empty()) {
+  return logs;
+}
+
+}  // namespace
+
+RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
+  check_input_timing(options.timing);
+  std::vector<HandLog> logs = read_hand_logs(scene, options);
+  if (!options.duration_s && logs.empty()) {
     throw std::invalid_argument("give --log GLOVE.csv or --duration S");
   }
   if (options.duration_s && !(*options.duration_s > 0)) {
     throw std::invalid_argument("--duration must be positive");
   }
-  const int64_t end_ns = options.duration_s ? std::llround(*options.duration_s * 1e9)
-                                            : samples.back().t_ns - samples.front().t_ns;
+  // one timeline: the earliest first sample is world time 0
+  int64_t t0_ns = INT64_MAX;
+  int64_t last_ns = INT64_MIN;
+  for (const HandLog& log : logs) {
+    t0_ns = std::min(t0_ns, log.samples.front().t_ns);
+    last_ns = std::max(last_ns, log.samples.back().t_ns);
+  }
+  const int64_t end_ns = options.duration_s ? std::llround(*options.duration_s * 1e9) : last_ns - t0_ns;
   const int64_t interval_ns = output_interval_ns(options.output_hz, scene);
 
   RunRecorder recorder(options.out_dir, interval_ns);
 
   RunSummary summary;
   summary.scene_path = options.scene_path;
-  summary.log_path = options.log_path;
+  summary.log_paths = options.log_paths;
   summary.stage_total_s.assign(physics::kStageCount, 0.0);
   summary.timing = options.timing;
   HandMotionPeak hand_peak;
@@ -85,29 +128,58 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
                       wall_s > 0 ? sim_s / wall_s : 0.0, world.step_count());
     }
   };
-  if (samples.empty()) {
+  if (logs.empty()) {
     recorder.start(world);
     while (world.time_ns() < end_ns) step();
   } else {
-    // the first sample sets the hand before the first row; the world then steps through each
-    // interval with the hand interpolated, up to the last sample or the end
-    ReplayDriver driver(world, world.scene().hands[0], options.timing);
-    driver.feed(samples.front(), step);
-    recorder.start(world);
-    for (std::size_t i = 1; i < samples.size(); ++i) {
-      if (driver.world_time_of(samples[i]) > end_ns) {
-        driver.push(samples[i]);  // the interval that holds the end
-        break;
-      }
-      driver.feed(samples[i], step);
+    // One driver per hand on one timeline. Before each step, each hand's log gives samples up to
+    // the first at or past the step's end (its look-ahead); a log that starts later joins when
+    // the world reaches its first sample, and one that has ended holds its last sample (and
+    // loses the glove after the timeout, as a live glove that stopped would).
+    const physics::Scene& sc = world.scene();
+    const int64_t step_ns = std::llround(sc.step_s * 1e9);
+    std::vector<ReplayDriver> drivers;
+    drivers.reserve(logs.size());
+    std::vector<std::size_t> next(logs.size(), 0);
+    for (const HandLog& log : logs) {
+      drivers.emplace_back(world, sc.hands[static_cast<std::size_t>(log.hand)], options.timing, log.hand);
+      drivers.back().set_origin(t0_ns);
     }
-    // without --duration the run ends where a lockstep replay of the log ends: at the last step
+    // takes log k's samples up to the first at or past world time `until_ns` (the world's
+    // present for a log not begun: it begins there, not before)
+    const auto take_samples = [&](std::size_t k, int64_t until_ns) {
+      ReplayDriver& d = drivers[k];
+      const std::vector<hand::GloveSample>& samples = logs[k].samples;
+      while (next[k] < samples.size() && (!d.has_sample() || d.newest_world_ns() < until_ns)) {
+        const int64_t t_ns = d.world_time_of(samples[next[k]]);
+        if (!d.has_sample() && t_ns > world.time_ns()) break;  // begins later
+        if (d.has_sample() && d.newest_world_ns() > end_ns) break;  // past the end already
+        d.push(samples[next[k]++]);
+      }
+    };
+    for (std::size_t k = 0; k < logs.size(); ++k) take_samples(k, world.time_ns());
+    recorder.start(world);
+    // without --duration the run ends where a lockstep replay of the logs ends: at the last step
     // that ends by the last sample
-    if (options.duration_s) driver.step_until(end_ns, step);
-    input_counts += driver.counts();
+    while (world.time_ns() + (options.duration_s ? 1 : step_ns) <= end_ns) {
+      const int64_t step_end_ns = world.time_ns() + step_ns;
+      for (std::size_t k = 0; k < logs.size(); ++k) take_samples(k, step_end_ns);
+      for (ReplayDriver& d : drivers)
+        if (d.has_sample()) d.input_for_step_ending(step_end_ns);
+      step();
+    }
     summary.have_input = true;
+    hand::InputCounts input_counts;
+    for (std::size_t k = 0; k < logs.size(); ++k) {
+      hand::InputCounts counts = logs[k].counts;
+      counts += drivers[k].counts();
+      spdlog::info("{}: {}", logs[k].path, hand::input_counts_text(counts));
+      input_counts += counts;
+      const int id = world.hand_id(logs[k].hand);
+      summary.hands.push_back({id, logs[k].path, counts, recorder.events().grasps(id),
+                               recorder.events().releases(id)});
+    }
     summary.input = input_counts;
-    spdlog::info("{}: {}", options.log_path, hand::input_counts_text(input_counts));
   }
   progress.finish();
   summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -2,8 +2,8 @@
 // physics_node --offline: the world with no DDS, as fast as it can go, driven by a glove log (or
 // by nothing for --duration), writing trajectories, events and a summary (run_outputs.hpp).
 //
-// Time: the ReplayDriver's rule (replay_driver.hpp), which lockstep replay over DDS shares, so
-// both give the same result: the hand interpolated between samples, gaps beyond the max gap held,
+// Time: the ReplayDriver's rule (replay_driver.hpp, one driver per hand on one timeline), which
+// lockstep replay over DDS shares, so both give the same result: the hand interpolated between samples, gaps beyond the max gap held,
 // the glove lost after the timeout. Without --duration the run ends at the last step that ends
 // by the last sample (where a lockstep replay of the log stops); with a longer one the hand holds the last sample (and the glove is lost after the timeout, as a live
 // node would find). Every sample passes the SampleValidator a live node applies; the log's and
@@ -12,6 +12,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "physics_node/io/input_timing.hpp"
 #include "physics_node/io/run_outputs.hpp"
@@ -21,7 +22,10 @@ namespace vcockpit::physics_io {
 
 struct OfflineOptions {
   std::string scene_path;            // for the summary (the scene itself comes loaded)
-  std::string log_path;              // empty: no hand input
+  // Glove logs, one per hand (each log's `# hand:` line names its hand; the scene must have it),
+  // on one timeline: their stamps share a clock, and the earliest first sample is world time 0.
+  // Empty: no hand input.
+  std::vector<std::string> log_paths;
   std::optional<double> duration_s;  // default: the log's span
   std::string out_dir;
   double output_hz = 100.0;

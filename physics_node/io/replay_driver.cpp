@@ -8,10 +8,11 @@
 namespace vcockpit::physics_io {
 
 ReplayDriver::ReplayDriver(physics::World& world, const hand::HandModel& hand,
-                           const InputTiming& timing)
+                           const InputTiming& timing, int hand_index)
     : world_(world),
       hand_(hand),
       timing_(timing),
+      hand_index_(hand_index),
       step_ns_(std::llround(world.scene().step_s * 1e9)) {
   check_input_timing(timing_);
 }
@@ -63,7 +64,7 @@ void ReplayDriver::show(const hand::GloveSample& sample, int64_t source_stamp_ns
   shown_ = {sample.t_ns, source_stamp_ns, tracking};
   physics::HandInput input = hand_input_from_glove(hand_, sample);
   input.tracking = tracking;
-  world_.set_hand_input(input);
+  world_.set_hand_input(input, hand_index_);
 }
 
 }  // namespace vcockpit::physics_io

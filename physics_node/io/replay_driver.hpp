@@ -36,7 +36,21 @@ struct ShownInput {
 
 class ReplayDriver {
  public:
-  ReplayDriver(physics::World& world, const hand::HandModel& hand, const InputTiming& timing = {});
+  // Drives the world's hand `hand_index` (World::hand_count()), whose model is `hand`.
+  ReplayDriver(physics::World& world, const hand::HandModel& hand, const InputTiming& timing = {},
+               int hand_index = 0);
+  // Sets the timeline's origin: source time t0_ns is the world's present. Several drivers (one
+  // per hand) share one timeline this way; without it the first sample is the present.
+  void set_origin(int64_t t0_ns) {
+    t0_ns_ = t0_ns - world_.time_ns();
+    started_ = true;
+  }
+  // World time (ns) of the newest sample taken; whether one has been taken.
+  int64_t newest_world_ns() const { return newest_.world_t_ns; }
+  bool has_sample() const { return have_newest_; }
+  // Sets the world's hand input for the step that ends at world time end_ns (for a caller that
+  // steps the world itself: several drivers, one per hand, then one world step).
+  void input_for_step_ending(int64_t end_ns) { apply_input_at(end_ns); }
 
   // World time (ns) of `sample`; starts the timeline at the first sample.
   int64_t world_time_of(const hand::GloveSample& sample) {
@@ -98,6 +112,7 @@ class ReplayDriver {
   physics::World& world_;
   const hand::HandModel& hand_;
   InputTiming timing_;
+  int hand_index_;
   int64_t step_ns_;
   int64_t t0_ns_ = 0;
   bool started_ = false;

@@ -11,6 +11,13 @@ namespace vcockpit::physics_io {
 
 std::string hand_name(int hand_id) { return hand_id == 1 ? "left" : "right"; }
 
+namespace {
+// "right", "left", or "both" while two hands hold it
+std::string holders_name(const physics::BodyState& b) {
+  return (b.holders & (b.holders - 1)) != 0 ? "both" : hand_name(b.held_by);
+}
+}  // namespace
+
 
 TrajectoryWriter::TrajectoryWriter(const std::string& path) : file_(path) {
   std::fprintf(file_.get(),
@@ -34,7 +41,7 @@ void TrajectoryWriter::write(const physics::World& world) {
                  "%.6f,%s,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%s,",
                  t_s, objects[i].name.c_str(), p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(),
                  b.v_G.x(), b.v_G.y(), b.v_G.z(), b.w_G.x(), b.w_G.y(), b.w_G.z(),
-                 b.held_by == physics::kNotHeld ? "" : hand_name(b.held_by).c_str());
+                 b.held_by == physics::kNotHeld ? "" : holders_name(b).c_str());
     const int control = objects[i].control;
     if (control >= 0) {  // the control's coordinate (m or rad) and its position's name
       const physics::ControlState& s = world.state().controls[static_cast<std::size_t>(control)];
@@ -73,6 +80,7 @@ void EventWriter::write(const physics::ControlEvent& e, const physics::Scene& sc
 
 void EventWriter::write(const physics::GraspEvent& e, const std::string& object_name) {
   (e.grasp ? grasps_ : releases_)++;
+  if (e.hand_id >= 0 && e.hand_id < 2) (e.grasp ? hand_grasps_ : hand_releases_)[e.hand_id]++;
   nlohmann::ordered_json record = {{"t_s", static_cast<double>(e.t_ns) / 1e9},
                                    {"event", e.grasp ? "grasp" : "release"},
                                    {"hand", hand_name(e.hand_id)},
@@ -81,6 +89,8 @@ void EventWriter::write(const physics::GraspEvent& e, const std::string& object_
                                    {"contacts", e.contacts},
                                    {"residual_force_N", e.residual_force_N},
                                    {"residual_torque_Nm", e.residual_torque_Nm}};
+  // a handover (the hand it went to or came from) or a two-handed hold (the other hand)
+  if (e.other_hand_id >= 0) record["with"] = hand_name(e.other_hand_id);
   guard_.scrub(record, object_name, e.t_ns);  // a residual that is not finite is left out
   file_.write(json_text(record) + "\n");
 }
@@ -90,8 +100,14 @@ void write_summary(const std::string& path, const RunSummary& s, const physics::
       s.penetration_points > 0 ? s.penetration_sum_m / static_cast<double>(s.penetration_points) : 0.0;
   nlohmann::ordered_json j;
   j["scene"] = s.scene_path;
-  j["log"] =
-      s.log_path.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(s.log_path);
+  // one log: its path; several (one per hand): the list
+  if (s.log_paths.empty()) {
+    j["log"] = nullptr;
+  } else if (s.log_paths.size() == 1) {
+    j["log"] = s.log_paths.front();
+  } else {
+    j["log"] = s.log_paths;
+  }
   j["steps"] = s.steps;
   j["substeps_per_step"] = s.substeps;
   j["substeps_mean"] =
@@ -110,6 +126,14 @@ void write_summary(const std::string& path, const RunSummary& s, const physics::
     input["max_gap_s"] = static_cast<double>(s.timing.max_gap_ns) * 1e-9;
     input["glove_timeout_s"] = static_cast<double>(s.timing.glove_timeout_ns) * 1e-9;
     j["input"] = std::move(input);
+    auto& hands = j["hands"] = nlohmann::ordered_json::array();
+    for (const HandRunSummary& h : s.hands) {
+      hands.push_back({{"hand", hand_name(h.hand_id)},
+                       {"log", h.log_path},
+                       {"grasps", h.grasps},
+                       {"releases", h.releases},
+                       {"input", hand::input_counts_json(h.input)}});
+    }
   } else {
     j["input"] = nullptr;
   }

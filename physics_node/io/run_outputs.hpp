@@ -23,6 +23,7 @@
 // and named once in the log.
 
 #include <cstdint>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,9 @@ class EventWriter {
   void write(const physics::ControlEvent& event, const physics::Scene& scene);
   void commit() { file_.commit(); }
   int grasps() const { return grasps_; }
+  // grasps and releases by hand id (0 right, 1 left)
+  int grasps(int hand_id) const { return hand_id >= 0 && hand_id < 2 ? hand_grasps_[hand_id] : 0; }
+  int releases(int hand_id) const { return hand_id >= 0 && hand_id < 2 ? hand_releases_[hand_id] : 0; }
   int releases() const { return releases_; }
   int control_events() const { return controls_; }
   uint64_t refused() const { return guard_.refused(); }  // members left out
@@ -65,12 +69,23 @@ class EventWriter {
   NonFiniteGuard guard_{"events.jsonl"};
   int grasps_ = 0;
   int releases_ = 0;
+  std::array<int, 2> hand_grasps_{};
+  std::array<int, 2> hand_releases_{};
   int controls_ = 0;
+};
+
+// One hand's part in a run: its log's input counts, its grasps and releases.
+struct HandRunSummary {
+  int hand_id = 0;
+  std::string log_path;
+  hand::InputCounts input;
+  int grasps = 0;
+  int releases = 0;
 };
 
 struct RunSummary {
   std::string scene_path;
-  std::string log_path;
+  std::vector<std::string> log_paths;
   uint64_t steps = 0;
   int substeps = 0;            // the most any step used (the count is chosen every step)
   uint64_t substeps_total = 0;  // over all steps: their mean is substeps_total / steps
@@ -86,7 +101,8 @@ struct RunSummary {
   double hand_peak_wrist_mps = 0.0;    // HandMotionPeak
   double hand_peak_joint_radps = 0.0;
   bool have_input = false;  // a glove log drove the hand: `input` and `timing` apply
-  hand::InputCounts input;
+  hand::InputCounts input;  // over every hand's log
+  std::vector<HandRunSummary> hands;  // per log
   InputTiming timing;
   uint64_t non_finite_refused = 0;    // left out of trajectories.csv and events.jsonl
 };

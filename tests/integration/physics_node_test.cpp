@@ -37,7 +37,7 @@ class PhysicsNodeTest : public ProcessTest {};
 TEST_F(PhysicsNodeTest, LockstepReplayGivesTheOfflineRunnersResult) {
   physics_io::OfflineOptions offline;
   offline.scene_path = source_dir() + "/config/cockpit.yaml";
-  offline.log_path = grasp_log();
+  offline.log_paths = {grasp_log()};
   offline.out_dir = dir_ + "/offline";
   const auto summary = physics_io::run_offline(load_scene(offline.scene_path), offline);
   ASSERT_EQ(summary.grasps, 1);
@@ -92,7 +92,7 @@ TEST_F(PhysicsNodeTest, EachControlLogInLockstepWritesTheOfflineRunnersFilesByte
     const std::string log = source_dir() + "/config/glove_logs/" + name + ".csv";
     physics_io::OfflineOptions offline;
     offline.scene_path = source_dir() + "/config/cockpit.yaml";
-    offline.log_path = log;
+    offline.log_paths = {log};
     offline.out_dir = dir_ + "/offline_" + name;
     const auto summary = physics_io::run_offline(load_scene(offline.scene_path), offline);
     ASSERT_GT(summary.control_events, 0);
@@ -130,7 +130,7 @@ TEST_F(PhysicsNodeTest, EveryNodeCountsACraftedLogsFaultsAsTheOfflineRunnerDoes)
   std::ofstream(log) << craft.text();
   physics_io::OfflineOptions offline;
   offline.scene_path = source_dir() + "/config/cockpit.yaml";
-  offline.log_path = log;
+  offline.log_paths = {log};
   offline.out_dir = dir_ + "/offline";
   physics_io::run_offline(load_scene(offline.scene_path), offline);
   std::ifstream summary_file(offline.out_dir + "/summary.json");

@@ -124,7 +124,7 @@ TEST_F(RigTest, FullRigReplaysTheGraspInLockstepLikeTheOfflineRunner) {
   // the final poses are the offline runner's
   physics_io::OfflineOptions offline;
   offline.scene_path = config("cockpit.yaml");
-  offline.log_path = config("glove_logs/reach_grasp_lift_release.csv");
+  offline.log_paths = {config("glove_logs/reach_grasp_lift_release.csv")};
   offline.out_dir = dir_ + "/offline";
   physics_io::run_offline(load_scene(offline.scene_path), offline);
   const auto expected = read_final_poses(offline.out_dir + "/summary.json");
@@ -193,7 +193,7 @@ TEST_F(RigTest, FullRigReportsAControlLogsEventsAsTheOfflineRunnerWritesThem) {
   const Json json = parse_summary(summary);
   physics_io::OfflineOptions offline;
   offline.scene_path = config("cockpit.yaml");
-  offline.log_path = config("glove_logs/panel_knobs.csv");
+  offline.log_paths = {config("glove_logs/panel_knobs.csv")};
   offline.out_dir = dir_ + "/offline";
   physics_io::run_offline(load_scene(offline.scene_path), offline);
   std::ifstream events(offline.out_dir + "/events.jsonl");

@@ -89,7 +89,7 @@ TEST(CockpitGrasp, SameRunTwiceGivesByteIdenticalOutputs) {
   for (int run = 0; run < 2; ++run) {
     physics_io::OfflineOptions options;
     options.scene_path = scene_path();
-    options.log_path = grasp_log_path();
+    options.log_paths = {grasp_log_path()};
     options.out_dir = make_temp_dir("cockpit_grasp_run" + std::to_string(run));
     const auto summary = physics_io::run_offline(load_scene(options.scene_path), options);
     EXPECT_EQ(summary.grasps, 1);
@@ -108,7 +108,7 @@ TEST(CockpitGrasp, BadInputsAreClearErrorsAndLeaveNoOutput) {
   std::ofstream(bad_log) << "t_s,x_m,y_m,z_m,qw,qx,qy,qz\n0,0,0,0,1,0,0,0\n0.001,0,0,0,1,0,0\n";
   physics_io::OfflineOptions options;
   options.scene_path = scene_path();
-  options.log_path = bad_log;
+  options.log_paths = {bad_log};
   options.out_dir = dir + "/out";
   try {
     physics_io::run_offline(load_scene(options.scene_path), options);
@@ -116,7 +116,7 @@ TEST(CockpitGrasp, BadInputsAreClearErrorsAndLeaveNoOutput) {
   } catch (const std::exception& e) {
     EXPECT_NE(std::string(e.what()).find("bad.csv:3"), std::string::npos) << e.what();
   }
-  options.log_path = grasp_log_path();
+  options.log_paths = {grasp_log_path()};
   options.scene_path = dir + "/missing.yaml";
   try {
     physics_io::run_offline(load_scene(options.scene_path), options);

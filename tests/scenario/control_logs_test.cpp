@@ -41,7 +41,7 @@ struct LogRun {
 LogRun run_log(const std::string& name) {
   physics_io::OfflineOptions options;
   options.scene_path = source_dir() + "/config/cockpit.yaml";
-  options.log_path = source_dir() + "/config/glove_logs/" + name + ".csv";
+  options.log_paths = {source_dir() + "/config/glove_logs/" + name + ".csv"};
   options.out_dir = make_temp_dir("control_logs_" + name);
   physics_io::run_offline(load_scene(options.scene_path), options);
   LogRun run;

@@ -29,7 +29,7 @@ nlohmann::json run_crafted(const test::CraftedGloveLog& craft, const std::string
   std::ofstream(log) << craft.text();
   OfflineOptions options;
   options.scene_path = source_dir() + "/config/cockpit.yaml";
-  options.log_path = log;
+  options.log_paths = {log};
   options.out_dir = dir + "/out";
   const RunSummary run = run_offline(load_scene(options.scene_path), options);
   if (summary) *summary = run;
@@ -87,7 +87,7 @@ TEST(OfflineCounts, ADurationPastTheLogHoldsTheLastSampleAndLosesTheGloveAfterTh
   std::ofstream(log) << craft.text();
   OfflineOptions options;
   options.scene_path = source_dir() + "/config/cockpit.yaml";
-  options.log_path = log;
+  options.log_paths = {log};
   options.out_dir = dir + "/out";
   options.duration_s = 1.1;  // the glove is lost at 1.1 s, 1 s after the last sample
   run_offline(load_scene(options.scene_path), options);
@@ -107,7 +107,7 @@ TEST(OfflineCounts, WithoutADurationTheRunEndsWhereALockstepReplayStops) {
                         "0.0305,0.01,0,3,1,0,0,0\n0.0612,0.02,0,3,1,0,0,0\n";
   OfflineOptions options;
   options.scene_path = source_dir() + "/config/cockpit.yaml";
-  options.log_path = log;
+  options.log_paths = {log};
   options.out_dir = dir + "/out";
   EXPECT_EQ(run_offline(load_scene(options.scene_path), options).steps, 61u);
 }
