@@ -28,6 +28,7 @@ struct Flags {
   std::string log_path;
   std::string record_path;
   std::string hand_config = std::string(VCOCKPIT_CONFIG_DIR) + "/hand.yaml";
+  std::string side;  // empty: the hand file's
   std::optional<uint32_t> hand_id;
   double rate = 1.0;
   std::optional<double> rate_hz;
@@ -53,6 +54,10 @@ void add_flags(CLI::App& app, Flags& f) {
       ->check(CLI::ExistingFile);
   app.add_option("--record", f.record_path,
                  "record cockpit/hand_sample to this glove log (instead of publishing)");
+  app.add_option("--side", f.side,
+                 "right or left: this side's hand (the hand file's model, mirrored if it is of the "
+                 "other side); default: the hand file's side")
+      ->check(CLI::IsMember({"right", "left"}));
   app.add_option("--hand-config", f.hand_config, "hand model YAML (joint limits, rest pose, tracker)")
       ->check(CLI::ExistingFile)
       ->capture_default_str();
@@ -127,6 +132,7 @@ int run(const Flags& f) {
     throw CLI::ValidationError("--source replay needs --log FILE");
   }
   hand::HandModel hand = load_hand_model(f.hand_config);
+  if (!f.side.empty() && (f.side == "left") != hand.left) hand = hand::mirrored(hand);
   DdsParticipant participant(resolve_dds_options(f.dds), "glove_driver");
 
   if (recording) {

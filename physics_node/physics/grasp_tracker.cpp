@@ -58,18 +58,24 @@ void GraspTracker::clear_hand(const HandOnObject& h, bool held) const {
   if (!hold.hand_clearing || held) return;
   // For the cooldown after a release, every link whose glove link passes through the object
   // rests off it: the hand does not push what it has just let go of. After it, if the pilot
-  // let go (the glove opened from its grip) they rest until the glove is clear of it;
-  // otherwise (the grip loosened with the glove still closed) they all end, so the same grip
-  // can take the object again.
+  // let go (the glove opened from its grip, or the hand handed the object over) they rest until
+  // the glove is clear of it; otherwise (the grip loosened with the glove still closed) they
+  // all end, so the same grip can take the object again. A hand that handed the object over may
+  // take it again once its glove has opened or left it.
   const bool cooled = h.hand.t_ns - hold.released_at_ns >= regrab_cooldown_ns_;
+  if (!cooled && !hold.handed_over) {
+    hold.resting_links |= h.glove_links_inside;
+    return;
+  }
+  const bool opened = params_.release_opening_deg > 0.0 &&
+                      grip_opening_rad(h.hand, hold) > deg_to_rad(params_.release_opening_deg);
   if (!cooled) {
     hold.resting_links |= h.glove_links_inside;
   } else {
-    const bool let_go = params_.release_opening_deg > 0.0 &&
-                        grip_opening_rad(h.hand, hold) > deg_to_rad(params_.release_opening_deg);
-    hold.resting_links = let_go ? h.glove_links_inside : 0u;
+    hold.resting_links = opened || hold.handed_over ? h.glove_links_inside : 0u;
   }
-  if (cooled && hold.resting_links == 0) hold.hand_clearing = false;
+  if (hold.handed_over && (opened || h.glove_links_inside == 0)) hold.handed_over = false;
+  if (cooled && hold.resting_links == 0 && !hold.handed_over) hold.hand_clearing = false;
 }
 
 void GraspTracker::note_let_go(const HandOnObject& h) {
@@ -80,7 +86,8 @@ void GraspTracker::note_let_go(const HandOnObject& h) {
 }
 
 bool GraspTracker::may_take(const HandOnObject& h) const {
-  return h.hand.tracking && h.hand.t_ns - h.hold->released_at_ns >= regrab_cooldown_ns_;
+  return h.hand.tracking && !h.hold->handed_over &&
+         h.hand.t_ns - h.hold->released_at_ns >= regrab_cooldown_ns_;
 }
 
 void GraspTracker::update_hands(int object, const ObjectSpec& o, HandOnObject* hands,
@@ -112,11 +119,14 @@ void GraspTracker::update_hands(int object, const ObjectSpec& o, HandOnObject* h
     bool handed_over = false;
     if (holder < hand_count) {
       for (std::size_t k = 0; k < hand_count && !handed_over; ++k) {
-        if (k == holder || hands[k].count == 0 || !may_take(hands[k]) || !checks[k].holds()) continue;
+        if (k == holder || hands[k].count == 0 || !may_take(hands[k]) || !checks[k].holds() ||
+            !hands[holder].hand.tracking)
+          continue;
         HandOnObject& from = hands[holder];
         body.holders |= hands[k].hand.holder_bit;  // it never leaves a hand: no release velocity
         release(object, GraspReason::kHandedOver, checks[holder], from.hand, *from.hold, body, events,
                 hands[k].hand.hand_id);
+        from.hold->handed_over = true;
         attach(object, checks[k], hands[k].hand, *hands[k].hold, body, events, from.hand.hand_id);
         handed_over = true;
       }
@@ -127,6 +137,7 @@ void GraspTracker::update_hands(int object, const ObjectSpec& o, HandOnObject* h
         if (!was_held[k] && hands[k].count == 0) continue;
         if (holder == hand_count && body.held()) break;  // taken by an earlier hand this step
         if (holder < hand_count && k != holder) continue;
+        if (!was_held[k] && hands[k].hold->handed_over) continue;  // gave it away, still on it
         decide(object, checks[k], hands[k].hand, *hands[k].hold, body, events);
       }
       // no hand alone: two hands together (eqs. 30-31 over both, each with its own gesture)

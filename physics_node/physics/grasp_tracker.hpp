@@ -75,6 +75,10 @@ struct GraspHold {
   uint32_t resting_links = 0;
   // From a release until resting_links ends after the cooldown (the glove is clear of it).
   bool hand_clearing = false;
+  // Handed over to the other hand: this hand takes it again only once it has let go of it (no
+  // contact, or its glove opened from the grip): a grip that lingers past the cooldown would
+  // take it straight back.
+  bool handed_over = false;
 };
 
 // A hand at the end of a step, as the decisions see it.

@@ -484,9 +484,12 @@ void World::constrain_proxy(int hand, double dt_s) {
   HandSim& sim = hands_[static_cast<std::size_t>(hand)];
   HandState& hs = state_.hands[static_cast<std::size_t>(hand)];
   ProxyPose pose{hs.X_GH, hs.q_rad};
+  // the fingers see every held object as held (it does not give: a grip on it is balanced, and
+  // they close on it at the grip speed, whichever hand holds it); the wrist's shift carries only
+  // the objects this hand holds
   const bool fingers_moved =
       sim.proxy->constrain_fingers(sim.proxy_prev, sim.proxy_prev_links, pose, sim.link_poses, hs.X_GL,
-                                   sim.held_mask, sim.contacts, sim.hand_static, dt_s);
+                                   held_mask_, sim.contacts, sim.hand_static, dt_s);
   // the links' static contacts afresh: the wrist's shift must see exactly how deep they are
   if (fingers_moved) collision_.compute_hand_static_contacts(hand, hs.X_GL, sim.hand_static);
   const ProxyConstraint r = sim.proxy->constrain_wrist(pose, hs.X_GL, sim.held_mask, sim.contacts,

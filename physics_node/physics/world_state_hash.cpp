@@ -58,6 +58,7 @@ void hash_hold(Fnv1a64& h, const GraspHold& g) {
     h.f64(q);
   h.u64(g.resting_links);
   h.flag(g.hand_clearing);
+  h.flag(g.handed_over);
 }
 
 }  // namespace

@@ -56,13 +56,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0x3d4a4fe261b74c85") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0x5bf16ee43fed3979") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0xb5dad07b4d53e13d") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x6f76208fa4b901d5") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x3507fe7dfc858c78") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0x7aee1226ed68231c") << "final state";
 }
 
 }  // namespace

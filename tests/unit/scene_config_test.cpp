@@ -103,10 +103,14 @@ constexpr double kConsoleTop_m = 0.70;
 TEST_F(ShippedCockpit, WorldAndHand) {
   EXPECT_EQ(scene_->gravity_mps2, Eigen::Vector3d(0.0, 0.0, -9.81));
   EXPECT_EQ(scene_->step_s, 0.001);
-  ASSERT_EQ(scene_->hands.size(), 1u);
+  // the pilot's two hands: hand.yaml's right hand and its mirror image on the left
+  ASSERT_EQ(scene_->hands.size(), 2u);
   const hand::HandModel hand = load_hand_model(source_dir() + "/config/hand.yaml");
   EXPECT_EQ(scene_->hands[0].palm_size_m, hand.palm_size_m);
-  EXPECT_EQ(scene_->hands[0].left, hand.left);
+  EXPECT_FALSE(scene_->hands[0].left);
+  EXPECT_EQ(scene_->hands[1].palm_size_m, hand.palm_size_m);
+  EXPECT_TRUE(scene_->hands[1].left);
+  EXPECT_EQ(physics::hand_id_of(scene_->hands[1]), 1);
   EXPECT_EQ(scene_->hand_material.stiffness_Npm, 2.0e4);
   EXPECT_EQ(scene_->hand_material.mu_s, 1.0);
 }
@@ -539,6 +543,12 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
       // the hand file
       {"hand_file_missing", "step_s: 0.001\n", "step_s: 0.001\nhand: no_such_hand.yaml\n",
        "hand: no_such", "hand", "cannot open hand file"},
+      {"hands_not_a_list", "step_s: 0.001\n", "step_s: 0.001\nhands: hand.yaml\n", "hands: hand",
+       "hands", "expected a list of one or two hands"},
+      {"hands_three", "step_s: 0.001\n", "step_s: 0.001\nhands: [a.yaml, b.yaml, c.yaml]\n", "hands: [",
+       "hands", "expected a list of one or two hands"},
+      {"hands_file_missing", "step_s: 0.001\n", "step_s: 0.001\nhands: [{file: no_such_hand.yaml, side: left}]\n",
+       "hands: [", "hands[0].file", "cannot open hand file"},
   };
   for (const BadCase& c : cases)
     expect_error(c, kValidScene);
