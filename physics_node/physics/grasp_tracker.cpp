@@ -24,10 +24,11 @@ double finger_flexion_rad(const JointAngles& q_rad, Finger finger) {
 }
 
 GraspTracker::GraspTracker(const GraspParams& params, double step_s,
-                           const Eigen::Vector3d& gravity_mps2)
+                           const Eigen::Vector3d& gravity_mps2, double hand_mu_s)
     : params_(params),
       step_s_(step_s),
       gravity_mps2_(gravity_mps2),
+      hand_mu_s_(hand_mu_s),
       velocity_span_(std::max<std::size_t>(
           1, static_cast<std::size_t>(std::llround(params.velocity_window_s / step_s)))),
       settle_span_(std::max<std::size_t>(
@@ -146,7 +147,7 @@ void GraspTracker::update_hands(int object, const ObjectSpec& o, HandOnObject* h
           if (hands[a].count == 0 || !may_take(hands[a]) || !checks[a].gesture_holds()) continue;
           for (std::size_t b = a + 1; b < hand_count && !body.held(); ++b) {
             if (hands[b].count == 0 || !may_take(hands[b]) || !checks[b].gesture_holds()) continue;
-            const Residuals both = two_hand_residuals(hands[a], hands[b], body, o);
+            const Residuals both = two_hand_residuals(hands[a], hands[b], body, o, false);
             if (!residuals_hold(both, params_, false)) continue;
             GraspCheck ca = checks[a], cb = checks[b];
             ca.residual_force_N = cb.residual_force_N = both.force_N;
@@ -163,18 +164,23 @@ void GraspTracker::update_hands(int object, const ObjectSpec& o, HandOnObject* h
 }
 
 Residuals GraspTracker::two_hand_residuals(const HandOnObject& a, const HandOnObject& b,
-                                           const BodyState& body, const ObjectSpec& o) const {
+                                           const BodyState& body, const ObjectSpec& o,
+                                           bool held) const {
   // eqs. 30-31 over both hands' contacts, gravity once
   const Eigen::Vector3d c_G = body.X_GO.translation();
+  const double mu = std::sqrt(hand_mu_s_ * o.material.mu_s);  // the pair's (contact model)
   Eigen::Vector3d F = o.mass_kg * gravity_mps2_;
   Eigen::Vector3d M = Eigen::Vector3d::Zero();
+  double reserve_N = 0.0;
   for (const HandOnObject* h : {&a, &b}) {
     for (std::size_t i = 0; i < h->count; ++i) {
-      F += h->contacts[i].F_G;
-      M += (h->contacts[i].p_G - c_G).cross(h->contacts[i].F_G);
+      const HandContact& c = h->contacts[i];
+      F += c.F_G;
+      M += (c.p_G - c_G).cross(c.F_G);
+      reserve_N += mu * std::max(0.0, c.F_G.dot(c.n_G));
     }
   }
-  return {F.norm(), M.norm()};
+  return {held ? std::max(0.0, F.norm() - reserve_N) : F.norm(), M.norm()};
 }
 
 GraspReason GraspTracker::held_verdict(const HandOnObject& h, const GraspCheck& check) const {
@@ -210,7 +216,7 @@ void GraspTracker::update_two_handed(int object, const ObjectSpec& o, HandOnObje
     if ((body.holders & hands[k].hand.holder_bit) != 0) held[n++] = k;
   HandOnObject& a = hands[held[0]];
   HandOnObject& b = hands[held[1]];
-  const Residuals both = two_hand_residuals(a, b, body, o);
+  const Residuals both = two_hand_residuals(a, b, body, o, true);
   const bool together = residuals_hold(both, params_, true);
   std::array<GraspReason, 2> verdict{};
   std::array<bool, 2> lets_go{};

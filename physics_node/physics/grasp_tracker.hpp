@@ -110,7 +110,9 @@ double finger_flexion_rad(const JointAngles& q_rad, Finger finger);
 
 class GraspTracker {
  public:
-  GraspTracker(const GraspParams& params, double step_s, const Eigen::Vector3d& gravity_mps2);
+  // `hand_mu_s`: the hand material's static friction (a two-handed hold's friction reserve).
+  GraspTracker(const GraspParams& params, double step_s, const Eigen::Vector3d& gravity_mps2,
+               double hand_mu_s = 1.0);
 
   // An object's state at the start: a ring of held poses over the velocity window if dynamic.
   GraspHold initial_hold(const ObjectSpec& o) const;
@@ -156,8 +158,14 @@ class GraspTracker {
   // whether it has failed long enough to let go.
   GraspReason held_verdict(const HandOnObject& h, const GraspCheck& check) const;
   bool failed_long_enough(const HandOnObject& h, GraspReason verdict) const;
+  // Eqs. 30-31 over both hands' contacts. While held (`held`), the force residual is what the
+  // grips' friction could not take up: |sum F + m g| less sum mu_s N over the contacts. Held, the
+  // object moves with the hands and its contacts' friction no longer carries its weight (the
+  // relative motion that stretched it is gone), so the plain residual would read the whole
+  // weight and let go of anything heavier than xi x exit_scale, which a two-handed hold is for;
+  // the grips' normal forces, and so what they could carry, remain.
   Residuals two_hand_residuals(const HandOnObject& a, const HandOnObject& b, const BodyState& body,
-                               const ObjectSpec& o) const;
+                               const ObjectSpec& o, bool held) const;
   void update_two_handed(int object, const ObjectSpec& o, HandOnObject* hands,
                          std::size_t hand_count, const GraspCheck* checks, BodyState& body,
                          std::vector<GraspEvent>& events, const GraspJoint* joint) const;
@@ -173,6 +181,7 @@ class GraspTracker {
   GraspParams params_;
   double step_s_;
   Eigen::Vector3d gravity_mps2_;
+  double hand_mu_s_;
   std::size_t velocity_span_;  // steps of the release velocity's window
   std::size_t settle_span_;    // ... and of the settle window
   std::size_t window_;         // poses in the release-velocity ring: the longer span + 1

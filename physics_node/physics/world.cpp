@@ -100,7 +100,7 @@ World::World(Scene scene)
       collision_(scene_),
       substep_choice_(scene_, collision_),
       forces_(scene_.contact.slip_speed_mps),
-      grasp_tracker_(scene_.grasp, scene_.step_s, scene_.gravity_mps2),
+      grasp_tracker_(scene_.grasp, scene_.step_s, scene_.gravity_mps2, scene_.hand_material.mu_s),
       body_check_(scene_),
       object_count_(static_cast<int>(scene_.objects.size())),
       step_ns_(std::llround(scene_.step_s * 1e9)) {

@@ -56,13 +56,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0xb5dad07b4d53e13d") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0x6f76208fa4b901d5") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0xa5091ff49f70914b") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x4b954d8920f3efc8") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x7aee1226ed68231c") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0x2b5c048c1604ca5d") << "final state";
 }
 
 }  // namespace

@@ -5,6 +5,10 @@
 //   closes its grip round it and takes it (RELEASE "handed over" by the right and GRASP by the left
 //   in the same step, each naming the other), then sets it down; the cup does not move when it
 //   changes hands, and ends where it started, upright;
+// - the bundled two-handed lift (two_hand_lift_right.csv + two_hand_lift_left.csv): both hands'
+//   power grips on the 2.5 kg bar across the glareshield take it together (a GRASP per hand, in
+//   one step), it rises 10 cm with them and comes back down; the right hand's log alone does not
+//   lift it: its grip meets the gesture rule and eq. 30 fails ("force residual too large");
 // - the logs are refused when the scene has no hand of their side, or two logs name one hand.
 
 #include <gtest/gtest.h>
@@ -15,8 +19,11 @@
 #include <string>
 #include <vector>
 
+#include "hand/glove_log.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/offline_runner.hpp"
+#include "physics_node/io/replay_driver.hpp"
+#include "physics_node/physics/grasp.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/test_files.hpp"
 
@@ -122,6 +129,87 @@ TEST(TwoHands, TheRightHandHandsTheCupToTheLeftWithoutAJump) {
   EXPECT_EQ(summary.hands[1].hand_id, 1);
   EXPECT_EQ(summary.hands[1].grasps, 1);
   EXPECT_EQ(summary.hands[1].input.accepted, summary.hands[0].input.accepted);
+}
+
+TEST(TwoHands, BothHandsLiftTheHeavyBarTogether) {
+  physics_io::OfflineOptions options;
+  options.scene_path = source_dir() + "/config/cockpit.yaml";
+  options.log_paths = {log_path("two_hand_lift_right"), log_path("two_hand_lift_left")};
+  options.out_dir = make_temp_dir("two_hands_lift");
+  physics_io::run_offline(load_scene(options.scene_path), options);
+  const std::vector<nlohmann::json> events = events_of(options.out_dir);
+  ASSERT_GE(events.size(), 2u);
+  EXPECT_EQ(text_of(events[0]), "grasp right heavy_bar with left");
+  EXPECT_EQ(text_of(events[1]), "grasp left heavy_bar with right");
+  EXPECT_EQ(events[0].at("t_s"), events[1].at("t_s"));
+  int grasps = 0;
+  for (const auto& e : events) {
+    EXPECT_EQ(e.at("object"), "heavy_bar");
+    grasps += e.at("event") == "grasp" ? 1 : 0;
+  }
+  EXPECT_EQ(grasps, 2) << "one GRASP per hand";
+  // it rises with the hands, held by both, and ends back on the glareshield
+  const std::vector<Row> bar = trajectory_of(options.out_dir, "heavy_bar");
+  ASSERT_FALSE(bar.empty());
+  const double rest_z = bar.front().p.z();
+  double top_z = rest_z;
+  std::string held_at_top;
+  for (const Row& r : bar) {
+    if (r.p.z() > top_z) {
+      top_z = r.p.z();
+      held_at_top = r.held_by;
+    }
+  }
+  std::printf("the bar rose %.1f mm with both hands\n", (top_z - rest_z) * 1e3);
+  EXPECT_GT(top_z - rest_z, 0.08);
+  EXPECT_EQ(held_at_top, "both");
+  EXPECT_LT(std::abs(bar.back().p.z() - rest_z), 3e-3);
+  EXPECT_TRUE(bar.back().held_by.empty());
+}
+
+// The right hand's half of the lift alone: its grip closes round the bar exactly as with both,
+// meets the gesture rule, and cannot carry the bar's weight: no GRASP, the bar stays down, and
+// the test's verdict during the lift is eq. 30's.
+TEST(TwoHands, OneHandAloneDoesNotLiftTheHeavyBar) {
+  const physics::Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
+  const int bar = scene.find_object("heavy_bar");
+  ASSERT_GE(bar, 0);
+  physics::World world(scene);
+  const hand::GloveLog log = hand::read_glove_log(log_path("two_hand_lift_right"), scene.hands[0]);
+  physics_io::ReplayDriver driver(world, world.scene().hands[0], {}, 0);
+  const int objects = static_cast<int>(scene.objects.size());
+  int gesture_steps = 0, force_residual_steps = 0, grasps = 0;
+  double top_z = world.bodies()[static_cast<std::size_t>(bar)].X_GO.translation().z();
+  const double rest_z = top_z;
+  std::vector<physics::HandContact> on_bar;
+  for (const hand::GloveSample& sample : log.samples) {
+    driver.feed(sample, [&] {
+      world.step();
+      for (const auto& e : world.step_events()) grasps += e.grasp ? 1 : 0;
+      top_z = std::max(top_z, world.bodies()[static_cast<std::size_t>(bar)].X_GO.translation().z());
+      // the right hand's grasp test on the bar, as the world makes it
+      on_bar.clear();
+      for (const physics::AppliedContact& a : world.contacts()) {
+        if (a.contact.body_a != bar || a.contact.body_b < objects || a.contact.body_b >= objects + physics::kLinkCount)
+          continue;
+        on_bar.push_back({static_cast<physics::Link>(a.contact.body_b - objects), a.contact.p_G,
+                          -a.contact.n_G, -a.F_on_b_G});
+      }
+      if (on_bar.empty()) return;
+      const physics::ObjectSpec& o = scene.objects[static_cast<std::size_t>(bar)];
+      const physics::GraspCheck check = physics::evaluate_grasp(
+          on_bar.data(), on_bar.size(), world.bodies()[static_cast<std::size_t>(bar)].X_GO.translation(),
+          o.mass_kg, scene.gravity_mps2, scene.grasp, false);
+      if (check.gesture_holds()) ++gesture_steps;
+      if (check.verdict == physics::GraspReason::kForceResidual) ++force_residual_steps;
+    });
+  }
+  std::printf("one hand: grip meets the gesture rule for %d steps, eq. 30 fails in %d; the bar rose "
+              "%.2f mm\n", gesture_steps, force_residual_steps, (top_z - rest_z) * 1e3);
+  EXPECT_EQ(grasps, 0);
+  EXPECT_GT(gesture_steps, 500) << "the grip closed round the bar (for a second or more)";
+  EXPECT_EQ(force_residual_steps, gesture_steps) << "and every time, eq. 30 is what fails";
+  EXPECT_LT(top_z - rest_z, 2e-3);
 }
 
 TEST(TwoHands, ALogOfAHandTheSceneLacksOrTwoLogsOfOneHandAreRefused) {

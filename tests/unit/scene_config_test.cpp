@@ -86,10 +86,11 @@ class ShippedCockpit : public ::testing::Test {
     return scene_->objects.at(static_cast<std::size_t>(std::max(i, 0)));
   }
   // the loose objects: dynamic, and not a control's moving part
+  // the loose objects on the centre console (the heavy bar lies on the glareshield)
   std::vector<const ObjectSpec*> dynamic_objects() const {
     std::vector<const ObjectSpec*> out;
     for (const auto& o : scene_->objects) {
-      if (o.dynamic && o.control < 0) out.push_back(&o);
+      if (o.dynamic && o.control < 0 && o.name != "heavy_bar") out.push_back(&o);
     }
     return out;
   }
@@ -128,7 +129,7 @@ TEST_F(ShippedCockpit, ObjectsKindsAndMasses) {
   std::size_t lights = 0;
   for (const physics::ControlSpec& c : scene_->controls) lights += c.light_object >= 0 ? 1 : 0;
   EXPECT_EQ(lights, 4u) << "landing lights, fuel pump, engine start, gear down";
-  EXPECT_EQ(scene_->objects.size(), statics.size() + 4 + scene_->controls.size() + lights);
+  EXPECT_EQ(scene_->objects.size(), statics.size() + 5 + scene_->controls.size() + lights);
   EXPECT_EQ(dynamic_objects().size(), 4u);
   EXPECT_EQ(object("cup").mass_kg, 0.2);
   EXPECT_EQ(object("checklist").mass_kg, 0.15);
@@ -227,6 +228,22 @@ TEST_F(ShippedCockpit, LooseObjectsRestOnTheConsoleTop) {
   }
   // the flashlight lies along x
   EXPECT_NEAR(object("flashlight").X_GO.linear().col(2).x(), 1.0, 1e-15);
+}
+
+// The two-handed lift's bar: 2.5 kg, lying along y exactly on the glareshield's top, touching no
+// other static object and clear of every control's part.
+TEST_F(ShippedCockpit, HeavyBarLiesAcrossTheGlareshield) {
+  const ObjectSpec& bar = object("heavy_bar");
+  EXPECT_TRUE(bar.dynamic);
+  EXPECT_EQ(bar.mass_kg, 2.5);
+  EXPECT_EQ(bar.shape.kind, ShapeKind::kCylinder);
+  EXPECT_NEAR(std::abs(bar.X_GO.linear().col(2).y()), 1.0, 1e-12);
+  const Aabb shield = aabb(object("glareshield"));
+  EXPECT_NEAR(aabb(bar).lo.z(), shield.hi.z(), 1e-9);
+  for (const ObjectSpec& o : scene_->objects) {
+    if (&o == &bar || o.name == "glareshield") continue;
+    EXPECT_GE(aabb_gap_m(aabb(bar), aabb(o)), 0.01) << o.name;
+  }
 }
 
 // Bounding spheres cannot be used: a 22 x 15 cm board beside the cup on a 40 x 30 cm console
