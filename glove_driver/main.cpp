@@ -29,6 +29,7 @@ struct Flags {
   std::string record_path;
   std::string hand_config = std::string(VCOCKPIT_CONFIG_DIR) + "/hand.yaml";
   std::string side;  // empty: the hand file's
+  std::string node_name = "glove_driver";
   std::optional<uint32_t> hand_id;
   double rate = 1.0;
   std::optional<double> rate_hz;
@@ -58,6 +59,10 @@ void add_flags(CLI::App& app, Flags& f) {
                  "right or left: this side's hand (the hand file's model, mirrored if it is of the "
                  "other side); default: the hand file's side")
       ->check(CLI::IsMember({"right", "left"}));
+  app.add_option("--node-name", f.node_name,
+                 "name on cockpit/node_status (a second glove driver, for the other hand, needs "
+                 "its own)")
+      ->capture_default_str();
   app.add_option("--hand-config", f.hand_config, "hand model YAML (joint limits, rest pose, tracker)")
       ->check(CLI::ExistingFile)
       ->capture_default_str();
@@ -163,6 +168,7 @@ int run(const Flags& f) {
   }
   PublisherOptions options;
   options.hand_id = f.hand_id.value_or(left ? 1 : 0);
+  options.node_name = f.node_name;
   options.lockstep = f.lockstep;
   options.subscribers = f.subscribers;
   options.match_timeout_s = f.match_timeout_s;

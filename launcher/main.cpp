@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <thread>
 
@@ -33,16 +34,35 @@ namespace fs = std::filesystem;
 
 struct Options {
   std::string rig_path;
-  std::string log_path;
+  std::vector<std::string> log_paths;  // one per hand; empty: the rig file's
   std::string out_dir = "out";
   std::string bin_dir;
   bool quiet = false;
 };
 
+// Whether a glove log is a left hand's: its "# hand: left" comment line (before the header).
+bool left_hand_log(const std::string& path) {
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line) && !line.empty() && line[0] == '#';) {
+    if (line.rfind("# hand:", 0) == 0) return line.find("left", 7) != std::string::npos;
+  }
+  return false;
+}
+
 int run(RigConfig rig, const Options& options) {
-  if (!options.log_path.empty()) rig.log_path = fs::absolute(options.log_path).string();
-  if (!rig.log_path.empty() && !fs::exists(rig.log_path)) {
-    throw std::runtime_error("glove log " + rig.log_path + " does not exist");
+  // --log replaces the rig file's logs: each log's '# hand:' line says whose it is
+  if (!options.log_paths.empty()) {
+    rig.log_path.clear();
+    rig.left_log_path.clear();
+    for (const std::string& given : options.log_paths) {
+      std::string& slot = left_hand_log(given) ? rig.left_log_path : rig.log_path;
+      if (!slot.empty()) throw std::runtime_error(given + ": a second log for the same hand");
+      slot = fs::absolute(given).string();
+    }
+    if (rig.log_path.empty()) throw std::runtime_error("--log: no right hand's log");
+  }
+  for (const std::string& log : {rig.log_path, rig.left_log_path}) {
+    if (!log.empty() && !fs::exists(log)) throw std::runtime_error("glove log " + log + " does not exist");
   }
   const std::string out_dir = fs::absolute(options.out_dir).lexically_normal().string();
   fs::create_directories(out_dir + "/logs");
@@ -91,7 +111,9 @@ int main(int argc, char** argv) {
   options.rig_path = std::string(VCOCKPIT_CONFIG_DIR) + "/rig.yaml";
   options.bin_dir = VCOCKPIT_BIN_DIR;
   app.add_option("rig", options.rig_path, "rig YAML")->check(CLI::ExistingFile)->capture_default_str();
-  app.add_option("--log", options.log_path, "glove log to replay (default: the rig file's)")
+  app.add_option("--log", options.log_paths,
+                 "glove log to replay, one per hand: --log right.csv [--log left.csv] (each log's "
+                 "'# hand:' line says whose; default: the rig file's log and left_log)")
       ->check(CLI::ExistingFile);
   app.add_option("--out", options.out_dir, "output directory")->capture_default_str();
   app.add_option("--bin-dir", options.bin_dir, "where the node executables are")->capture_default_str();

@@ -14,7 +14,8 @@ std::string relative_to(const std::string& dir, const std::string& path) {
 }
 
 NodeSpec parse_node(const ConfigNode& node) {
-  node.expect_keys({"name", "command", "required", "restart_delay_s", "ends_run", "start_delay_s"});
+  node.expect_keys({"name", "command", "required", "restart_delay_s", "ends_run", "start_delay_s",
+                    "with_left_log"});
   NodeSpec spec;
   spec.name = node.get_string("name");
   if (spec.name.empty() || spec.name.find_first_of("/ ") != std::string::npos) {
@@ -30,6 +31,7 @@ NodeSpec parse_node(const ConfigNode& node) {
   }
   spec.start_delay_s = node.get_double("start_delay_s", 0.0);
   if (spec.start_delay_s < 0) node["start_delay_s"].fail("must be >= 0");
+  spec.with_left_log = node.get_bool("with_left_log", false);
   return spec;
 }
 
@@ -37,7 +39,7 @@ NodeSpec parse_node(const ConfigNode& node) {
 
 RigConfig load_rig_config(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path);
-  root.expect_keys({"domain", "qos", "participant", "log", "nodes"});
+  root.expect_keys({"domain", "qos", "participant", "log", "left_log", "nodes"});
   RigConfig rig;
   rig.path = path;
   rig.config_dir = fs::absolute(fs::path(path)).parent_path().lexically_normal().string();
@@ -47,6 +49,8 @@ RigConfig load_rig_config(const std::string& path) {
   if (!fs::exists(rig.qos_file)) root["qos"].fail("no such file: " + rig.qos_file);
   rig.participant_profile = root.get_string("participant", rig.participant_profile);
   if (auto log = root.find("log")) rig.log_path = relative_to(rig.config_dir, log->as_string());
+  if (auto log = root.find("left_log"); log && !log->as_string().empty())
+    rig.left_log_path = relative_to(rig.config_dir, log->as_string());
   const ConfigNode nodes = root["nodes"];
   for (const ConfigNode& node : nodes.elements()) {
     NodeSpec spec = parse_node(node);
@@ -64,6 +68,8 @@ std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& r
   std::vector<std::string> out;
   for (std::string arg : node.command) {
     for (const auto& [key, value] : {std::pair<std::string, std::string>{"{log}", rig.log_path},
+                                     {"{left_log}", rig.left_log_path},
+                                     {"{hands}", rig.left_log_path.empty() ? "right" : "right,left"},
                                      {"{out}", out_dir},
                                      {"{config}", rig.config_dir}}) {
       for (std::size_t at = arg.find(key); at != std::string::npos; at = arg.find(key, at)) {
@@ -74,6 +80,10 @@ std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& r
     out.push_back(arg);
   }
   return out;
+}
+
+bool node_starts(const NodeSpec& node, const RigConfig& rig) {
+  return !node.with_left_log || !rig.left_log_path.empty();
 }
 
 }  // namespace vcockpit::rig

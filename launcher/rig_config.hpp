@@ -15,6 +15,7 @@ struct NodeSpec {
   std::optional<double> restart_delay_s;
   bool ends_run = false;
   double start_delay_s = 0.0;
+  bool with_left_log = false;  // started only when the rig has a left hand's log ({left_log})
 };
 
 struct RigConfig {
@@ -23,13 +24,17 @@ struct RigConfig {
   int domain_id = 7;
   std::string qos_file;
   std::string participant_profile = "loopback";
-  std::string log_path;  // {log}
+  std::string log_path;       // {log}: the right hand's glove log
+  std::string left_log_path;  // {left_log}: the left hand's, or empty (no left glove driver)
   std::vector<NodeSpec> nodes;
 };
 
 RigConfig load_rig_config(const std::string& path);
+// The nodes this rig starts: those `with_left_log` only when it has a left log.
+bool node_starts(const NodeSpec& node, const RigConfig& rig);
 
-// {log}, {out} and {config} replaced in every argument.
+// {log}, {left_log}, {hands} ("right", or "right,left" with a left log), {out} and {config}
+// replaced in every argument.
 std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& rig,
                                         const std::string& out_dir);
 

@@ -79,6 +79,7 @@ void RigMonitor::poll() {
   cockpit::GraspEvent e;
   while (event_reader_.take(e)) {
     SeenEvent seen;
+    seen.hand_id = static_cast<int>(e.hand_id());
     seen.t_s = static_cast<double>(e.sim_time_ns()) / 1e9;  // prints as its exact decimal
     seen.grasp = e.kind() == cockpit::GRASP;
     seen.object = object_name(e.object_id());

@@ -16,6 +16,7 @@ namespace vcockpit::rig {
 struct SeenEvent {
   double t_s = 0;
   bool grasp = true;
+  int hand_id = 0;  // 0 right, 1 left
   std::string object;
   std::string reason;
 };

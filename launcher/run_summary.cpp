@@ -17,6 +17,7 @@ RunSummary collect_run_summary(const RigConfig& rig, const std::string& out_dir,
   RunSummary s;
   s.rig_path = rig.path;
   s.log_path = rig.log_path;
+  s.left_log_path = rig.left_log_path;
   s.domain_id = rig.domain_id;
   s.out_dir = out_dir;
   s.ended = supervisor.end_reason();
@@ -28,7 +29,11 @@ RunSummary collect_run_summary(const RigConfig& rig, const std::string& out_dir,
     auto it = statuses.find(node);
     return it == statuses.end() ? 0 : it->second.published();
   };
-  s.samples_replayed = published("glove_driver");
+  s.samples_replayed = published("glove_driver") + published("glove_driver_left");
+  if (auto it = statuses.find("physics_node"); it != statuses.end()) {
+    for (const cockpit::HandInputStatus& h : it->second.hands())
+      s.hands.push_back({static_cast<int>(h.hand_id()), h.received(), h.glove_lost(), h.grasps(), h.tracking()});
+  }
   s.frames_rendered = published("image_generator");
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(out_dir + "/frames", ec)) {
@@ -70,6 +75,15 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
   nlohmann::ordered_json j;
   j["rig"] = s.rig_path;
   j["log"] = s.log_path;
+  if (!s.left_log_path.empty()) j["left_log"] = s.left_log_path;
+  auto& hands = j["hands"] = nlohmann::ordered_json::array();
+  for (const RunSummary::HandOutcome& h : s.hands) {
+    hands.push_back({{"hand", h.hand_id == 1 ? "left" : "right"},
+                     {"samples", h.samples},
+                     {"glove_lost", h.glove_lost},
+                     {"grasps", h.grasps},
+                     {"tracking_at_end", h.tracking}});
+  }
   j["domain"] = s.domain_id;
   j["ended"] = s.ended;
   j["ok"] = s.ok;
@@ -81,6 +95,7 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
   for (const auto& e : s.events) {
     events.push_back({{"t_s", e.t_s},
                       {"event", e.grasp ? "grasp" : "release"},
+                      {"hand", e.hand_id == 1 ? "left" : "right"},
                       {"object", e.object},
                       {"reason", e.reason}});
   }

@@ -31,8 +31,18 @@ struct RunSummary {
     int restarts = 0;
   };
 
+  // One hand's input on the physics node (its last node_status).
+  struct HandOutcome {
+    int hand_id = 0;
+    uint64_t samples = 0;
+    uint64_t glove_lost = 0;
+    uint32_t grasps = 0;
+    bool tracking = false;
+  };
   std::string rig_path;
   std::string log_path;
+  std::string left_log_path;  // empty: no left hand's log
+  std::vector<HandOutcome> hands;
   int domain_id = 0;
   std::string out_dir;
   std::string ended;  // why the run ended

@@ -29,6 +29,7 @@ Supervisor::~Supervisor() {
 
 void Supervisor::start_nodes() {
   for (const NodeSpec& spec : rig_.nodes) {
+    if (!node_starts(spec, rig_)) continue;
     std::vector<std::string> argv = expand_command(spec, rig_, out_dir_);
     argv[0] = bin_dir_ + "/" + argv[0];
     if (access(argv[0].c_str(), X_OK) != 0) {
@@ -75,6 +76,14 @@ void Supervisor::supervise(RigMonitor& monitor, bool status_line) {
       const NodeSpec& spec = node->spec();
       const int status = node->exit_status();
       if (spec.ends_run && status == 0) {
+        // the run is over when every node that ends it has (a glove driver per hand)
+        bool all_ended = true;
+        for (const auto& other : nodes_)
+          if (other->spec().ends_run && other.get() != node.get() && other->running()) all_ended = false;
+        if (!all_ended) {
+          spdlog::info("{} finished", spec.name);
+          continue;
+        }
         spdlog::info("{} finished: the run is over", spec.name);
         end_reason_ = spec.name + " finished";
         drain_until_ns = now_ns + 1'500'000'000;  // let the others show the end

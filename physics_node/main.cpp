@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/cli_finite.hpp"
 #include "common/logging.hpp"
@@ -89,6 +90,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--lockstep", node_options.lockstep,
                "DDS: step to each hand sample's stamp (pairs with glove_driver --lockstep)");
+  std::vector<std::string> lockstep_hands;
+  app.add_option("--lockstep-hands", lockstep_hands,
+                 "lockstep: hands whose samples every step waits for (right, left; one glove driver "
+                 "each); default: whichever hands send samples")
+      ->check(CLI::IsMember({"right", "left"}))
+      ->delimiter(',');
   app.add_option("--rate-hz", node_options.rate_hz, "DDS real time: physics steps per second")
       ->check(CLI::Range(1.0, 10000.0) & kFinite)
       ->capture_default_str();
@@ -160,6 +167,9 @@ int main(int argc, char** argv) {
                                  "between samples with no delay)");
     }
     node_options.input_delay_s = input_delay_s;
+    if (!lockstep_hands.empty() && !node_options.lockstep)
+      throw CLI::ValidationError("--lockstep-hands belongs to --lockstep");
+    for (const std::string& side : lockstep_hands) node_options.lockstep_hands.push_back(side == "left" ? 1 : 0);
     if (stats_out) {
       check_stats_out(*stats_out);
       node_options.stats_out = *stats_out;

@@ -45,6 +45,8 @@ class ReplayDriver {
     t0_ns_ = t0_ns - world_.time_ns();
     started_ = true;
   }
+  // The source time at world time 0 (valid once started).
+  int64_t source_time_at_world_zero() const { return t0_ns_; }
   // World time (ns) of the newest sample taken; whether one has been taken.
   int64_t newest_world_ns() const { return newest_.world_t_ns; }
   bool has_sample() const { return have_newest_; }

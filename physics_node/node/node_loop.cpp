@@ -4,7 +4,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <array>
 #include <memory>
+#include <stdexcept>
+#include <vector>
 
 #include "common/clock.hpp"
 #include "common/signals.hpp"
@@ -28,20 +31,58 @@ physics_io::FollowerOptions follower_options(const NodeOptions& options) {
   return f;
 }
 
+// One hand's input: its own gate, timeline (lockstep: replay driver; real time: follower), source
+// and glove liveliness. Samples go to the channel of their hand_id.
+struct HandChannel {
+  HandChannel(physics::World& world, int hand_index, const NodeOptions& options)
+      : hand(hand_index),
+        model(world.scene().hands[static_cast<std::size_t>(hand_index)]),
+        gate(model),
+        replay(world, model, options.timing, hand_index),
+        follower(follower_options(options)) {}
+  int hand;
+  const hand::HandModel& model;
+  SampleGate gate;
+  physics_io::ReplayDriver replay;      // lockstep: the world advanced to each sample's stamp
+  physics_io::InputFollower follower;  // real time: the hand a small delay behind the samples
+  bool expected = false;               // lockstep: the world waits for this hand's samples
+  dds::InstanceHandle_t source;
+  bool have_source = false;
+  uint64_t received = 0;
+  int64_t last_sample_wall_ns = 0;
+  uint64_t glove_lost = 0;             // real time (lockstep: the replay driver counts)
+  bool tracking = false;
+  bool have_input = false;
+  physics::HandInput input;
+  // lockstep: samples received and not yet given to the replay driver (it takes each as the
+  // world reaches it, as the offline runner feeds a log), from `next` on
+  struct Pending {
+    hand::GloveSample sample;
+    int64_t source_stamp_ns;
+  };
+  std::vector<Pending> pending;
+  std::size_t next = 0;
+};
+
 // Everything the loop keeps between steps, in one place.
 class Node {
  public:
   Node(DdsParticipant& participant, physics::Scene scene, const NodeOptions& options)
       : options_(options),
         world_(std::move(scene)),
-        hand_(world_.scene().hands[0]),
-        gate_(hand_),
-        replay_(world_, hand_, options.timing),
-        follower_(follower_options(options)),
         reader_(participant.make_reader<cockpit::HandSample>(options.lockstep ? "reliable"
                                                                               : "stream")),
         command_reader_(participant.make_reader<cockpit::ControlCommand>("event")),
         publisher_(participant, world_) {
+    hands_.reserve(static_cast<std::size_t>(world_.hand_count()));
+    for (int h = 0; h < world_.hand_count(); ++h)
+      hands_.emplace_back(world_, h, options);
+    shown_.resize(hands_.size());
+    for (const int id : options.lockstep_hands) {
+      const int h = world_.hand_index(id);
+      if (h < 0) throw std::invalid_argument("--lockstep-hands: the scene has no such hand");
+      hands_[static_cast<std::size_t>(h)].expected = true;
+    }
     publisher_.publish_object_info(world_);
     publisher_.publish_hand_info(world_);
     publisher_.publish_control_info(world_);
@@ -50,7 +91,6 @@ class Node {
           options.out_dir, physics_io::output_interval_ns(options.output_hz, world_.scene()));
     }
     last_status_ns_ = monotonic_now_ns();
-    last_sample_wall_ns_ = last_status_ns_;
   }
 
   int run_realtime();
@@ -65,26 +105,43 @@ class Node {
     dds::SampleInfo info;
     while (reader_.take(message_, &info)) {
       const int64_t take_ns = monotonic_now_ns();
-      const bool new_source = !have_source_ || info.publication_handle != source_;
-      if (new_source) gate_.reset_time();
+      const int h = world_.hand_index(static_cast<int>(message_.hand_id()));
+      if (h < 0) {  // a hand this scene does not have: refused and counted
+        if (unknown_hand_++ == 0)
+          spdlog::warn("hand samples for hand_id {}, which the scene has not: ignored (counted)",
+                       message_.hand_id());
+        continue;
+      }
+      HandChannel& ch = hands_[static_cast<std::size_t>(h)];
+      const bool new_source = !ch.have_source || info.publication_handle != ch.source;
+      if (new_source) ch.gate.reset_time();
       hand::GloveSample sample;
-      if (!gate_.accept(message_, sample)) continue;
+      if (!ch.gate.accept(message_, sample)) continue;
       if (new_source) {
-        if (have_source_) spdlog::info("hand samples from a new source: following its timeline");
-        source_ = info.publication_handle;
-        have_source_ = true;
+        if (ch.have_source)
+          spdlog::info("{} hand samples from a new source: following its timeline", side_name(h));
+        ch.source = info.publication_handle;
+        ch.have_source = true;
       }
       ++received_;
+      ++ch.received;
       stats_.record_sample(info, message_.source_stamp_ns(), take_ns);
-      last_sample_wall_ns_ = take_ns;
-      on_sample(sample, new_source, take_ns);
+      ch.last_sample_wall_ns = take_ns;
+      on_sample(ch, sample, new_source, take_ns);
     }
   }
 
-  bool glove_alive(int64_t now_ns) const {
-    if (received_ == 0) return false;
-    const bool recent = now_ns - last_sample_wall_ns_ <= options_.timing.glove_timeout_ns;
+  const char* side_name(int hand) const { return world_.hand_id(hand) == 1 ? "left" : "right"; }
+
+  bool glove_alive(const HandChannel& ch, int64_t now_ns) const {
+    if (ch.received == 0) return false;
+    const bool recent = now_ns - ch.last_sample_wall_ns <= options_.timing.glove_timeout_ns;
     return recent && reader_.alive_writer_count() > 0;
+  }
+  bool any_glove_alive(int64_t now_ns) const {
+    for (const HandChannel& ch : hands_)
+      if (glove_alive(ch, now_ns)) return true;
+    return false;
   }
 
   // Commands from other nodes (cockpit/control_command) for the coming step: the world refuses a
@@ -123,8 +180,12 @@ class Node {
                    physics::body_fault_name(f.what), ns_to_seconds(f.first_t_ns));
     }
     for (const auto& e : world_.step_events()) {
-      spdlog::info("{} {} at {:.3f} s: {}", e.grasp ? "GRASP" : "RELEASE",
+      const int h = world_.hand_index(e.hand_id);
+      if (e.grasp && h >= 0) ++grasps_[static_cast<std::size_t>(h)];
+      spdlog::info("{} {} at {:.3f} s{}: {}", e.grasp ? "GRASP" : "RELEASE",
                    world_.scene().objects[e.object].name, ns_to_seconds(e.t_ns),
+                   hands_.size() > 1 ? std::string(" by the ") + (e.hand_id == 1 ? "left" : "right") + " hand"
+                                     : std::string(),
                    physics_io::grasp_event_text(e));
     }
     for (const auto& e : world_.control_events()) {
@@ -140,27 +201,39 @@ class Node {
     for (int s = 0; s < physics::kStageCount; ++s) stage_ns_[s] += world_.stage_times().ns[s];
   }
 
-  void publish_state(bool tracking) {
+  void publish_state() {
     const int64_t start = monotonic_now_ns();
-    publisher_.publish_state(world_, stamps_, tracking);
+    publisher_.publish_state(world_, shown_);
     publish_ns_ += monotonic_now_ns() - start;
   }
-  // lockstep: the hand the replay driver gave the last step
+  // lockstep: the hands the replay drivers gave the last step
   void publish_lockstep_state() {
-    const physics_io::ShownInput& shown = replay_.shown();
-    stamps_ = {shown.sample_time_ns, shown.source_stamp_ns};
-    publish_state(shown.tracking);
+    for (std::size_t h = 0; h < hands_.size(); ++h) {
+      const physics_io::ShownInput& shown = hands_[h].replay.shown();
+      shown_[h] = {{shown.sample_time_ns, shown.source_stamp_ns}, shown.tracking};
+    }
+    publish_state();
   }
 
   void maybe_publish_status(int64_t now_ns, bool alive, const char* detail);
   // Everything counted about the input so far: the gate's, the timing's (follower in real time,
   // replay driver in lockstep), glove lost.
-  hand::InputCounts input_counts() const {
-    hand::InputCounts c = gate_.counts();
-    c.rejected_out_of_range += gate_.rejected_flagged_or_far();  // as node_status always had it
-    c += options_.lockstep ? replay_.counts() : follower_.counts();
-    c.glove_lost += glove_lost_;
+  hand::InputCounts input_counts(const HandChannel& ch) const {
+    hand::InputCounts c = ch.gate.counts();
+    c.rejected_out_of_range += ch.gate.rejected_flagged_or_far();  // as node_status always had it
+    c += options_.lockstep ? ch.replay.counts() : ch.follower.counts();
+    c.glove_lost += ch.glove_lost;
     return c;
+  }
+  hand::InputCounts input_counts() const {
+    hand::InputCounts c;
+    for (const HandChannel& ch : hands_) c += input_counts(ch);
+    return c;
+  }
+  uint64_t rejected() const {
+    uint64_t n = unknown_hand_;
+    for (const HandChannel& ch : hands_) n += ch.gate.rejected();
+    return n;
   }
 
   // --duration: the loops stop by themselves at this monotonic time (0: never).
@@ -177,22 +250,17 @@ class Node {
 
   NodeOptions options_;
   physics::World world_;
-  const hand::HandModel& hand_;
-  SampleGate gate_;
-  physics_io::ReplayDriver replay_;      // lockstep: the world advanced to each sample's stamp
-  physics_io::InputFollower follower_;  // real time: the hand a small delay behind the samples
+  std::vector<HandChannel> hands_;      // per world hand: its input
+  std::vector<HandInputState> shown_;   // per world hand: what hand_state says of its input
+  uint64_t unknown_hand_ = 0;           // samples for a hand the scene has not
+  std::array<uint32_t, physics::kMaxHands> grasps_{};  // per world hand
   physics_io::HandMotionPeak hand_peak_;
-  uint64_t glove_lost_ = 0;             // real time (lockstep: the replay driver counts)
   Reader<cockpit::HandSample> reader_;
   Reader<cockpit::ControlCommand> command_reader_;
   cockpit::ControlCommand command_;
   uint64_t commands_refused_ = 0;
   StatePublisher publisher_;
   cockpit::HandSample message_;
-  dds::InstanceHandle_t source_;
-  bool have_source_ = false;
-  InputStamps stamps_;
-  physics::HandInput input_;
   uint64_t received_ = 0;
   uint64_t received_at_last_status_ = 0;
   uint64_t late_steps_ = 0;
@@ -200,7 +268,6 @@ class Node {
   int64_t stage_ns_[physics::kStageCount] = {};
   int64_t publish_ns_ = 0;
   int64_t last_status_ns_ = 0;
-  int64_t last_sample_wall_ns_ = 0;
   int64_t run_start_ns_ = 0;
   int64_t stop_at_ns_ = 0;
   LoopStats stats_;
@@ -211,7 +278,7 @@ class Node {
 void Node::report_stop(StatsReport report) {
   report.steps = world_.step_count();
   report.samples = received_;
-  report.rejected = gate_.rejected();
+  report.rejected = rejected();
   report.input = input_counts();
   report.hand_peak_wrist_mps = hand_peak_.wrist_mps();
   report.hand_peak_joint_radps = hand_peak_.joint_radps();
@@ -219,6 +286,11 @@ void Node::report_stop(StatsReport report) {
                latency_text_us(stats_.dds_transit), latency_text_us(stats_.age_at_step),
                latency_text_us(stats_.step_compute));
   spdlog::info("input: {}", hand::input_counts_text(report.input));
+  if (hands_.size() > 1) {
+    for (const HandChannel& ch : hands_)
+      spdlog::info("{} hand: {} samples; {}", side_name(ch.hand), ch.received,
+                   hand::input_counts_text(input_counts(ch)));
+  }
   if (!options_.lockstep) {
     spdlog::info("hand lag behind its source {} (interpolation delay now {:.2f} ms); peak wrist "
                  "speed {:.2f} m/s, joint {:.1f} rad/s",
@@ -257,7 +329,18 @@ void Node::maybe_publish_status(int64_t now_ns, bool alive, const char* detail) 
   status.intervals_late(input.intervals_late);
   status.longest_interval_s(static_cast<double>(input.longest_interval_ns) * 1e-9);
   status.glove_lost(input.glove_lost);
-  status.input_delay_ms(options_.lockstep ? 0.0 : static_cast<double>(follower_.delay_ns()) * 1e-6);
+  status.input_delay_ms(options_.lockstep ? 0.0 : static_cast<double>(hands_.front().follower.delay_ns()) * 1e-6);
+  // each hand: its samples, glove losses, tracking and grasps
+  status.hands().clear();
+  for (const HandChannel& ch : hands_) {
+    cockpit::HandInputStatus h;
+    h.hand_id(static_cast<uint32_t>(world_.hand_id(ch.hand)));
+    h.received(ch.received);
+    h.glove_lost(input_counts(ch).glove_lost);
+    h.tracking(options_.lockstep ? ch.replay.shown().tracking : ch.tracking);
+    h.grasps(grasps_[static_cast<std::size_t>(ch.hand)]);
+    status.hands().push_back(h);
+  }
   status.late_steps(late_steps_);
   status.input_alive(alive);
   const double steps = steps_in_period_ > 0 ? static_cast<double>(steps_in_period_) : 1.0;
@@ -282,8 +365,6 @@ int Node::run_realtime() {
   start_clock();
   int64_t next_ns = run_start_ns_;
   int64_t next_publish_ns = next_ns;
-  bool tracking = false;
-  bool have_input = false;
   spdlog::info("real time: {} Hz steps ({} substeps), world published at {} Hz; the hand {} "
                "behind its glove, gaps over {:.3f} s not bridged",
                options_.rate_hz, world_.substeps(), options_.publish_hz,
@@ -291,40 +372,65 @@ int Node::run_realtime() {
                                       : std::string("one usual sample interval + 2 ms"),
                static_cast<double>(options_.timing.max_gap_ns) * 1e-9);
   physics_io::FollowedInput followed;
+  char detail[64] = "no glove yet";
   while (!should_stop(monotonic_now_ns())) {
     sleep_until_ns(next_ns);
-    drain([&](const hand::GloveSample& s, bool new_source, int64_t take_ns) {
-      if (new_source) follower_.reset();
-      follower_.push(s, take_ns, message_.source_stamp_ns());
+    drain([&](HandChannel& ch, const hand::GloveSample& s, bool new_source, int64_t take_ns) {
+      if (new_source) ch.follower.reset();
+      ch.follower.push(s, take_ns, message_.source_stamp_ns());
     });
     const int64_t now_ns = monotonic_now_ns();
-    const bool alive = glove_alive(now_ns);
-    if (alive != tracking && have_input) {
-      spdlog::warn(alive ? "glove samples resumed: tracking" : "glove lost: holding the hand, "
-                                                               "releasing what it holds");
-      if (!alive) ++glove_lost_;
-    }
-    tracking = alive;
-    // the hand at the end of this step's slot, a small delay behind the source
-    if (follower_.at(next_ns + period_ns, followed)) {
-      input_ = physics_io::hand_input_from_glove(hand_, followed.sample);
-      stamps_ = {followed.sample.t_ns, followed.source_stamp_ns};
-      have_input = true;
-    }
-    if (have_input) {
-      input_.tracking = tracking;
-      world_.set_hand_input(input_);
+    bool any_alive = false;
+    bool any_input = false;
+    for (HandChannel& ch : hands_) {
+      const bool alive = glove_alive(ch, now_ns);
+      if (alive != ch.tracking && ch.have_input) {
+        if (alive) {
+          spdlog::warn("{} glove samples resumed: tracking", side_name(ch.hand));
+        } else {
+          spdlog::warn("{} glove lost: holding the hand, releasing what it holds", side_name(ch.hand));
+        }
+        if (!alive) ++ch.glove_lost;
+      }
+      ch.tracking = alive;
+      any_alive = any_alive || alive;
+      // the hand at the end of this step's slot, a small delay behind the source
+      HandInputState& shown = shown_[static_cast<std::size_t>(ch.hand)];
+      if (ch.follower.at(next_ns + period_ns, followed)) {
+        ch.input = physics_io::hand_input_from_glove(ch.model, followed.sample);
+        shown.stamps = {followed.sample.t_ns, followed.source_stamp_ns};
+        ch.have_input = true;
+      }
+      if (ch.have_input) {
+        ch.input.tracking = ch.tracking;
+        world_.set_hand_input(ch.input, ch.hand);
+      }
+      shown.tracking = ch.tracking;
+      any_input = any_input || ch.have_input;
     }
     step_world();
     const int64_t end_ns = monotonic_now_ns();
-    if (have_input && tracking) stats_.hand_lag.record_ns(end_ns - stamps_.source_stamp_ns);
+    for (const HandChannel& ch : hands_)
+      if (ch.have_input && ch.tracking)
+        stats_.hand_lag.record_ns(end_ns - shown_[static_cast<std::size_t>(ch.hand)].stamps.source_stamp_ns);
     if (end_ns > next_ns + period_ns) ++late_steps_;
     if (end_ns >= next_publish_ns) {
-      publish_state(tracking);
+      publish_state();
       next_publish_ns += publish_period_ns;
       if (next_publish_ns < end_ns) next_publish_ns = end_ns + publish_period_ns;
     }
-    maybe_publish_status(end_ns, alive, alive ? "tracking" : have_input ? "glove lost" : "no glove yet");
+    // "tracking", "glove lost" (every hand with input lost), or which hand's glove is lost
+    if (!any_input) {
+      std::snprintf(detail, sizeof detail, "no glove yet");
+    } else if (!any_alive) {
+      std::snprintf(detail, sizeof detail, "glove lost");
+    } else {
+      std::snprintf(detail, sizeof detail, "tracking");
+      for (const HandChannel& ch : hands_)
+        if (ch.have_input && !ch.tracking)
+          std::snprintf(detail, sizeof detail, "tracking; %s glove lost", side_name(ch.hand));
+    }
+    maybe_publish_status(end_ns, any_alive, detail);
     next_ns += period_ns;
     // far behind (a stall): resynchronise, counting every dropped slot as late
     const int64_t behind = (monotonic_now_ns() - next_ns) / period_ns;
@@ -341,13 +447,13 @@ int Node::run_realtime() {
   const double rate_hz = loop_s > 0 ? static_cast<double>(world_.step_count()) / loop_s : 0.0;
   spdlog::info("stopped after {} steps in {:.3f} s ({:.1f} Hz); {} samples accepted, {} rejected, "
                "{} late steps",
-               world_.step_count(), loop_s, rate_hz, received_, gate_.rejected(), late_steps_);
+               world_.step_count(), loop_s, rate_hz, received_, rejected(), late_steps_);
   StatsReport report;
   report.mode = "realtime";
   report.rate_hz = rate_hz;
   report.late_steps = late_steps_;
   report.duration_s = loop_s;
-  report.input_delay_ns = follower_.delay_ns();
+  report.input_delay_ns = hands_.front().follower.delay_ns();
   report_stop(report);
   return 0;
 }
@@ -360,29 +466,67 @@ int Node::run_lockstep() {
                world_.substeps());
   start_clock();
   int64_t last_publish_ns = 0;
+  const int64_t step_ns = std::llround(world_.scene().step_s * 1e9);
   while (!should_stop(monotonic_now_ns())) {
     const bool idle = !reader_.wait_for_data(20'000'000);
-    drain([&](const hand::GloveSample& s, bool new_source, int64_t) {
-      // world time 0 is the first sample; a later source continues from where the world is
-      if (new_source) replay_.restart();
-      replay_.feed(
-          s,
-          [&] {
-            step_world();
-            dirty = true;
-            if (world_.time_ns() >= next_publish_sim_ns) {
-              publish_lockstep_state();
-              last_publish_ns = monotonic_now_ns();
-              next_publish_sim_ns += publish_every_ns;
-            }
-          },
-          message_.source_stamp_ns());
-      // the offline runner's first row: the hand set by the first sample, before any step
-      if (recorder_ && !recording_started_) {
+    drain([&](HandChannel& ch, const hand::GloveSample& s, bool new_source, int64_t) {
+      if (new_source) {
+        // world time 0 is the first sample; a later source continues from where the world is;
+        // a second hand's first source shares the first hand's timeline (one clock)
+        ch.replay.restart();
+        const HandChannel* begun = nullptr;
+        for (const HandChannel& other : hands_)
+          if (&other != &ch && other.replay.has_sample()) begun = &other;
+        if (begun != nullptr && !ch.replay.has_sample() && ch.received == 1)
+          ch.replay.set_origin(begun->replay.source_time_at_world_zero() + world_.time_ns());
+        ch.pending.erase(ch.pending.begin() + static_cast<std::ptrdiff_t>(ch.next), ch.pending.end());
+      }
+      if (ch.next == ch.pending.size()) {
+        ch.pending.clear();
+        ch.next = 0;
+      }
+      ch.pending.push_back({s, message_.source_stamp_ns()});
+    });
+    // Step as the offline runner does: before each step, each hand takes its samples up to the
+    // first at or past the step's end; the step waits until every hand that has begun (and
+    // every --lockstep-hands hand) has one.
+    for (;;) {
+      const int64_t step_end_ns = world_.time_ns() + step_ns;
+      bool ready = true;
+      bool any = false;
+      for (HandChannel& ch : hands_) {
+        while (ch.next < ch.pending.size() &&
+               (!ch.replay.has_sample() || ch.replay.newest_world_ns() < step_end_ns)) {
+          const HandChannel::Pending& p = ch.pending[ch.next];
+          if (!ch.replay.has_sample() && ch.replay.started() &&
+              ch.replay.world_time_of(p.sample) > world_.time_ns())
+            break;  // begins later on the shared timeline
+          ch.replay.push(p.sample, p.source_stamp_ns);
+          ++ch.next;
+        }
+        if (!ch.replay.has_sample()) {
+          ready = ready && !ch.expected;
+          continue;
+        }
+        any = true;
+        ready = ready && ch.replay.newest_world_ns() >= step_end_ns;
+      }
+      // the offline runner's first row: the hands set by their first samples, before any step
+      if (any && recorder_ && !recording_started_) {
         recorder_->start(world_);
         recording_started_ = true;
       }
-    });
+      if (!ready || !any) break;
+      for (HandChannel& ch : hands_)
+        if (ch.replay.has_sample()) ch.replay.input_for_step_ending(step_end_ns);
+      step_world();
+      dirty = true;
+      if (world_.time_ns() >= next_publish_sim_ns) {
+        publish_lockstep_state();
+        last_publish_ns = monotonic_now_ns();
+        next_publish_sim_ns += publish_every_ns;
+      }
+    }
     // caught up with the input: show where the world is, at most at --publish-hz of wall time
     // (a replay at its own pace would otherwise publish every sample), and at once when the
     // input pauses or ends
@@ -392,8 +536,10 @@ int Node::run_lockstep() {
       last_publish_ns = now_ns;
       dirty = false;
     }
-    const bool alive = glove_alive(now_ns);
-    maybe_publish_status(now_ns, alive, alive ? "lockstep" : replay_.started() ? "lockstep, input ended"
+    const bool alive = any_glove_alive(now_ns);
+    bool started = false;
+    for (const HandChannel& ch : hands_) started = started || ch.replay.started();
+    maybe_publish_status(now_ns, alive, alive ? "lockstep" : started ? "lockstep, input ended"
                                                                      : "lockstep, waiting");
   }
   const int64_t loop_end_ns = monotonic_now_ns();
@@ -404,7 +550,7 @@ int Node::run_lockstep() {
     spdlog::info("wrote {}/trajectories.csv and events.jsonl", options_.out_dir);
   }
   spdlog::info("stopped at {:.3f} s simulated after {} steps; {} samples accepted, {} rejected",
-               ns_to_seconds(world_.time_ns()), world_.step_count(), received_, gate_.rejected());
+               ns_to_seconds(world_.time_ns()), world_.step_count(), received_, rejected());
   StatsReport report;
   report.mode = "lockstep";
   report.duration_s = ns_to_seconds(loop_end_ns - run_start_ns_);

@@ -10,9 +10,14 @@
 // fell behind runs them back to back, and only beyond kMaxCatchUpSteps does it resynchronise,
 // counting every step it dropped as late and saying so in the log and the status.
 //
-// Lockstep: the world advances to each sample's stamp (world time 0 = the first sample) with the
-// hand interpolated between samples, exactly as the offline runner does with the same log
-// (physics_io::ReplayDriver), so a lockstep replay gives the same result. It
+// Samples go to the world's hand of their hand_id (a hand the scene has not is ignored and
+// counted); each hand has its own gate, timeline and glove liveliness, so one glove lost leaves
+// the other hand working.
+//
+// Lockstep: the world advances to each sample's stamp (world time 0 = the first sample) with each
+// hand interpolated between its samples, exactly as the offline runner does with the same logs
+// (physics_io::ReplayDriver per hand, one timeline), so a lockstep replay gives the same result.
+// With two glove drivers, --lockstep-hands makes every step wait for both. It
 // publishes at --publish-hz of simulated time, and when it has caught up with its input at most
 // at --publish-hz of wall time (a replay at its own pace would otherwise publish every sample)
 // and at once when the input pauses or ends.
@@ -28,6 +33,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/dds_participant.hpp"
 #include "physics_node/io/input_timing.hpp"
@@ -48,6 +54,9 @@ struct NodeOptions {
   // none), committed at stop
   std::string out_dir;
   double output_hz = 100.0;
+  // lockstep: the hands (ids: 0 right, 1 left) whose samples every step waits for, one glove
+  // driver each; empty: whichever hands have sent samples
+  std::vector<int> lockstep_hands;
 };
 
 constexpr int kMaxCatchUpSteps = 100;

@@ -31,6 +31,8 @@ bool all_finite(const std::array<Eigen::Isometry3d, hand::kLinkCount>& X_GL) {
   return true;
 }
 
+std::string hand_id_name(int hand_id) { return hand_id == 1 ? "the left hand" : "the right hand"; }
+
 }  // namespace
 
 StatePublisher::StatePublisher(DdsParticipant& participant, const physics::World& world)
@@ -43,9 +45,8 @@ StatePublisher::StatePublisher(DdsParticipant& participant, const physics::World
       control_info_writer_(participant.make_writer<cockpit::ControlInfo>("state")),
       control_writer_(participant.make_writer<cockpit::ControlState>("state")),
       control_event_writer_(participant.make_writer<cockpit::ControlEvent>("event")),
-      control_sent_(world.scene().controls.size()) {
-  hand_msg_.hand_id(static_cast<uint32_t>(world.hand_id()));
-}
+      control_sent_(world.scene().controls.size()),
+      hand_seq_(static_cast<std::size_t>(world.hand_count()), 0) {}
 
 static_assert(static_cast<int>(physics::ControlKind::kGuard) == cockpit::GUARD &&
                   static_cast<int>(physics::ControlKind::kPushButton) == cockpit::PUSH_BUTTON,
@@ -144,19 +145,18 @@ void StatePublisher::publish_object_info(const physics::World& world) {
 }
 
 void StatePublisher::publish_hand_info(const physics::World& world) {
-  if (!world.scene().has_hands()) return;
-  const auto hand_id = static_cast<uint32_t>(world.hand_id());
-  hand_info_writer_.write(to_hand_info(world.scene().hands[0], hand_id));
+  for (int h = 0; h < world.hand_count(); ++h) {
+    hand_info_writer_.write(to_hand_info(world.scene().hands[static_cast<std::size_t>(h)],
+                                         static_cast<uint32_t>(world.hand_id(h))));
+  }
 }
 
-void StatePublisher::publish_state(const physics::World& world, const InputStamps& stamps,
-                                   bool tracking) {
+void StatePublisher::publish_state(const physics::World& world,
+                                   const std::vector<HandInputState>& hands) {
   publish_controls(world);
   const auto& objects = world.scene().objects;
-  int held = cockpit::kNoObject;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const physics::BodyState& b = world.bodies()[i];
-    if (b.held_by == world.hand_id()) held = static_cast<int>(i);
     if (!objects[i].dynamic) continue;
     const std::string& name = objects[i].name;
     const int64_t t_ns = world.time_ns();
@@ -172,21 +172,34 @@ void StatePublisher::publish_state(const physics::World& world, const InputStamp
     object_msg_.held_by_hand_id(b.held_by);
     object_writer_.write(object_msg_);
   }
-  if (!world.hand_active()) return;
-  if (!hand_guard_.pass(world.X_GH().matrix().allFinite(), "the hand", "pose X_GH", world.time_ns()) ||
-      !hand_guard_.pass(all_finite(world.X_GL()), "the hand", "link poses X_GL", world.time_ns()))
+  for (int h = 0; h < world.hand_count(); ++h) publish_hand(world, h, h < static_cast<int>(hands.size())
+                                                                       ? hands[static_cast<std::size_t>(h)]
+                                                                       : HandInputState{});
+}
+
+void StatePublisher::publish_hand(const physics::World& world, int hand, const HandInputState& input) {
+  if (!world.hand_active(hand)) return;
+  const std::string name = hand_id_name(world.hand_id(hand));
+  if (!hand_guard_.pass(world.X_GH(hand).matrix().allFinite(), name, "pose X_GH", world.time_ns()) ||
+      !hand_guard_.pass(all_finite(world.X_GL(hand)), name, "link poses X_GL", world.time_ns()))
     return;
-  hand_msg_.seq(hand_seq_++);
-  hand_msg_.sample_time_ns(stamps.sample_time_ns);
-  hand_msg_.source_stamp_ns(stamps.source_stamp_ns);
+  // the object it holds (the first, if several)
+  int held = cockpit::kNoObject;
+  const auto bit = static_cast<uint8_t>(1u << hand);
+  for (std::size_t i = 0; i < world.bodies().size() && held == cockpit::kNoObject; ++i)
+    if ((world.bodies()[i].holders & bit) != 0) held = static_cast<int>(i);
+  hand_msg_.hand_id(static_cast<uint32_t>(world.hand_id(hand)));
+  hand_msg_.seq(hand_seq_[static_cast<std::size_t>(hand)]++);
+  hand_msg_.sample_time_ns(input.stamps.sample_time_ns);
+  hand_msg_.source_stamp_ns(input.stamps.source_stamp_ns);
   hand_msg_.sim_time_ns(world.time_ns());
-  hand_msg_.X_GH(to_idl(world.X_GH()));
-  for (int l = 0; l < hand::kLinkCount; ++l) hand_msg_.X_GL()[l] = to_idl(world.X_GL()[l]);
+  hand_msg_.X_GH(to_idl(world.X_GH(hand)));
+  for (int l = 0; l < hand::kLinkCount; ++l) hand_msg_.X_GL()[l] = to_idl(world.X_GL(hand)[l]);
   for (int l = 0; l < hand::kLinkCount; ++l)
-    hand_msg_.tracked_X_GL()[l] = to_idl(world.tracked_X_GL()[l]);
-  hand_msg_.tracked_offset_m(world.tracked_offset_m());
+    hand_msg_.tracked_X_GL()[l] = to_idl(world.tracked_X_GL(hand)[l]);
+  hand_msg_.tracked_offset_m(world.tracked_offset_m(hand));
   hand_msg_.grasped_object_id(held);
-  hand_msg_.tracking(tracking);
+  hand_msg_.tracking(input.tracking);
   hand_writer_.write(hand_msg_);
 }
 

@@ -2,9 +2,9 @@
 // The physics node's DDS outputs: the world as topics. Messages are preallocated and fixed-size,
 // so publishing in the loop neither allocates nor throws.
 //   cockpit/object_info   every object's geometry and colour, once (state: transient local)
-//   cockpit/hand_info     the simulated hand's capsules and palm box, once (state), so the image
-//                         generator draws this hand and not one from its own hand.yaml
-//   cockpit/hand_state    the hand's 16 link poses and the sample they came from (stream)
+//   cockpit/hand_info     each simulated hand's capsules and palm box, once (state, keyed by
+//                         hand_id), so the image generator draws these hands and not its own
+//   cockpit/hand_state    each active hand's 16 link poses and the sample they came from (stream)
 //   cockpit/object_state  every dynamic object's pose and velocities (state)
 //   cockpit/grasp_event   every GRASP and RELEASE with its reason (event)
 //   cockpit/control_info  every control's kind, joint and named positions, once (state)
@@ -27,10 +27,16 @@
 
 namespace vcockpit::physics_node {
 
-// Where the hand's current input came from, for hand_state.
+// Where a hand's current input came from, for hand_state.
 struct InputStamps {
   int64_t sample_time_ns = 0;
   int64_t source_stamp_ns = 0;
+};
+
+// One hand's input as hand_state reports it.
+struct HandInputState {
+  InputStamps stamps;
+  bool tracking = false;
 };
 
 class StatePublisher {
@@ -39,9 +45,11 @@ class StatePublisher {
 
   void publish_object_info(const physics::World& world);
   void publish_control_info(const physics::World& world);
-  // The hand's geometry (nothing when the scene has no hand).
+  // Each hand's geometry (nothing when the scene has no hand).
   void publish_hand_info(const physics::World& world);
-  void publish_state(const physics::World& world, const InputStamps& stamps, bool tracking);
+  // The objects, the controls, and each active hand (`hands`: per world hand; a hand beyond its
+  // size is published with no stamps and tracking).
+  void publish_state(const physics::World& world, const std::vector<HandInputState>& hands);
   void publish_events(const physics::World& world);
   void publish_status(const cockpit::NodeStatus& status);
   // cockpit/control_state of each control that changed since its last sample (publish_state
@@ -57,6 +65,8 @@ class StatePublisher {
   }
 
  private:
+  void publish_hand(const physics::World& world, int hand, const HandInputState& input);
+
   Writer<cockpit::ObjectInfo> info_writer_;
   Writer<cockpit::HandInfo> hand_info_writer_;
   Writer<cockpit::HandState> hand_writer_;
@@ -81,7 +91,7 @@ class StatePublisher {
   cockpit::HandState hand_msg_;
   cockpit::ObjectState object_msg_;
   cockpit::GraspEvent event_msg_;
-  uint64_t hand_seq_ = 0;
+  std::vector<uint64_t> hand_seq_;  // per hand
   uint64_t event_seq_ = 0;
   physics_io::NonFiniteGuard info_guard_{"cockpit/object_info"};
   physics_io::NonFiniteGuard object_guard_{"cockpit/object_state"};

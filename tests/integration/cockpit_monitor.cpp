@@ -4,7 +4,7 @@
 //   status node=.. state=.. rate_hz=.. input_hz=.. received=.. rejected=.. nonfinite=.. range=..
 //          stale=.. clamped=.. late=.. alive=0|1 missing=.. intervals=.. interpolated=..
 //          bridged=.. unbridged=.. intervals_late=.. longest_s=.. lost=.. delay_ms=..
-//   hand seq=.. sample_time_ns=.. source_stamp_ns=.. sim_time_ns=.. tracking=0|1 held=..
+//   hand id=.. seq=.. sample_time_ns=.. source_stamp_ns=.. sim_time_ns=.. tracking=0|1 held=..
 //        x=.. y=.. z=.. qw=.. qx=.. qy=.. qz=..
 //   frame seq=.. width=.. height=.. source_stamp_ns=.. start_ns=.. end_ns=.. received_ns=..
 // and on exit (SIGINT/SIGTERM or --duration) the last state of every object:
@@ -98,9 +98,9 @@ int main(int argc, char** argv) {
       }
       while (hands.take(h)) {
         std::fprintf(f,
-                     "hand seq=%llu sample_time_ns=%lld source_stamp_ns=%lld sim_time_ns=%lld "
+                     "hand id=%u seq=%llu sample_time_ns=%lld source_stamp_ns=%lld sim_time_ns=%lld "
                      "tracking=%d held=%d",
-                     static_cast<unsigned long long>(h.seq()),
+                     h.hand_id(), static_cast<unsigned long long>(h.seq()),
                      static_cast<long long>(h.sample_time_ns()),
                      static_cast<long long>(h.source_stamp_ns()),
                      static_cast<long long>(h.sim_time_ns()), h.tracking() ? 1 : 0,

@@ -221,11 +221,12 @@ class HandInfoTest : public ProcessTest {
 TEST_F(HandInfoTest, ImageGeneratorDrawsTheHandThePhysicsNodeSimulates) {
   // the physics node's scene: the shipped cockpit, its hand file replaced by a wide one
   const std::string cockpit = read_text(config_path("cockpit.yaml"));
-  const std::string hand_line = "\nhand: hand.yaml\n";
-  const auto at = cockpit.find(hand_line);
-  ASSERT_NE(at, std::string::npos) << "config/cockpit.yaml names its hand file on one line";
+  // (its hands on one line: the right hand's file and its mirror image on the left)
+  const auto at = cockpit.find("\nhands: [hand.yaml,");
+  ASSERT_NE(at, std::string::npos) << "config/cockpit.yaml names its hands on one line";
+  const auto end = cockpit.find('\n', at + 1);
   std::string wide_scene = cockpit;
-  wide_scene.replace(at, hand_line.size(), "\nhand: wide_hand.yaml\n");
+  wide_scene.replace(at, end - at, "\nhands: [wide_hand.yaml, {file: wide_hand.yaml, side: left}]");
   std::ofstream(dir_ + "/cockpit.yaml") << wide_scene;
   const std::string shipped_hand = read_text(config_path("hand.yaml"));
   std::ofstream(dir_ + "/wide_hand.yaml") << with_doubled_radii(shipped_hand);

@@ -118,6 +118,50 @@ TEST_F(PhysicsNodeTest, EachControlLogInLockstepWritesTheOfflineRunnersFilesByte
   }
 }
 
+// Two glove drivers, one per hand (the bundled handover), and a lockstep node that waits for
+// both (--lockstep-hands right,left): the same events and trajectories as the offline runner
+// with the two logs, byte for byte; hand_state arrives for both hand ids.
+TEST_F(PhysicsNodeTest, TwoGloveDriversInLockstepGiveTheOfflineRunnersHandoverByteForByte) {
+  const std::string right = source_dir() + "/config/glove_logs/handover_right.csv";
+  const std::string left = source_dir() + "/config/glove_logs/handover_left.csv";
+  physics_io::OfflineOptions offline;
+  offline.scene_path = source_dir() + "/config/cockpit.yaml";
+  offline.log_paths = {right, left};
+  offline.out_dir = dir_ + "/offline_handover";
+  const auto summary = physics_io::run_offline(load_scene(offline.scene_path), offline);
+  ASSERT_EQ(summary.grasps, 2);
+  const std::string end = "sim_time_ns=" + std::to_string(std::llround(summary.simulated_s * 1e9)) + " ";
+
+  const std::string out = dir_ + "/lockstep_handover";
+  const std::string monitor_file = dir_ + "/monitor_handover.txt";
+  ChildProcess node = start("physics_node", {"--lockstep", "--lockstep-hands", "right,left", "--out", out},
+                            "node_handover.log");
+  ChildProcess monitor = start("test_cockpit_monitor", {"--out", monitor_file}, "monitor.log");
+  ChildProcess right_driver = start("glove_driver", {"--source", "replay", "--log", right, "--lockstep",
+                                                     "--rate", "0"},
+                                    "driver_right.log");
+  ChildProcess left_driver = start("glove_driver", {"--source", "replay", "--log", left, "--lockstep",
+                                                    "--rate", "0", "--node-name", "glove_driver_left"},
+                                   "driver_left.log");
+  ASSERT_EQ(right_driver.wait(120 * kSecond), 0) << text("driver_right.log");
+  ASSERT_EQ(left_driver.wait(120 * kSecond), 0) << text("driver_left.log");
+  EXPECT_TRUE(wait_for_line(monitor_file, end, 120 * kSecond)) << text("node_handover.log");
+  EXPECT_EQ(monitor.stop(), 0);
+  ASSERT_EQ(node.stop(), 0) << text("node_handover.log");
+  for (const char* file : {"events.jsonl", "trajectories.csv"}) {
+    const std::string lockstep = read_text(out + "/" + file);
+    EXPECT_FALSE(lockstep.empty()) << file;
+    EXPECT_TRUE(lockstep == read_text(offline.out_dir + "/" + file))
+        << file << " differs from the offline runner's";
+  }
+  const std::string seen = read_text(monitor_file);
+  EXPECT_NE(seen.find("hand id=0 "), std::string::npos) << "hand_state of the right hand";
+  EXPECT_NE(seen.find("hand id=1 "), std::string::npos) << "hand_state of the left hand";
+  const std::string node_log = text("node_handover.log");
+  EXPECT_NE(node_log.find("right hand: 13001 samples"), std::string::npos) << node_log;
+  EXPECT_NE(node_log.find("left hand: 13001 samples"), std::string::npos) << node_log;
+}
+
 // A log with clamped values, a missing column, a gap bridged and two not (one past the glove
 // timeout): the glove driver and the lockstep physics node count it as the offline runner does.
 TEST_F(PhysicsNodeTest, EveryNodeCountsACraftedLogsFaultsAsTheOfflineRunnerDoes) {

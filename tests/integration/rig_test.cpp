@@ -288,6 +288,49 @@ TEST_F(RigTest, KilledGloveDriverIsReportedLostAndThePhysicsKeepsRunning) {
   EXPECT_EQ(monitor.stop(), 0);
 }
 
+// Two glove drivers in real time, one per hand (the bundled handover): the right hand takes
+// the cup; the left glove driver is killed: the physics reports the left glove lost and the right
+// hand goes on holding the cup; then the right one is killed: the cup is let go, "glove lost".
+TEST_F(RigTest, KillingOneGloveDriverLosesOnlyThatHand) {
+  const std::string gloves =
+      "  - {name: glove_driver, command: [glove_driver, --source, replay, --log, '" +
+      config("glove_logs/handover_right.csv") + "'], required: false}\n"
+      "  - {name: glove_driver_left, command: [glove_driver, --source, replay, --log, '" +
+      config("glove_logs/handover_left.csv") + "', --node-name, glove_driver_left], required: false}\n";
+  ChildProcess monitor({bin_dir() + "/test_cockpit_monitor", "--out", dir_ + "/monitor.txt"},
+                       dds_test_env(), dir_ + "/monitor.log");
+  ChildProcess rig = launch(rig_yaml(domain_, false, gloves));
+  ASSERT_TRUE(wait_for_line(dir_ + "/monitor.txt", "kind=grasp hand=0", 20 * kSecond)) << launcher_log();
+  const pid_t left_pid = pid_of(dir_ + "/launcher.log", "glove_driver_left");
+  ASSERT_GT(left_pid, 0);
+  ::kill(left_pid, SIGKILL);
+  const std::string node_log = dir_ + "/out/logs/physics_node.log";
+  ASSERT_TRUE(wait_for_line(node_log, "left glove lost", 5 * kSecond)) << read_text(node_log);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(read_text(node_log).find("right glove lost"), std::string::npos) << read_text(node_log);
+  EXPECT_EQ(read_text(dir_ + "/monitor.txt").find("kind=release"), std::string::npos)
+      << "the right hand still holds the cup";
+  // the right one too: what it holds is let go, for the lost glove
+  const pid_t right_pid = pid_of(dir_ + "/launcher.log", "glove_driver");
+  ASSERT_GT(right_pid, 0);
+  ::kill(right_pid, SIGKILL);
+  ASSERT_TRUE(wait_for_line(dir_ + "/monitor.txt", "kind=release hand=0", 5 * kSecond)) << read_text(node_log);
+  const MonitorLog seen = MonitorLog::read(dir_ + "/monitor.txt");
+  ASSERT_FALSE(seen.events.empty());
+  EXPECT_NE(seen.events.back().reason.find("glove lost"), std::string::npos) << seen.events.back().reason;
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // a node_status (1 Hz) with it
+  rig.signal(SIGINT);
+  EXPECT_EQ(rig.wait(10 * kSecond), 0) << launcher_log();
+  EXPECT_EQ(monitor.stop(), 0);
+  const Json summary = parse_summary(read_text(dir_ + "/out/summary.json"));
+  const Json hands = summary.value("hands", Json::array());
+  ASSERT_EQ(hands.size(), 2u) << summary.dump();
+  EXPECT_EQ(hands[0].value("hand", ""), "right");
+  EXPECT_EQ(hands[0].value("grasps", 0), 1);
+  EXPECT_GE(hands[0].value("glove_lost", 0), 1);
+  EXPECT_GE(hands[1].value("glove_lost", 0), 1);
+}
+
 TEST_F(RigTest, CtrlCStopsEveryNodeWithinThreeSecondsAndLeavesNothingBehind) {
   ChildProcess rig = launch(rig_yaml(domain_, true, kLockstepGlove));
   ASSERT_TRUE(wait_for_line(dir_ + "/launcher.log", "started glove_driver", 20 * kSecond));

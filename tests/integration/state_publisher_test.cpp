@@ -36,7 +36,7 @@ TEST(StatePublisher, PublishesNoNonFiniteValue) {
   ASSERT_TRUE(objects.wait_for_matched(1, kWait_ns));
   ASSERT_TRUE(statuses.wait_for_matched(1, kWait_ns));
 
-  publisher.publish_state(world, {}, true);
+  publisher.publish_state(world, {{{}, true}});
   std::set<uint32_t> received;
   for (int tries = 0; tries < 50 && received.size() < 3; ++tries) {
     objects.wait_for_data(100'000'000);
