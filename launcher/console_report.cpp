@@ -8,8 +8,14 @@ void print_console_report(const RunSummary& s) {
   std::printf("\nvcockpit rig: %s after %.1f s (%s)\n", s.ok ? "done" : "FAILED", s.wall_s,
               s.ended.c_str());
   std::printf("  samples replayed     %llu\n", static_cast<unsigned long long>(s.samples_replayed));
+  for (const RunSummary::HandOutcome& h : s.hands) {
+    std::printf("  %-5s hand           %llu samples, %u grasp(s), glove lost %llu time(s)\n",
+                h.hand_id == 1 ? "left" : "right", static_cast<unsigned long long>(h.samples), h.grasps,
+                static_cast<unsigned long long>(h.glove_lost));
+  }
   for (const auto& e : s.events) {
-    std::printf("  %-7s %-10s at %.3f s: %s\n", e.grasp ? "GRASP" : "RELEASE", e.object.c_str(),
+    std::printf("  %-7s %-10s %-5s at %.3f s: %s\n", e.grasp ? "GRASP" : "RELEASE", e.object.c_str(),
+                e.hand_id == 1 ? "left" : "right",
                 e.t_s, e.reason.c_str());
   }
   for (const auto& e : s.control_events) {

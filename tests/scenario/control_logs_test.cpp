@@ -1,5 +1,6 @@
 // The bundled control logs (config/glove_logs/panel_switches.csv, panel_knobs.csv,
-// pedestal_levers.csv: recordings of the gestures in config/gestures/) through the offline runner
+// pedestal_levers.csv, and two_hand_controls_{right,left}.csv for both hands at once: recordings
+// of the gestures in config/gestures/) through the offline runner
 // on the default cockpit: each gives exactly its control events, in order — which control, from
 // and to which position, the cause and the hand link — and nothing else: no loose object is
 // touched or moved, and every control the log does not operate stays where it was. A change
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physics_node/config/scene_config.hpp"
@@ -25,11 +27,17 @@ namespace vcockpit::test {
 namespace {
 
 struct Change {
+  Change(std::string control_, std::string from_, std::string to_, std::string cause_,
+         std::string link_, std::string hand_ = "")
+      : control(std::move(control_)), from(std::move(from_)), to(std::move(to_)),
+        cause(std::move(cause_)), link(std::move(link_)), hand(std::move(hand_)) {}
   std::string control, from, to, cause, link;  // link "" when the event names none
+  std::string hand;  // "right" or "left"; "" when the expectation does not say
 };
 
-std::string text_of(const Change& c) {
-  return c.control + " " + c.from + "->" + c.to + " (" + c.cause + (c.link.empty() ? "" : " by " + c.link) + ")";
+std::string text_of(const Change& c, bool with_hand) {
+  return c.control + " " + c.from + "->" + c.to + " (" + c.cause + (c.link.empty() ? "" : " by " + c.link) +
+         (with_hand && !c.hand.empty() ? ", " + c.hand + " hand" : "") + ")";
 }
 
 struct LogRun {
@@ -38,11 +46,13 @@ struct LogRun {
   std::string dir;
 };
 
-LogRun run_log(const std::string& name) {
+// One log per hand (each log's '# hand:' line says whose).
+LogRun run_logs(const std::vector<std::string>& names) {
   physics_io::OfflineOptions options;
   options.scene_path = source_dir() + "/config/cockpit.yaml";
-  options.log_paths = {source_dir() + "/config/glove_logs/" + name + ".csv"};
-  options.out_dir = make_temp_dir("control_logs_" + name);
+  for (const std::string& name : names)
+    options.log_paths.push_back(source_dir() + "/config/glove_logs/" + name + ".csv");
+  options.out_dir = make_temp_dir("control_logs_" + names.front());
   physics_io::run_offline(load_scene(options.scene_path), options);
   LogRun run;
   run.dir = options.out_dir;
@@ -51,7 +61,8 @@ LogRun run_log(const std::string& name) {
     const auto j = nlohmann::json::parse(line);
     if (j.at("event") == "control") {
       run.changes.push_back({j.at("control"), j.at("from"), j.at("to"), j.at("cause"),
-                             j.at("link").is_null() ? "" : j.at("link").get<std::string>()});
+                             j.at("link").is_null() ? "" : j.at("link").get<std::string>(),
+                             j.at("hand").is_null() ? "" : j.at("hand").get<std::string>()});
     } else {
       run.grasped.push_back(j.at("event").get<std::string>() + " " + j.at("object").get<std::string>());
     }
@@ -61,12 +72,13 @@ LogRun run_log(const std::string& name) {
 
 // The controls the log operates and the events it must give; every other control and every
 // loose object must end where it started.
-void expect_log(const std::string& name, const std::vector<Change>& expected,
-                const std::vector<std::string>& expected_grasps) {
-  const LogRun run = run_log(name);
+void expect_logs(const std::vector<std::string>& names, const std::vector<Change>& expected,
+                 const std::vector<std::string>& expected_grasps, bool with_hands = false) {
+  const std::string name = names.front();
+  const LogRun run = run_logs(names);
   std::string got, want;
-  for (const auto& c : run.changes) got += text_of(c) + "\n";
-  for (const auto& c : expected) want += text_of(c) + "\n";
+  for (const auto& c : run.changes) got += text_of(c, with_hands) + "\n";
+  for (const auto& c : expected) want += text_of(c, with_hands) + "\n";
   EXPECT_EQ(got, want) << name;
   std::string grasps, want_grasps;
   for (const auto& g : run.grasped) grasps += g + "\n";
@@ -84,6 +96,11 @@ void expect_log(const std::string& name, const std::vector<Change>& expected,
     const Eigen::Vector3d start = scene.objects[static_cast<std::size_t>(id)].X_GO.translation();
     EXPECT_LT((p - start).norm(), 1e-3) << name << ": " << object << " moved";
   }
+}
+
+void expect_log(const std::string& name, const std::vector<Change>& expected,
+                const std::vector<std::string>& expected_grasps) {
+  expect_logs({name}, expected, expected_grasps);
 }
 
 const char* kIndexTip = "index_distal";
@@ -137,6 +154,19 @@ TEST(ControlLogs, PedestalLeversPassTheirGatesOnlyWhenLifted) {
               {"flaps", "landing", "approach", "grasped", ""},
               {"flaps", "approach", "up", "grasped", ""}},
              {"grasp throttle", "release throttle", "grasp flaps", "release flaps"});
+}
+
+// Two hands at once (config/glove_logs/two_hand_controls_{right,left}.csv): the left hand works
+// the throttle through its gate while the right hand's index fingertip flips the fuel pump on.
+// Each change names its hand; nothing else moves.
+TEST(ControlLogs, TheLeftHandWorksTheThrottleWhileTheRightFlipsTheFuelPump) {
+  expect_logs({"two_hand_controls_right", "two_hand_controls_left"},
+              {{"throttle", "idle", "cutoff", "grasped", "", "left"},
+               {"fuel_pump", "off", "on", "pushed", kIndexTip, "right"},
+               {"throttle", "cutoff", "idle", "grasped", "", "left"},
+               {"throttle", "idle", "full", "grasped", "", "left"},
+               {"throttle", "full", "idle", "grasped", "", "left"}},
+              {"grasp throttle", "release throttle"}, /*with_hands=*/true);
 }
 
 }  // namespace
