@@ -111,56 +111,63 @@ void GraspTracker::update_hands(int object, const ObjectSpec& o, HandOnObject* h
   }
   if (!any) return;
   if (holders >= 2) {
-    update_two_handed(object, o, hands, hand_count, checks.data(), body, events, joint);
+    update_two_handed(object, o, hands, hand_count, checks.data(), body, events);
+  } else if (holders == 1) {
+    std::size_t holder = 0;
+    while (!was_held[holder]) ++holder;
+    update_held_by_one(object, hands, hand_count, holder, checks.data(), body, events);
   } else {
-    // a handover: a hand that does not hold it and whose own test takes it, from the holder
-    std::size_t holder = hand_count;
-    for (std::size_t k = 0; k < hand_count; ++k)
-      if (was_held[k]) holder = k;
-    bool handed_over = false;
-    if (holder < hand_count) {
-      for (std::size_t k = 0; k < hand_count && !handed_over; ++k) {
-        if (k == holder || hands[k].count == 0 || !may_take(hands[k]) || !checks[k].holds() ||
-            !hands[holder].hand.tracking)
-          continue;
-        HandOnObject& from = hands[holder];
-        body.holders |= hands[k].hand.holder_bit;  // it never leaves a hand: no release velocity
-        release(object, GraspReason::kHandedOver, checks[holder], from.hand, *from.hold, body, events,
-                hands[k].hand.hand_id);
-        from.hold->handed_over = true;
-        attach(object, checks[k], hands[k].hand, *hands[k].hold, body, events, from.hand.hand_id);
-        handed_over = true;
-      }
-    }
-    if (!handed_over) {
-      // the single-hand rules: the holder's decision, or the first hand whose test takes it
-      for (std::size_t k = 0; k < hand_count; ++k) {
-        if (!was_held[k] && hands[k].count == 0) continue;
-        if (holder == hand_count && body.held()) break;  // taken by an earlier hand this step
-        if (holder < hand_count && k != holder) continue;
-        if (!was_held[k] && hands[k].hold->handed_over) continue;  // gave it away, still on it
-        decide(object, checks[k], hands[k].hand, *hands[k].hold, body, events);
-      }
-      // no hand alone: two hands together (eqs. 30-31 over both, each with its own gesture)
-      if (holder == hand_count && !body.held() && joint == nullptr && hand_count >= 2) {
-        for (std::size_t a = 0; a < hand_count && !body.held(); ++a) {
-          if (hands[a].count == 0 || !may_take(hands[a]) || !checks[a].gesture_holds()) continue;
-          for (std::size_t b = a + 1; b < hand_count && !body.held(); ++b) {
-            if (hands[b].count == 0 || !may_take(hands[b]) || !checks[b].gesture_holds()) continue;
-            const Residuals both = two_hand_residuals(hands[a], hands[b], body, o, false);
-            if (!residuals_hold(both, params_, false)) continue;
-            GraspCheck ca = checks[a], cb = checks[b];
-            ca.residual_force_N = cb.residual_force_N = both.force_N;
-            ca.residual_torque_Nm = cb.residual_torque_Nm = both.torque_Nm;
-            attach(object, ca, hands[a].hand, *hands[a].hold, body, events, hands[b].hand.hand_id);
-            attach(object, cb, hands[b].hand, *hands[b].hold, body, events, hands[a].hand.hand_id);
-          }
-        }
-      }
-    }
+    update_free(object, o, hands, hand_count, checks.data(), body, events, joint);
   }
   for (std::size_t k = 0; k < hand_count; ++k)
     if (was_held[k] && (body.holders & hands[k].hand.holder_bit) == 0) note_let_go(hands[k]);
+}
+
+// One hand holds it: another hand whose own test takes it (unheld thresholds) takes it over, in
+// the same step; else the holder's own decision.
+void GraspTracker::update_held_by_one(int object, HandOnObject* hands, std::size_t hand_count,
+                                      std::size_t holder, const GraspCheck* checks, BodyState& body,
+                                      std::vector<GraspEvent>& events) const {
+  HandOnObject& from = hands[holder];
+  for (std::size_t k = 0; k < hand_count && from.hand.tracking; ++k) {
+    HandOnObject& to = hands[k];
+    if (k == holder || to.count == 0 || !may_take(to) || !checks[k].holds()) continue;
+    body.holders |= to.hand.holder_bit;  // it never leaves a hand: no release velocity
+    release(object, GraspReason::kHandedOver, checks[holder], from.hand, *from.hold, body, events,
+            to.hand.hand_id);
+    from.hold->handed_over = true;
+    attach(object, checks[k], to.hand, *to.hold, body, events, from.hand.hand_id);
+    return;
+  }
+  decide(object, checks[holder], from.hand, *from.hold, body, events);
+}
+
+// No hand holds it: the first hand whose own test takes it; else two hands whose gestures hold on
+// their own and whose contacts together meet eqs. 30-31 (not a control: one hand at a time).
+void GraspTracker::update_free(int object, const ObjectSpec& o, HandOnObject* hands,
+                               std::size_t hand_count, const GraspCheck* checks, BodyState& body,
+                               std::vector<GraspEvent>& events, const GraspJoint* joint) const {
+  for (std::size_t k = 0; k < hand_count && !body.held(); ++k) {
+    if (hands[k].count == 0 || hands[k].hold->handed_over) continue;  // (gave it away, still on it)
+    decide(object, checks[k], hands[k].hand, *hands[k].hold, body, events);
+  }
+  if (body.held() || joint != nullptr) return;
+  const auto may_join = [&](std::size_t k) {
+    return hands[k].count != 0 && may_take(hands[k]) && checks[k].gesture_holds();
+  };
+  for (std::size_t a = 0; a < hand_count; ++a) {
+    for (std::size_t b = a + 1; b < hand_count && may_join(a); ++b) {
+      if (!may_join(b)) continue;
+      const Residuals both = two_hand_residuals(hands[a], hands[b], body, o, false);
+      if (!residuals_hold(both, params_, false)) continue;
+      GraspCheck ca = checks[a], cb = checks[b];
+      ca.residual_force_N = cb.residual_force_N = both.force_N;
+      ca.residual_torque_Nm = cb.residual_torque_Nm = both.torque_Nm;
+      attach(object, ca, hands[a].hand, *hands[a].hold, body, events, hands[b].hand.hand_id);
+      attach(object, cb, hands[b].hand, *hands[b].hold, body, events, hands[a].hand.hand_id);
+      return;
+    }
+  }
 }
 
 Residuals GraspTracker::two_hand_residuals(const HandOnObject& a, const HandOnObject& b,
@@ -208,55 +215,43 @@ bool GraspTracker::failed_long_enough(const HandOnObject& h, GraspReason verdict
 // (held thresholds) holds alone, else lets go too.
 void GraspTracker::update_two_handed(int object, const ObjectSpec& o, HandOnObject* hands,
                                      std::size_t hand_count, const GraspCheck* checks,
-                                     BodyState& body, std::vector<GraspEvent>& events,
-                                     const GraspJoint* joint) const {
-  std::array<std::size_t, 2> held{};
-  std::size_t n = 0;
-  for (std::size_t k = 0; k < hand_count && n < 2; ++k)
-    if ((body.holders & hands[k].hand.holder_bit) != 0) held[n++] = k;
-  HandOnObject& a = hands[held[0]];
-  HandOnObject& b = hands[held[1]];
-  const Residuals both = two_hand_residuals(a, b, body, o, true);
+                                     BodyState& body, std::vector<GraspEvent>& events) const {
+  std::array<HandOnObject*, 2> h{};
+  std::array<const GraspCheck*, 2> check{};
+  for (std::size_t k = 0, n = 0; k < hand_count && n < 2; ++k) {
+    if ((body.holders & hands[k].hand.holder_bit) == 0) continue;
+    h[n] = &hands[k];
+    check[n++] = &checks[k];
+  }
+  const Residuals both = two_hand_residuals(*h[0], *h[1], body, o, true);
   const bool together = residuals_hold(both, params_, true);
+  const GraspReason apart = both.force_N > params_.xi_N * params_.exit_scale
+                                ? GraspReason::kForceResidual
+                                : GraspReason::kTorqueResidual;
   std::array<GraspReason, 2> verdict{};
   std::array<bool, 2> lets_go{};
-  for (int i = 0; i < 2; ++i) {
-    const HandOnObject& h = hands[held[static_cast<std::size_t>(i)]];
-    const GraspCheck& check = checks[held[static_cast<std::size_t>(i)]];
-    GraspReason v = held_verdict(h, check);
+  for (std::size_t i = 0; i < 2; ++i) {
+    GraspReason v = held_verdict(*h[i], *check[i]);
+    // its gesture holds: eqs. 30-31 are both hands' together
     if (v == GraspReason::kStableGrasp || v == GraspReason::kForceResidual ||
         v == GraspReason::kTorqueResidual)
-      v = together ? GraspReason::kStableGrasp
-                   : (both.force_N > params_.xi_N * params_.exit_scale ? GraspReason::kForceResidual
-                                                                        : GraspReason::kTorqueResidual);
-    verdict[static_cast<std::size_t>(i)] = v;
-    lets_go[static_cast<std::size_t>(i)] = failed_long_enough(h, v);
+      v = together ? GraspReason::kStableGrasp : apart;
+    verdict[i] = v;
+    lets_go[i] = failed_long_enough(*h[i], v);
   }
-  (void)joint;
   if (!lets_go[0] && !lets_go[1]) return;
-  const auto figures = [&](GraspCheck c) {
-    c.residual_force_N = both.force_N;
-    c.residual_torque_Nm = both.torque_Nm;
-    return c;
-  };
-  // the hand that keeps it alone, if one does: its own test at the held thresholds
-  for (int i = 0; i < 2; ++i) {
-    const std::size_t k = held[static_cast<std::size_t>(i)];
-    const std::size_t other = held[static_cast<std::size_t>(1 - i)];
-    if (!lets_go[static_cast<std::size_t>(i)]) continue;
-    const bool other_keeps = !lets_go[static_cast<std::size_t>(1 - i)] && checks[other].holds() &&
-                             held_verdict(hands[other], checks[other]) == GraspReason::kStableGrasp;
-    release(object, verdict[static_cast<std::size_t>(i)], figures(checks[k]), hands[k].hand,
-            *hands[k].hold, body, events, hands[other].hand.hand_id);
-    if (!other_keeps && (body.holders & hands[other].hand.holder_bit) != 0) {
-      const GraspReason why = lets_go[static_cast<std::size_t>(1 - i)]
-                                  ? verdict[static_cast<std::size_t>(1 - i)]
-                                  : (checks[other].holds() ? held_verdict(hands[other], checks[other])
-                                                           : checks[other].verdict);
-      release(object, why, checks[other], hands[other].hand, *hands[other].hold, body, events,
-              hands[k].hand.hand_id);
-    }
-    break;
+  const std::size_t first = lets_go[0] ? 0 : 1;
+  const std::size_t other = 1 - first;
+  GraspCheck figures = *check[first];
+  figures.residual_force_N = both.force_N;
+  figures.residual_torque_Nm = both.torque_Nm;
+  release(object, verdict[first], figures, h[first]->hand, *h[first]->hold, body, events,
+          h[other]->hand.hand_id);
+  // the other hand keeps it if its own test (held thresholds) holds it alone, else lets go too
+  const GraspReason alone = lets_go[other] ? verdict[other] : held_verdict(*h[other], *check[other]);
+  if (alone != GraspReason::kStableGrasp) {
+    release(object, alone, *check[other], h[other]->hand, *h[other]->hold, body, events,
+            h[first]->hand.hand_id);
   }
 }
 

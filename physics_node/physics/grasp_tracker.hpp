@@ -166,9 +166,15 @@ class GraspTracker {
   // the grips' normal forces, and so what they could carry, remain.
   Residuals two_hand_residuals(const HandOnObject& a, const HandOnObject& b, const BodyState& body,
                                const ObjectSpec& o, bool held) const;
+  void update_held_by_one(int object, HandOnObject* hands, std::size_t hand_count,
+                          std::size_t holder, const GraspCheck* checks, BodyState& body,
+                          std::vector<GraspEvent>& events) const;
+  void update_free(int object, const ObjectSpec& o, HandOnObject* hands, std::size_t hand_count,
+                   const GraspCheck* checks, BodyState& body, std::vector<GraspEvent>& events,
+                   const GraspJoint* joint) const;
   void update_two_handed(int object, const ObjectSpec& o, HandOnObject* hands,
                          std::size_t hand_count, const GraspCheck* checks, BodyState& body,
-                         std::vector<GraspEvent>& events, const GraspJoint* joint) const;
+                         std::vector<GraspEvent>& events) const;
   // The held object's velocity over the last `span_steps` steps of its held poses (fewer if it
   // has not been held that long; at least two poses).
   void held_velocity(const GraspHold& hold, std::size_t span_steps, Eigen::Vector3d& v_G,
