@@ -61,10 +61,10 @@ def commit():
     return sha + ("+uncommitted changes" if dirty else "")
 
 
-SCENES = {0: "cockpit, hand holding the cup (4 loose objects, 11 controls)",
-          10: "cockpit + 10 loose objects (14 loose, 11 controls)",
-          100: "cockpit + 100 loose objects (104 loose, 11 controls)",
-          500: "cockpit + 500 loose objects (504 loose, 11 controls)"}
+SCENES = {0: "cockpit, right hand holding the cup (5 loose objects, 11 controls, left hand idle)",
+          10: "cockpit + 10 loose objects (15 loose, 11 controls)",
+          100: "cockpit + 100 loose objects (105 loose, 11 controls)",
+          500: "cockpit + 500 loose objects (505 loose, 11 controls)"}
 
 
 def physics_rows(gbench):
