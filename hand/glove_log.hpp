@@ -52,6 +52,11 @@ struct GloveLog {
 // Reads and validates a whole log. Throws GloveLogError.
 GloveLog read_glove_log(const std::string& path, const hand::HandModel& hand);
 
+// Whose hand a log is (its `# hand:` comment line, read without the rest of the file): true for
+// a left hand; false for a right one or a log that does not say. Throws GloveLogError when the
+// file cannot be opened or the side is neither left nor right (file:line).
+bool glove_log_left_hand(const std::string& path);
+
 // The warnings a node logs once after reading a log: missing columns (named) and clamped values
 // (counted, the first one located). Empty for a clean log.
 std::vector<std::string> glove_log_warnings(const GloveLog& log);

@@ -95,6 +95,20 @@ class Reader {
     return std::move(log_);
   }
 
+  // The comment lines before the header only: whose hand the log is.
+  bool read_side() {
+    std::ifstream in(path_, std::ios::binary);
+    if (!in) throw GloveLogError(path_ + ": cannot open file");
+    for (std::string line; std::getline(in, line);) {
+      ++line_no_;
+      const std::string text = trim(line);
+      if (text.empty()) continue;
+      if (text[0] != '#') break;
+      read_comment(text);
+    }
+    return log_.left_hand;
+  }
+
  private:
   [[noreturn]] void fail(const std::string& column, const std::string& message) const {
     std::ostringstream msg;
@@ -309,6 +323,11 @@ class Reader {
 
 GloveLog read_glove_log(const std::string& path, const hand::HandModel& hand) {
   return Reader(path, hand).read();
+}
+
+bool glove_log_left_hand(const std::string& path) {
+  static const hand::HandModel kNoModel{};  // the comment lines need none
+  return Reader(path, kNoModel).read_side();
 }
 
 std::vector<std::string> glove_log_warnings(const GloveLog& log) {

@@ -14,12 +14,12 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <thread>
 
 #include "common/clock.hpp"
 #include "common/logging.hpp"
+#include "hand/glove_log.hpp"
 #include "common/signals.hpp"
 #include "launcher/console_report.hpp"
 #include "launcher/rig_monitor.hpp"
@@ -40,22 +40,13 @@ struct Options {
   bool quiet = false;
 };
 
-// Whether a glove log is a left hand's: its "# hand: left" comment line (before the header).
-bool left_hand_log(const std::string& path) {
-  std::ifstream in(path);
-  for (std::string line; std::getline(in, line) && !line.empty() && line[0] == '#';) {
-    if (line.rfind("# hand:", 0) == 0) return line.find("left", 7) != std::string::npos;
-  }
-  return false;
-}
-
 int run(RigConfig rig, const Options& options) {
   // --log replaces the rig file's logs: each log's '# hand:' line says whose it is
   if (!options.log_paths.empty()) {
     rig.log_path.clear();
     rig.left_log_path.clear();
     for (const std::string& given : options.log_paths) {
-      std::string& slot = left_hand_log(given) ? rig.left_log_path : rig.log_path;
+      std::string& slot = hand::glove_log_left_hand(given) ? rig.left_log_path : rig.log_path;
       if (!slot.empty()) throw std::runtime_error(given + ": a second log for the same hand");
       slot = fs::absolute(given).string();
     }

@@ -36,18 +36,15 @@ std::vector<HandLog> read_hand_logs(const physics::Scene& scene, const OfflineOp
       throw std::invalid_argument(options.scene_path + ": the scene has no hand, so a glove log "
                                                        "cannot drive it");
     }
-    // the log's hand (its `# hand:` line; a log without one is a right hand's): read once with
-    // the first hand's model to learn it, then with its own
+    // the log's hand (its `# hand:` line; a log without one is a right hand's)
+    const bool left = hand::glove_log_left_hand(path);
     int hand = -1;
-    {
-      const hand::GloveLog probe = hand::read_glove_log(path, scene.hands[0]);
-      for (std::size_t h = 0; h < scene.hands.size(); ++h)
-        if (scene.hands[h].left == probe.left_hand) hand = static_cast<int>(h);
-      if (hand < 0) {
-        throw std::invalid_argument(path + ": a " + (probe.left_hand ? "left" : "right") +
-                                    " hand's log, and the scene " + options.scene_path +
-                                    " has no such hand");
-      }
+    for (std::size_t h = 0; h < scene.hands.size(); ++h)
+      if (scene.hands[h].left == left) hand = static_cast<int>(h);
+    if (hand < 0) {
+      throw std::invalid_argument(path + ": a " + (left ? "left" : "right") +
+                                  " hand's log, and the scene " + options.scene_path +
+                                  " has no such hand");
     }
     for (const HandLog& other : logs) {
       if (other.hand == hand)

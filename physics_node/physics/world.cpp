@@ -1,6 +1,7 @@
 #include "physics_node/physics/world.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -46,22 +47,8 @@ void limit_link_speed(double length_m, double max_mps, Eigen::Vector3d& v_G, Eig
   w_G *= scale;
 }
 
-// Where two poses are halfway: the mean translation, the rotation halfway along the slerp.
-Eigen::Isometry3d halfway(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return interpolate(a, b, 0.5);
-}
-
-int lowest_bit(unsigned mask) {
-  int b = 0;
-  while (b < 8 && (mask & (1u << b)) == 0) ++b;
-  return b;
-}
-
-int bit_count(unsigned mask) {
-  int n = 0;
-  for (; mask != 0; mask &= mask - 1) ++n;
-  return n;
-}
+// The first hand of a non-empty BodyState::holders.
+int lowest_bit(uint8_t holders) { return std::countr_zero(holders); }
 
 // Merges lists each sorted by (body_a, body_b), no pair in two of them, into `out` (cleared
 // first): the order one sorted list split in parts had.
@@ -226,8 +213,7 @@ int World::choose_substeps(bool holding) {
       continue;
     }
     if (sim.proxy) {
-      const bool this_holds =
-          holding && std::find(sim.held_mask.begin(), sim.held_mask.end(), 1) != sim.held_mask.end();
+      const bool this_holds = holding && sim.holds_any;
       sim.proxy_start = {hs.X_GH, hs.q_rad};
       sim.fingers_kept = 0;
       sim.proxy_goal = sim.proxy->step_goal(sim.proxy_start, hs.from, hs.to, hs.pushing, this_holds,
@@ -314,12 +300,14 @@ void World::step() {
   // which reads the last substep's, so the substeps before it leave them out (their friction
   // anchors carry over) -- but for a proxy hand, whose fingers stop at the held object's surface
   bool any_held = false;
+  for (HandSim& sim : hands_) sim.holds_any = false;
   for (int i = 0; i < object_count_; ++i) {
     const BodyState& body = state_.bodies[i];
     held_mask_[i] = body.held() ? 1 : 0;
     any_held = any_held || held_mask_[i] != 0;
     for (std::size_t h = 0; h < hands_.size(); ++h) {
       hands_[h].held_mask[i] = (body.holders & hands_[h].holder_bit) != 0 ? 1 : 0;
+      hands_[h].holds_any = hands_[h].holds_any || hands_[h].held_mask[i] != 0;
       hands_[h].resting_links[i] = state_.hands[h].grasp[i].resting_links;
     }
   }
@@ -504,7 +492,7 @@ void World::constrain_proxy(int hand, double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
     BodyState& body = state_.bodies[i];
     if ((body.holders & sim.holder_bit) == 0 || scene_.objects[i].control >= 0) continue;  // a joint holds a control
-    body.X_GO.translation() += r.shift_G / bit_count(body.holders);
+    body.X_GO.translation() += r.shift_G / std::popcount(body.holders);
     finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
   }
 }
@@ -544,10 +532,10 @@ Eigen::Isometry3d World::held_pose(int object) const {
   const BodyState& body = state_.bodies[static_cast<std::size_t>(object)];
   const int a = lowest_bit(body.holders);
   const Eigen::Isometry3d X_a = hand_state(a).X_GH * X_HO(object, a);  // eq. 29
-  const unsigned rest = body.holders & ~(1u << a);
+  const auto rest = static_cast<uint8_t>(body.holders & ~(1u << a));
   if (rest == 0) return X_a;
   const int b = lowest_bit(rest);
-  return halfway(X_a, hand_state(b).X_GH * X_HO(object, b));
+  return interpolate(X_a, hand_state(b).X_GH * X_HO(object, b), 0.5);  // halfway: mean, slerp 0.5
 }
 
 void World::move_held_objects(double dt_s) {

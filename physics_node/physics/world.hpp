@@ -137,6 +137,7 @@ class World {
     uint8_t holder_bit = 1;  // BodyState::holders
     std::optional<ProxyHand> proxy;  // a scene with proxy.enabled
     std::vector<uint8_t> held_mask;      // 1 for the objects it held at the start of this step
+    bool holds_any = false;              // ... any of them
     std::vector<uint32_t> resting_links;  // GraspHold::resting_links at the start of this step
     std::array<Eigen::Isometry3d, kLinkCount> X_GL_before;  // the links one substep ago
     HandLinkPoses link_poses;

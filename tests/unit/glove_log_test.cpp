@@ -181,6 +181,27 @@ TEST_F(GloveLogTest, EveryBadInputNamesFileLineAndColumn) {
   EXPECT_NE(error_of(dir_ + "/does_not_exist.csv").find("cannot open"), std::string::npos);
 }
 
+// Whose hand a log is, from its comment lines alone (the offline runner and the rig launcher
+// give each log to its hand this way): as read_glove_log says, and a bad side names file:line.
+TEST_F(GloveLogTest, ItsHandIsReadFromTheCommentLinesAlone) {
+  const std::string row = "0,0,0,0.5,1,0,0,0,10\n";
+  const std::string left = write("left.csv", "# vcockpit glove log\n# hand: left\n" + std::string(kHeader) + row);
+  const std::string right = write("right.csv", "# hand: right\n" + std::string(kHeader) + row);
+  const std::string unsaid = write("unsaid.csv", std::string(kHeader) + row + "# hand: left\n");
+  EXPECT_TRUE(glove_log_left_hand(left));
+  EXPECT_EQ(glove_log_left_hand(left), read_glove_log(left, hand_).left_hand);
+  EXPECT_FALSE(glove_log_left_hand(right));
+  EXPECT_FALSE(glove_log_left_hand(unsaid)) << "only the comment lines before the header count";
+  const std::string bad = write("bad.csv", "# a log\n# hand: middle\n" + std::string(kHeader) + row);
+  try {
+    glove_log_left_hand(bad);
+    FAIL() << "a side neither left nor right was taken";
+  } catch (const GloveLogError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.csv:2:"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(glove_log_left_hand(dir_ + "/no_such.csv"), GloveLogError);
+}
+
 TEST_F(GloveLogTest, DropoutRowsAreSkippedAndCounted) {
   const auto path = write("dropouts.csv", std::string(kHeader) +
                                               "0,0,0,0,1,0,0,0,1\n"
