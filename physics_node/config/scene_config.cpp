@@ -287,7 +287,7 @@ GraspParams parse_grasp(const ConfigNode& node) {
   node.expect_keys({"xi_N", "eta_Nm", "alpha0_deg", "min_contacts", "exit_min_contacts", "exit_scale",
                     "exit_alpha_margin_deg", "min_hold_s", "release_delay_s", "regrab_cooldown_s",
                     "velocity_window_s", "settle_speed_mps", "settle_window_s",
-                    "release_opening_deg", "palm_opposition"});
+                    "release_opening_deg", "palm_opposition", "gesture_rule"});
   GraspParams g;
   auto pos = [](const ConfigNode& n) { return positive(n); };
   read_optional(node, "xi_N", g.xi_N, pos);
@@ -316,6 +316,7 @@ GraspParams parse_grasp(const ConfigNode& node) {
   read_optional(node, "settle_window_s", g.settle_window_s, pos);
   read_optional(node, "release_opening_deg", g.release_opening_deg, non_negative);
   g.palm_opposition = node.get_bool("palm_opposition", g.palm_opposition);
+  g.gesture_rule = node.get_bool("gesture_rule", g.gesture_rule);
   if (g.exit_alpha_margin_deg >= g.alpha0_deg) {
     const ConfigNode at =
         node.has("exit_alpha_margin_deg") ? node["exit_alpha_margin_deg"] : node["alpha0_deg"];

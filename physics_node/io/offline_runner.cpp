@@ -13,7 +13,7 @@
 #include "hand/glove_log.hpp"
 #include "hand/sample_validator.hpp"
 #include "physics_node/io/hand_motion_peak.hpp"
-#include "physics_node/io/replay_driver.hpp"
+#include "physics_node/io/hand_timeline.hpp"
 #include "physics_node/io/run_recorder.hpp"
 
 namespace vcockpit::physics_io {
@@ -77,14 +77,11 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
   if (options.duration_s && !(*options.duration_s > 0)) {
     throw std::invalid_argument("--duration must be positive");
   }
-  // one timeline: the earliest first sample is world time 0
-  int64_t t0_ns = INT64_MAX;
-  int64_t last_ns = INT64_MIN;
-  for (const HandLog& log : logs) {
-    t0_ns = std::min(t0_ns, log.samples.front().t_ns);
-    last_ns = std::max(last_ns, log.samples.back().t_ns);
-  }
-  const int64_t end_ns = options.duration_s ? std::llround(*options.duration_s * 1e9) : last_ns - t0_ns;
+  // one timeline: the earliest first sample is world time 0 (hand_timeline.hpp)
+  std::vector<HandSamples> inputs;
+  for (HandLog& log : logs) inputs.push_back({log.hand, std::move(log.samples)});
+  const int64_t end_ns = options.duration_s ? std::llround(*options.duration_s * 1e9)
+                                          : HandTimeline::span_ns(inputs);
   const int64_t interval_ns = output_interval_ns(options.output_hz, scene);
 
   RunRecorder recorder(options.out_dir, interval_ns);
@@ -129,47 +126,15 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
     recorder.start(world);
     while (world.time_ns() < end_ns) step();
   } else {
-    // One driver per hand on one timeline. Before each step, each hand's log gives samples up to
-    // the first at or past the step's end (its look-ahead); a log that starts later joins when
-    // the world reaches its first sample, and one that has ended holds its last sample (and
-    // loses the glove after the timeout, as a live glove that stopped would).
-    const physics::Scene& sc = world.scene();
-    const int64_t step_ns = std::llround(sc.step_s * 1e9);
-    std::vector<ReplayDriver> drivers;
-    drivers.reserve(logs.size());
-    std::vector<std::size_t> next(logs.size(), 0);
-    for (const HandLog& log : logs) {
-      drivers.emplace_back(world, sc.hands[static_cast<std::size_t>(log.hand)], options.timing, log.hand);
-      drivers.back().set_origin(t0_ns);
-    }
-    // takes log k's samples up to the first at or past world time `until_ns` (the world's
-    // present for a log not begun: it begins there, not before)
-    const auto take_samples = [&](std::size_t k, int64_t until_ns) {
-      ReplayDriver& d = drivers[k];
-      const std::vector<hand::GloveSample>& samples = logs[k].samples;
-      while (next[k] < samples.size() && (!d.has_sample() || d.newest_world_ns() < until_ns)) {
-        const int64_t t_ns = d.world_time_of(samples[next[k]]);
-        if (!d.has_sample() && t_ns > world.time_ns()) break;  // begins later
-        if (d.has_sample() && d.newest_world_ns() > end_ns) break;  // past the end already
-        d.push(samples[next[k]++]);
-      }
-    };
-    for (std::size_t k = 0; k < logs.size(); ++k) take_samples(k, world.time_ns());
+    // one driver per hand on one timeline (hand_timeline.hpp)
+    HandTimeline timeline(world, inputs, options.timing, end_ns, options.duration_s.has_value());
     recorder.start(world);
-    // without --duration the run ends where a lockstep replay of the logs ends: at the last step
-    // that ends by the last sample
-    while (world.time_ns() + (options.duration_s ? 1 : step_ns) <= end_ns) {
-      const int64_t step_end_ns = world.time_ns() + step_ns;
-      for (std::size_t k = 0; k < logs.size(); ++k) take_samples(k, step_end_ns);
-      for (ReplayDriver& d : drivers)
-        if (d.has_sample()) d.input_for_step_ending(step_end_ns);
-      step();
-    }
+    timeline.run(step);
     summary.have_input = true;
     hand::InputCounts input_counts;
     for (std::size_t k = 0; k < logs.size(); ++k) {
       hand::InputCounts counts = logs[k].counts;
-      counts += drivers[k].counts();
+      counts += timeline.counts(k);
       spdlog::info("{}: {}", logs[k].path, hand::input_counts_text(counts));
       input_counts += counts;
       const int id = world.hand_id(logs[k].hand);

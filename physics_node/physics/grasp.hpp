@@ -4,7 +4,8 @@
 //                the object plus gravity, moments about the centroid;
 //   gesture      more than 2 hand links touching it (min_contacts), the thumb among them, and
 //                the angle between the thumb's contact normal and each other finger's above
-//                alpha0 (the palm counts as a contact but has no normal test).
+//                alpha0 (the palm counts as a contact but has no normal test). Off
+//                (GraspParams::gesture_rule false), any contact meeting eqs. 30-31 grasps.
 // A link with several contact points counts once, with its force-weighted mean normal. While the
 // object is held the test is looser (exit_scale, exit_alpha_margin_deg, exit_min_contacts):
 // hysteresis against the chatter the paper describes. A held object needs fewer links than a

@@ -80,6 +80,10 @@ struct GraspParams {
   double xi_N = 3.0;           // eq. 30: |sum F| over hand contacts + gravity
   double eta_Nm = 0.3;         // eq. 31: |sum M| about the centroid
   double alpha0_deg = 120.0;   // thumb vs each finger contact-normal angle must exceed this
+  // false: no gesture rule at all (contacts, thumb, opposition): any hand contact that meets
+  // eqs. 30-31 grasps. The paper's relaxed test before its gesture constraint (§4.4), for
+  // comparing the two (scripts/study); a cockpit runs with it on.
+  bool gesture_rule = true;
   bool palm_opposition = true;  // no thumb on the object: the palm may oppose the fingers instead
   int min_contacts = 3;        // hand links touching the object ("more than 2")
   int exit_min_contacts = 2;   // while held, this many suffice (a pinch holds what it lifted)

@@ -125,6 +125,38 @@ TEST(GraspRule, ThumbFingerAngleUnderAlpha0IsNoGrasp) {
   EXPECT_NEAR(c.min_thumb_angle_deg, 100.0, 1e-6);
 }
 
+// Without the gesture rule (GraspParams::gesture_rule false) eqs. 30-31 alone decide: a palm
+// under the object carrying its weight grasps it, as does a thumb-less pair in equilibrium, but
+// no contact, or an unbalanced one, does not.
+TEST(GraspRule, WithoutTheGestureRuleEquilibriumAloneDecides) {
+  GraspParams params;
+  params.gesture_rule = false;
+  const auto check_without = [&](const std::vector<HandContact>& contacts) {
+    return evaluate_grasp(contacts.data(), contacts.size(), kCentroid, kMass, kGravity, params,
+                          false);
+  };
+  const double w = kMass * 9.81;
+  const std::vector<HandContact> palm_under = {
+      touch(Link::kPalm, {0, 0, -0.03}, {0, 0, 1}, w, 0.0)};
+  EXPECT_EQ(check(palm_under).verdict, GraspReason::kTooFewContacts);
+  EXPECT_EQ(check_without(palm_under).verdict, GraspReason::kStableGrasp);
+  const std::vector<HandContact> index_and_middle = {
+      touch(Link::kIndexDistal, {0.04, 0, 0}, {-1, 0, 0}, 2.0, w / 2),
+      touch(Link::kMiddleDistal, {-0.04, 0, 0}, {1, 0, 0}, 2.0, w / 2)};
+  EXPECT_EQ(check(index_and_middle).verdict, GraspReason::kTooFewContacts);
+  EXPECT_EQ(check_without(index_and_middle).verdict, GraspReason::kStableGrasp);
+  EXPECT_EQ(check_without({}).verdict, GraspReason::kTooFewContacts);
+  const std::vector<HandContact> resting_finger = {
+      touch(Link::kIndexDistal, {0.0, 0, 0.03}, {0, 0, -1}, 2.0, 0.0)};  // |sum F| 3.96 N
+  EXPECT_EQ(check_without(resting_finger).verdict, GraspReason::kForceResidual);
+  // the thresholds still apply: xi below the residual's 0.5 N refuses the unbalanced pair
+  std::vector<HandContact> unbalanced = index_and_middle;
+  unbalanced[0].F_G.z() -= 0.5;
+  EXPECT_EQ(check_without(unbalanced).verdict, GraspReason::kStableGrasp);
+  params.xi_N = 0.4;
+  EXPECT_EQ(check_without(unbalanced).verdict, GraspReason::kForceResidual);
+}
+
 TEST(GraspRule, AHoldLastsWhileAnyFingerIsOpposed) {
   // the middle finger wraps round the object's end at 100 deg from the thumb: no new grasp
   // (every finger must oppose), but a held object stays held, the index still opposing

@@ -284,6 +284,7 @@ TEST_F(ShippedCockpit, GraspAndContactBlocks) {
   EXPECT_EQ(scene_->grasp.alpha0_deg, 120.0);
   EXPECT_EQ(scene_->grasp.min_contacts, 3);
   EXPECT_EQ(scene_->grasp.exit_min_contacts, 2);
+  EXPECT_TRUE(scene_->grasp.gesture_rule);
   EXPECT_EQ(scene_->contact.max_points_per_pair, 4);
 }
 
@@ -539,6 +540,8 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
        "grasp:", "grasp.min_hold_s", "must be >= 0"},
       {"unknown_grasp_key", "min_contacts: 3}", "min_contacts: 3, xi: 1}", "grasp:", "grasp.xi",
        "unknown key 'xi'"},
+      {"gesture_rule_not_bool", "min_contacts: 3}", "min_contacts: 3, gesture_rule: maybe}",
+       "grasp:", "grasp.gesture_rule", "expected true or false"},
       {"max_substeps_zero", "max_substeps: 16", "max_substeps: 0",
        "contact:", "contact.max_substeps", "must be an integer in [1, 1000]"},
       {"substep_safety_above_one", "max_substeps: 16", "max_substeps: 16, substep_safety: 2",
