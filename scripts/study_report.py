@@ -197,6 +197,7 @@ def plot_sweeps(sweeps, path):
         ax2.plot(xs, [p["metrics"]["switch_rate_hz"]["mean"] for p in points], "s--",
                  color="#d62728", label="switches/s")
         ax2.set_ylabel("grasp-state switches per second", color="#d62728")
+        ax2.set_ylim(bottom=0)
         ax.set_title(f"rule (c) with {xlabel.split(' ')[0]} swept", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)

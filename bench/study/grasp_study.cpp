@@ -4,7 +4,8 @@
 // and plots of docs/study/ from its output.
 //
 //   grasp_study --source DIR --out FILE.json [--trials N] [--sweep-trials N] [--seed S]
-//               [--jobs J] [--timeline-dir DIR]
+//               [--jobs J] [--plain] [--timeline-dir DIR [--timeline-object NAME]
+//               [--timeline-index N]]
 //
 // Every rule runs the same trials (trial i of an object has the same seed, so the same hand,
 // approach and input, under each rule): the rules are compared on paired trials.
@@ -117,7 +118,12 @@ int run(int argc, char** argv) {
   app.add_option("--seed", seed, "the study's seed (the same seed, the same trials)");
   app.add_option("--jobs", jobs, "trials run at once")->check(CLI::Range(1u, 64u));
   app.add_option("--timeline-dir", timeline_dir,
-                 "write the first cup trial's timeline under each compared rule here (CSV)");
+                 "write one trial's timeline under each compared rule here (CSV)");
+  std::string timeline_object = "cup";
+  int timeline_index = 0;
+  app.add_option("--timeline-object", timeline_object, "the timeline trial's object");
+  app.add_option("--timeline-index", timeline_index, "... and its number")
+      ->check(CLI::NonNegativeNumber);
   bool plain = false;
   app.add_flag("--plain", plain,
                "no variation: each gesture as scripted, 50th-percentile hand, clean input (one "
@@ -136,6 +142,11 @@ int run(int argc, char** argv) {
     for (auto& r : xi_sweep(shipped.grasp)) rules.push_back(r);
   }
   const auto& objects = study_objects();
+  std::size_t timeline_of = objects.size();  // the timeline trial's object
+  for (std::size_t o = 0; o < objects.size(); ++o)
+    if (objects[o].object == timeline_object) timeline_of = o;
+  if (timeline_of == objects.size())
+    throw std::invalid_argument("--timeline-object: no object '" + timeline_object + "'");
   std::vector<Work> work;
   for (std::size_t r = 0; r < rules.size(); ++r) {
     const int n = r < compared ? trials : sweep_trials;
@@ -207,7 +218,7 @@ int run(int argc, char** argv) {
     std::filesystem::create_directories(timeline_dir);
     for (std::size_t r = 0; r < compared; ++r) {
       std::string csv = "t_s,links,residual_force_N,residual_torque_Nm,held,verdict,z_m\n";
-      run_trial(source_dir, objects[0], rules[r], variation_of(0, 0),
+      run_trial(source_dir, objects[timeline_of], rules[r], variation_of(timeline_of, timeline_index),
                 [&](const TimelineRow& row) {
                   char line[160];
                   std::snprintf(line, sizeof line, "%.3f,%d,%.4f,%.5f,%d,%s,%.5f\n", row.t_s,
