@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -46,9 +47,15 @@ void add_dds_flags(CLI::App& app, DdsFlags& flags) {
                  "(default: $VCOCKPIT_PARTICIPANT, else loopback)")
       ->capture_default_str()
       ->each([&flags](const std::string&) { flags.participant_explicit = true; });
+  app.add_option("--pki", flags.pki_dir,
+                 "DDS Security files (scripts/make-pki DIR) for a secured participant profile "
+                 "(default: $VCOCKPIT_PKI_DIR)");
+  app.add_option("--identity", flags.identity,
+                 "whose certificate and permissions in the --pki directory (default: "
+                 "$VCOCKPIT_IDENTITY, else this program's own)");
 }
 
-DdsOptions resolve_dds_options(const DdsFlags& flags) {
+DdsOptions resolve_dds_options(const DdsFlags& flags, const std::string& default_identity) {
   DdsOptions out;
   if (flags.domain_id) {
     out.domain_id = parse_domain(std::to_string(*flags.domain_id), "--domain");
@@ -71,6 +78,23 @@ DdsOptions resolve_dds_options(const DdsFlags& flags) {
   out.participant_profile = flags.participant_profile;
   if (!flags.participant_explicit) {
     if (const char* env = std::getenv("VCOCKPIT_PARTICIPANT"); env && *env) out.participant_profile = env;
+  }
+  if (flags.pki_dir) {
+    out.pki_dir = *flags.pki_dir;
+    origin = "--pki";
+  } else if (const char* env = std::getenv("VCOCKPIT_PKI_DIR"); env && *env) {
+    out.pki_dir = env;
+    origin = "VCOCKPIT_PKI_DIR";
+  }
+  if (!out.pki_dir.empty() && !std::filesystem::is_directory(out.pki_dir)) {
+    throw std::invalid_argument(origin + ": not a directory: '" + out.pki_dir + "'");
+  }
+  if (!out.pki_dir.empty()) out.pki_dir = std::filesystem::absolute(out.pki_dir).string();
+  out.identity = default_identity;
+  if (flags.identity) {
+    out.identity = *flags.identity;
+  } else if (const char* env = std::getenv("VCOCKPIT_IDENTITY"); env && *env) {
+    out.identity = env;
   }
   return out;
 }

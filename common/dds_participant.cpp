@@ -5,6 +5,8 @@
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 
+#include <algorithm>
+#include <fstream>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -80,6 +82,54 @@ bool UntypedReader::wait_for_data(int64_t timeout_ns) const {
   return reader_->wait_for_unread_message(to_dds_duration(timeout_ns));
 }
 
+namespace {
+
+// A secured profile (it names the authentication plugin, as config/qos.xml's "secure" does) gets
+// the identity's files from the PKI directory (scripts/make-pki): Fast DDS reads no environment in
+// its XML, and the files belong to the machine, not to the project's configuration.
+void add_security_files(const DdsOptions& options, dds::DomainParticipantQos& qos) {
+  auto& properties = qos.properties().properties();
+  const bool secured = std::any_of(properties.begin(), properties.end(), [](const auto& p) {
+    return p.name() == "dds.sec.auth.plugin";
+  });
+  if (!secured) {
+    if (!options.pki_dir.empty()) {
+      throw std::invalid_argument("participant profile '" + options.participant_profile +
+                                  "' is not secured, and a PKI directory was given (" +
+                                  options.pki_dir + "): use --participant secure");
+    }
+    return;
+  }
+  if (options.pki_dir.empty()) {
+    throw std::invalid_argument("participant profile '" + options.participant_profile +
+                                "' is secured: give --pki DIR (or VCOCKPIT_PKI_DIR), made by "
+                                "scripts/make-pki DIR");
+  }
+  if (options.identity.empty()) {
+    throw std::invalid_argument("participant profile '" + options.participant_profile +
+                                "' is secured: give --identity NAME (or VCOCKPIT_IDENTITY)");
+  }
+  const std::string& id = options.identity;
+  const std::pair<const char*, std::string> files[] = {
+      {"dds.sec.auth.builtin.PKI-DH.identity_ca", "identity_ca.pem"},
+      {"dds.sec.auth.builtin.PKI-DH.identity_certificate", id + "_cert.pem"},
+      {"dds.sec.auth.builtin.PKI-DH.private_key", id + "_key.pem"},
+      {"dds.sec.access.builtin.Access-Permissions.permissions_ca", "permissions_ca.pem"},
+      {"dds.sec.access.builtin.Access-Permissions.governance", "governance.p7s"},
+      {"dds.sec.access.builtin.Access-Permissions.permissions", "permissions_" + id + ".p7s"},
+  };
+  for (const auto& [name, file] : files) {
+    const std::string path = options.pki_dir + "/" + file;
+    if (!std::ifstream(path)) {
+      throw std::invalid_argument("secured participant: cannot read " + path + " (identity '" +
+                                  id + "'; scripts/make-pki makes them)");
+    }
+    properties.emplace_back(name, "file://" + path);
+  }
+}
+
+}  // namespace
+
 DdsParticipant::DdsParticipant(const DdsOptions& options, const std::string& node_name)
     : domain_id_(options.domain_id) {
   load_profiles_once(options.qos_file);
@@ -91,11 +141,16 @@ DdsParticipant::DdsParticipant(const DdsOptions& options, const std::string& nod
                              options.participant_profile + "'");
   }
   qos.name(node_name);
+  add_security_files(options, qos);
   participant_ = factory->create_participant(options.domain_id, qos);
   if (!participant_) {
     throw std::runtime_error("cannot create a DDS participant on domain " +
                              std::to_string(options.domain_id) + " with profile '" +
-                             options.participant_profile + "'");
+                             options.participant_profile + "'" +
+                             (options.pki_dir.empty() ? std::string()
+                                                      : " (identity '" + options.identity +
+                                                            "' in " + options.pki_dir +
+                                                            ": is it signed by this PKI's CAs?)"));
   }
   publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);

@@ -138,7 +138,7 @@ int run(const Flags& f) {
   }
   hand::HandModel hand = load_hand_model(f.hand_config);
   if (!f.side.empty() && (f.side == "left") != hand.left) hand = hand::mirrored(hand);
-  DdsParticipant participant(resolve_dds_options(f.dds), "glove_driver");
+  DdsParticipant participant(resolve_dds_options(f.dds, "glove_driver"), "glove_driver");
 
   if (recording) {
     RecorderOptions options;

@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
     setup_logging("image_generator", log_level);
     install_shutdown_handlers();
     const HmdSetup hmd = load_hmd_config(hmd_path);
-    DdsParticipant participant(resolve_dds_options(dds_flags), options.node_name);
+    DdsParticipant participant(resolve_dds_options(dds_flags, "image_generator"), options.node_name);
     return image_generator::run_image_generator(participant, hmd, options);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());

@@ -38,9 +38,17 @@ struct Options {
   std::string out_dir = "out";
   std::string bin_dir;
   bool quiet = false;
+  std::string participant;  // overrides the rig file's participant profile
+  std::string pki_dir;      // DDS Security files for a secured profile (scripts/make-pki)
 };
 
 int run(RigConfig rig, const Options& options) {
+  if (!options.participant.empty()) rig.participant_profile = options.participant;
+  if (!options.pki_dir.empty()) {
+    if (!fs::is_directory(options.pki_dir))
+      throw std::runtime_error("--pki: not a directory: " + options.pki_dir);
+    rig.pki_dir = fs::absolute(options.pki_dir).string();
+  }
   // --log replaces the rig file's logs: each log's '# hand:' line says whose it is
   if (!options.log_paths.empty()) {
     rig.log_path.clear();
@@ -67,6 +75,8 @@ int run(RigConfig rig, const Options& options) {
     dds.domain_id = rig.domain_id;
     dds.qos_file = rig.qos_file;
     dds.participant_profile = rig.participant_profile;
+    dds.pki_dir = rig.pki_dir;
+    dds.identity = "rig_monitor";  // a secured rig's launcher reads, never writes
     DdsParticipant participant(dds, "rig_launcher");
     RigMonitor monitor(participant);
     spdlog::info("rig {} on domain {}; logs in {}/logs", rig.path, rig.domain_id, out_dir);
@@ -109,6 +119,11 @@ int main(int argc, char** argv) {
   app.add_option("--out", options.out_dir, "output directory")->capture_default_str();
   app.add_option("--bin-dir", options.bin_dir, "where the node executables are")->capture_default_str();
   app.add_flag("--quiet", options.quiet, "no live status line");
+  app.add_option("--participant", options.participant,
+                 "participant profile for every node and the launcher (default: the rig file's; "
+                 "secure: DDS Security, with --pki)");
+  app.add_option("--pki", options.pki_dir,
+                 "DDS Security files (scripts/make-pki DIR): each node uses its own identity");
   CLI11_PARSE(app, argc, argv);
   try {
     setup_logging("rig");

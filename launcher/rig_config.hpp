@@ -24,6 +24,7 @@ struct RigConfig {
   int domain_id = 7;
   std::string qos_file;
   std::string participant_profile = "loopback";
+  std::string pki_dir;  // a secured profile's files (rig_launcher --pki); empty: none
   std::string log_path;       // {log}: the right hand's glove log
   std::string left_log_path;  // {left_log}: the left hand's, or empty (no left glove driver)
   std::vector<NodeSpec> nodes;

@@ -21,6 +21,8 @@ Supervisor::Supervisor(RigConfig rig, std::string out_dir, std::string bin_dir)
   env_ = {{"VCOCKPIT_DOMAIN", std::to_string(rig_.domain_id)},
           {"VCOCKPIT_QOS_FILE", rig_.qos_file},
           {"VCOCKPIT_PARTICIPANT", rig_.participant_profile}};
+  // each node takes its own identity (glove_driver, physics_node, ...) from the directory
+  if (!rig_.pki_dir.empty()) env_["VCOCKPIT_PKI_DIR"] = rig_.pki_dir;
 }
 
 Supervisor::~Supervisor() {

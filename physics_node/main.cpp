@@ -175,7 +175,7 @@ int main(int argc, char** argv) {
       node_options.stats_out = *stats_out;
     }
     physics::Scene scene = load_scene(scene_path);
-    DdsParticipant participant(resolve_dds_options(dds_flags), node_options.node_name);
+    DdsParticipant participant(resolve_dds_options(dds_flags, "physics_node"), node_options.node_name);
     return physics_node::run_node(participant, std::move(scene), node_options);
   } catch (const CLI::Error& e) {
     return app.exit(e);
