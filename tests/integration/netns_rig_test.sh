@@ -6,9 +6,13 @@ set -uo pipefail
 src=${VCOCKPIT_SOURCE_DIR:?}
 build=${VCOCKPIT_BUILD_DIR:?}
 out=${VCOCKPIT_TEST_TMP:?}/netns_rig
+# under the sanitizers the physics steps slower than real time: replay slower (lockstep keeps
+# the results)
+rate=1
+[ "${VCOCKPIT_SANITIZED:-0}" = 1 ] && rate=0.4
 shm_before=$(ls /dev/shm | sort)
 ns_before=$(ip netns list 2>/dev/null | sort)
-"$src/scripts/netns-rig" --no-build --build-dir "$build" --out "$out" --domain "${VCOCKPIT_DOMAIN:?}" \
+"$src/scripts/netns-rig" --no-build --build-dir "$build" --out "$out" --domain "${VCOCKPIT_DOMAIN:?}" --rate "$rate" \
   > "$out.log" 2>&1
 status=$?
 cat "$out.log"
