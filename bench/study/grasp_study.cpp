@@ -54,7 +54,9 @@ nlohmann::json params_json(const physics::GraspParams& p) {
 }
 
 nlohmann::json result_json(const TrialResult& r) {
-  return {{"success", r.success},
+  return {{"control_case", r.control_case},
+          {"control_changes", r.control_changes},
+          {"success", r.success},
           {"grasped", r.grasped},
           {"lifted", r.lifted},
           {"placed", r.placed},

@@ -71,8 +71,22 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
   for (const HandScript& h : study_object.hands)
     scene.hands.push_back(h.left ? hand::mirrored(right) : right);
   scene.grasp = rule.params;
-  const int object = scene.find_object(study_object.object);
-  if (object < 0) throw std::invalid_argument("no object '" + study_object.object + "'");
+  // what the trial measures: the object, or the grasped controls' moving parts
+  std::vector<int> targets;
+  if (study_object.is_control()) {
+    for (const std::string& name : study_object.controls) {
+      const int c = scene.find_control(name);
+      if (c < 0) throw std::invalid_argument("no control '" + name + "'");
+      targets.push_back(scene.controls[static_cast<std::size_t>(c)].body);
+    }
+  } else {
+    const int o = scene.find_object(study_object.object);
+    if (o < 0) throw std::invalid_argument("no object '" + study_object.object + "'");
+    targets.push_back(o);
+  }
+  const int object = targets.front();
+  std::vector<char> is_target(scene.objects.size(), 0);
+  for (int t : targets) is_target[static_cast<std::size_t>(t)] = 1;
 
   // each hand's input: the script, varied, degraded, then the checks the offline runner makes
   std::vector<physics_io::HandSamples> inputs;
@@ -105,20 +119,27 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
   const std::size_t object_count = world.scene().objects.size();
   const double start_z_m = world.bodies()[object].X_GO.translation().z();
   TrialResult r;
+  r.control_case = study_object.is_control();
+  std::vector<ControlChange> changes;  // the controls' changes, in order
+  std::vector<char> was_held(targets.size(), 0);
   double hand_pen_sum_m = 0.0, object_pen_sum_m = 0.0;
   int hand_pen_steps = 0, object_pen_steps = 0;
   int64_t drop_watch_until_ns = -1;  // a release being watched for a fall
   double drop_from_z_m = 0.0;
   std::vector<physics::HandContact> first_hand;
-  bool was_held = false;
 
   auto step = [&] {
     world.step();
     const int64_t t_ns = world.time_ns();
     const physics::BodyState& body = world.bodies()[object];
     const double z_m = body.X_GO.translation().z();
+    for (const auto& c : world.control_events()) {
+      const physics::ControlSpec& spec = world.scene().controls[static_cast<std::size_t>(c.control)];
+      changes.push_back({spec.name, spec.positions[static_cast<std::size_t>(c.from)].name,
+                         spec.positions[static_cast<std::size_t>(c.to)].name});
+    }
     for (const auto& e : world.step_events()) {
-      if (e.object != object) {
+      if (!is_target[static_cast<std::size_t>(e.object)]) {
         ++r.other_events;
         continue;
       }
@@ -131,10 +152,15 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
         drop_from_z_m = z_m;
       }
     }
-    // the grasp state (held by any hand or not) switching while the fingers are closed
-    if (body.held() != was_held && t_ns >= closed.first && t_ns <= closed.second) ++r.switches_closed;
-    was_held = body.held();
-    if (drop_watch_until_ns >= 0) {
+    // the grasp state of each target (held by any hand or not) switching while the fingers are
+    // closed
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+      const bool held = world.bodies()[static_cast<std::size_t>(targets[k])].held();
+      if (held != static_cast<bool>(was_held[k]) && t_ns >= closed.first && t_ns <= closed.second)
+        ++r.switches_closed;
+      was_held[k] = held;
+    }
+    if (drop_watch_until_ns >= 0 && !r.control_case) {
       if (z_m < drop_from_z_m - kDropFall_m) {
         ++r.drops;
         drop_watch_until_ns = -1;
@@ -151,13 +177,19 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
     first_hand.clear();
     for (const auto& a : world.contacts()) {
       const auto& c = a.contact;
-      if (c.body_a != object && c.body_b != object) continue;
-      const int other = c.body_a == object ? c.body_b : c.body_a;
+      // a target is always body_a against a hand link (the objects come first)
+      const bool a_target = c.body_a < static_cast<int>(object_count) &&
+                            is_target[static_cast<std::size_t>(c.body_a)];
+      const bool b_target = c.body_b < static_cast<int>(object_count) &&
+                            is_target[static_cast<std::size_t>(c.body_b)];
+      if (!a_target && !b_target) continue;
+      const int target = a_target ? c.body_a : c.body_b;
+      const int other = a_target ? c.body_b : c.body_a;
       if (other >= static_cast<int>(object_count)) {
         hand_touch = true;
         hand_deepest_m = std::max(hand_deepest_m, c.depth_m);
         const int body_in_hands = other - static_cast<int>(object_count);
-        if (body_in_hands < hand::kLinkCount) {  // the first hand's link (the object is body_a)
+        if (target == object && body_in_hands < hand::kLinkCount) {  // the first hand's link
           physics::HandContact hc;
           hc.link = static_cast<physics::Link>(body_in_hands);
           hc.p_G = c.p_G;
@@ -165,7 +197,7 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
           hc.F_G = -a.F_on_b_G;
           first_hand.push_back(hc);
         }
-      } else {
+      } else if (!r.control_case) {  // a control's part rests in its mount: not measured
         object_touch = true;
         object_deepest_m = std::max(object_deepest_m, c.depth_m);
       }
@@ -204,9 +236,23 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
   r.simulated_s = static_cast<double>(world.time_ns()) * 1e-9;
   r.place_error_m = (body.X_GO.translation() - study_object.place_G).norm();
   r.grasped = r.grasps > 0;
-  r.lifted = r.lift_m >= kLift_m;
-  r.placed = !body.held() && r.place_error_m <= kPlaceTolerance_m;
-  r.success = r.grasped && r.lifted && r.placed;
+  if (r.control_case) {
+    // operated as the gesture means: exactly its changes, in order, and nothing else
+    r.lift_m = 0.0;
+    r.place_error_m = 0.0;
+    r.control_changes = static_cast<int>(changes.size());
+    r.success = changes.size() == study_object.changes.size();
+    for (std::size_t k = 0; r.success && k < changes.size(); ++k) {
+      const ControlChange& a = changes[k];
+      const ControlChange& b = study_object.changes[k];
+      r.success = a.control == b.control && a.from == b.from && a.to == b.to;
+    }
+    r.success = r.success && r.other_events == 0 && !body.held();
+  } else {
+    r.lifted = r.lift_m >= kLift_m;
+    r.placed = !body.held() && r.place_error_m <= kPlaceTolerance_m;
+    r.success = r.grasped && r.lifted && r.placed;
+  }
   if (r.grasped && r.first_contact_s >= 0) r.convergence_s = r.first_grasp_s - r.first_contact_s;
   r.closed_s = closed.first >= 0 ? static_cast<double>(closed.second - closed.first) * 1e-9 : 0.0;
   r.switch_rate_hz = r.closed_s > 0 ? r.switches_closed / r.closed_s : 0.0;

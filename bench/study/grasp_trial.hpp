@@ -13,6 +13,9 @@
 //                contact; max over the trial and mean over the steps in contact);
 //   drops        releases after which it fell more than 2 cm within 0.5 s (not set down);
 //   placement    its distance from where the gesture sets it down, 1 s after the log ends.
+// A control case (the knobs, the levers) measures the grasped controls' moving parts the same way
+// (convergence, chatter, the hand's penetration) and succeeds when the controls make exactly the
+// gesture's changes, in order, nothing else is grasped, and none is left held.
 
 #include <cstdint>
 #include <functional>
@@ -25,6 +28,8 @@
 namespace vcockpit::study {
 
 struct TrialResult {
+  bool control_case = false;  // controls operated (no lift, placement, drops or object depth)
+  int control_changes = 0;    // position changes of the controls
   bool success = false;
   bool grasped = false;
   bool lifted = false;  // >= 5 cm while held

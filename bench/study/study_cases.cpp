@@ -57,18 +57,47 @@ std::vector<Rule> xi_sweep(const physics::GraspParams& shipped) {
   return rules;
 }
 
+namespace {
+
+// The selector two detents (off -> vor -> gps), the heading knob ten clicks (two twists of five).
+std::vector<ControlChange> knob_changes() {
+  std::vector<ControlChange> out = {{"nav_mode", "off", "vor"}, {"nav_mode", "vor", "gps"}};
+  for (int click = 0; click < 10; ++click) {
+    out.push_back({"heading_bug", "click", "between"});
+    out.push_back({"heading_bug", "between", "click"});
+  }
+  return out;
+}
+
+}  // namespace
+
 const std::vector<StudyObject>& study_objects() {
   // place_G and approach_end_s from each script's keyframes (its comments say where it sets the
   // object down); the heavy bar is lifted 10 cm and set down where it lay
   static const std::vector<StudyObject> kObjects = {
-      {"cup", {{"cup_pick_place.yaml"}}, {0.36, -0.43, 0.75}, 2.0},
-      {"ball", {{"ball_pick_place.yaml"}}, {0.58, -0.44, 0.73}, 2.1},
-      {"flashlight", {{"flashlight_pick_place.yaml"}}, {0.565, -0.30, 0.718}, 2.1},
-      {"checklist", {{"checklist_pick_place.yaml"}}, {0.31, -0.228, 0.704}, 2.2},
+      {"cup", {{"cup_pick_place.yaml"}}, {0.36, -0.43, 0.75}, 2.0, {}, {}},
+      {"ball", {{"ball_pick_place.yaml"}}, {0.58, -0.44, 0.73}, 2.1, {}, {}},
+      {"flashlight", {{"flashlight_pick_place.yaml"}}, {0.565, -0.30, 0.718}, 2.1, {}, {}},
+      {"checklist", {{"checklist_pick_place.yaml"}}, {0.31, -0.228, 0.704}, 2.2, {}, {}},
       {"heavy_bar",
        {{"two_hand_lift_right.yaml"}, {"two_hand_lift_left.yaml", true}},
        {0.72, 0.0, 1.096},
-       2.2},
+       2.2,
+       {},
+       {}},
+      // the grasped controls: what their gestures do (tests/scenario/control_logs_test.cpp pins
+      // the same changes for the bundled logs)
+      {"knobs", {{"panel_knobs.yaml"}}, Eigen::Vector3d::Zero(), 1.9, {"nav_mode", "heading_bug"},
+       knob_changes()},
+      {"levers", {{"pedestal_levers.yaml"}}, Eigen::Vector3d::Zero(), 4.0, {"throttle", "flaps"},
+       {{"throttle", "idle", "cutoff"},
+        {"throttle", "cutoff", "idle"},
+        {"throttle", "idle", "full"},
+        {"throttle", "full", "idle"},
+        {"flaps", "up", "approach"},
+        {"flaps", "approach", "landing"},
+        {"flaps", "landing", "approach"},
+        {"flaps", "approach", "up"}}},
   };
   return kObjects;
 }

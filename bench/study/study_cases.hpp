@@ -17,7 +17,8 @@
 // for all four.
 //
 // Trials: every dynamic object of the default cockpit, picked up, lifted and set down by its
-// gesture script (config/gestures), one hand or, for the heavy bar, two.
+// gesture script (config/gestures), one hand or, for the heavy bar, two; and the controls that
+// are grasped (the knobs and the pedestal levers), operated by their gestures.
 
 #include <Eigen/Core>
 
@@ -54,13 +55,25 @@ struct HandScript {
   bool left = false;
 };
 
+// A control's change from one named position to another.
+struct ControlChange {
+  std::string control;
+  std::string from;
+  std::string to;
+};
+
 struct StudyObject {
-  std::string object;             // the scene's object
+  std::string object;             // the scene's object, or the name of a control case
   std::vector<HandScript> hands;  // one hand, or two for a two-handed lift
   Eigen::Vector3d place_G;        // where the gesture sets the object's centre down (m, world)
   // when the script's hand has reached the object and its grip starts to close (s): the trial's
   // approach varies before it
   double approach_end_s = 0.0;
+  // A control case: the controls its gesture grasps, and the changes it makes, in order (a
+  // trial succeeds when it makes exactly these).
+  std::vector<std::string> controls;
+  std::vector<ControlChange> changes;
+  bool is_control() const { return !controls.empty(); }
 };
 
 const std::vector<StudyObject>& study_objects();

@@ -141,5 +141,23 @@ TEST(StudyTrial, TheProjectsRuleGraspsTheCupOnceAndTheRelaxedRuleChatters) {
   EXPECT_EQ(again.place_error_m, d.place_error_m);
 }
 
+// A control case: the knobs' gesture as scripted makes exactly its 22 changes under the
+// project's rule (the selector's two detents, the heading knob's ten clicks).
+TEST(StudyTrial, TheKnobsGestureMakesExactlyItsChanges) {
+  const auto rules = compared_rules(physics::GraspParams{});
+  const StudyObject* knobs = nullptr;
+  for (const StudyObject& o : study_objects())
+    if (o.object == "knobs") knobs = &o;
+  ASSERT_NE(knobs, nullptr);
+  ASSERT_TRUE(knobs->is_control());
+  const TrialResult d = run_trial(source_dir(), *knobs, rules[3], plain_variation());
+  EXPECT_TRUE(d.control_case);
+  EXPECT_TRUE(d.success);
+  EXPECT_EQ(d.control_changes, 22);
+  EXPECT_EQ(d.grasps, 3);  // the selector once, the heading knob twice
+  EXPECT_EQ(d.drops, 0);
+  EXPECT_EQ(d.object_pen_max_m, 0.0);  // not measured for a control's part
+}
+
 }  // namespace
 }  // namespace vcockpit::study
