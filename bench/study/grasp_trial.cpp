@@ -22,17 +22,6 @@ constexpr int64_t kDropWindow_ns = 500'000'000;
 constexpr int64_t kSettle_ns = 1'000'000'000;  // after the log: the object comes to rest
 constexpr int64_t kTimelineEvery_ns = 10'000'000;
 
-std::vector<hand::GloveSample> script_samples(const std::string& path, const hand::HandModel& hand) {
-  const auto script = glove::GestureScript::load(path, hand);
-  std::vector<hand::GloveSample> out;
-  for (int64_t k = 0;; ++k) {
-    const int64_t t_ns = std::llround(static_cast<double>(k) * 1e9 / script.rate_hz());
-    if (t_ns > script.duration_ns()) break;
-    out.push_back(script.sample_at(t_ns));
-  }
-  return out;
-}
-
 // The mean flexion of the four fingers (rad): how closed the pilot's hand is.
 double mean_finger_flexion_rad(const hand::JointAngles& q) {
   double sum = 0.0;
@@ -95,7 +84,7 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
     const hand::HandModel& model = scene.hands[h];
     const int side = study_object.hands[h].left ? 1 : 0;
     std::vector<hand::GloveSample> samples = vary_approach(
-        script_samples(source_dir + "/config/gestures/" + study_object.hands[h].script, model),
+        glove::script_samples(source_dir + "/config/gestures/" + study_object.hands[h].script, model),
         variation, side, study_object.approach_end_s, model);
     if (h == 0) closed = closed_span_ns(samples);
     const auto rows = degrade::degrade(std::move(samples), model, degrade_spec(variation));

@@ -1,5 +1,7 @@
 #include "glove_driver/glove/gesture_script.hpp"
 
+#include <cmath>
+
 #include <algorithm>
 
 #include "common/pose.hpp"
@@ -213,6 +215,17 @@ const Eigen::Vector3d& GestureScript::p_H_anchor(Anchor anchor) const {
     case Anchor::kWrist: break;
   }
   return kWrist;
+}
+
+std::vector<hand::GloveSample> script_samples(const std::string& path, const hand::HandModel& hand) {
+  const auto script = GestureScript::load(path, hand);
+  std::vector<hand::GloveSample> out;
+  for (int64_t k = 0;; ++k) {
+    const int64_t t_ns = std::llround(static_cast<double>(k) * 1e9 / script.rate_hz());
+    if (t_ns > script.duration_ns()) break;
+    out.push_back(script.sample_at(t_ns));
+  }
+  return out;
 }
 
 hand::GloveSample GestureScript::sample_at(int64_t t_ns) const {

@@ -94,6 +94,10 @@ class GestureScript {
   std::vector<Keyframe> keyframes_;
 };
 
+// The samples a synthetic glove driver publishes for the script at `path` (and its recorder
+// writes): one every 1 / rate_hz from 0 to the script's end. Throws ConfigError.
+std::vector<hand::GloveSample> script_samples(const std::string& path, const hand::HandModel& hand);
+
 // The built-in hand shapes (degrees by joint name) for a hand model.
 std::map<std::string, hand::JointAngles> builtin_shapes(const hand::HandModel& hand);
 

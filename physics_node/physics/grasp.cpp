@@ -117,23 +117,15 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
   const double alpha0 = params.alpha0_deg - (held ? params.exit_alpha_margin_deg : 0.0);
   const int min_contacts =
       held || joint != nullptr ? params.exit_min_contacts : params.min_contacts;
-  if (!params.gesture_rule) {
-    // eqs. 30-31 alone, over whatever touches
-    if (check.links_in_contact == 0) {
-      check.verdict = GraspReason::kTooFewContacts;
-    } else if (check.residual_force_N > params.xi_N * scale) {
-      check.verdict = GraspReason::kForceResidual;
-    } else if (check.residual_torque_Nm > params.eta_Nm * scale) {
-      check.verdict = GraspReason::kTorqueResidual;
-    } else {
-      check.verdict = GraspReason::kStableGrasp;
-    }
-  } else if (check.links_in_contact < min_contacts) {
+  // the gesture rule first (off: any contact will do), then eqs. 30-31
+  if (check.links_in_contact < (params.gesture_rule ? min_contacts : 1)) {
     check.verdict = GraspReason::kTooFewContacts;
-  } else if (!check.thumb && !check.palm_opposes && !(held && palm_may_oppose)) {
+  } else if (params.gesture_rule && !check.thumb && !check.palm_opposes &&
+             !(held && palm_may_oppose)) {
     check.verdict = GraspReason::kNoThumb;
-  } else if (held ? check.best_opposition_deg <= alpha0
-                  : (!any_finger || check.min_thumb_angle_deg <= alpha0)) {
+  } else if (params.gesture_rule &&
+             (held ? check.best_opposition_deg <= alpha0
+                   : (!any_finger || check.min_thumb_angle_deg <= alpha0))) {
     check.verdict = GraspReason::kFingersNotOpposed;
   } else if (check.residual_force_N > params.xi_N * scale) {
     check.verdict = GraspReason::kForceResidual;

@@ -19,18 +19,6 @@ constexpr int64_t kSettle_ns = 1'000'000'000;   // after the log: the object com
 
 }  // namespace
 
-std::vector<hand::GloveSample> script_samples(const std::string& script_path,
-                                              const hand::HandModel& hand) {
-  const auto script = glove::GestureScript::load(script_path, hand);
-  std::vector<hand::GloveSample> out;
-  for (int64_t k = 0;; ++k) {
-    const int64_t t_ns = std::llround(static_cast<double>(k) * 1e9 / script.rate_hz());
-    if (t_ns > script.duration_ns()) break;
-    out.push_back(script.sample_at(t_ns));
-  }
-  return out;
-}
-
 ScenarioResult run_grasp_scenario(const std::string& source_dir, const GraspCase& grasp_case,
                                   const std::string& hand_yaml, const degrade::DegradeSpec& spec,
                                   const std::function<void(const physics::World&)>& observe) {

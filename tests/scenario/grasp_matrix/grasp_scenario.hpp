@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "glove_driver/degrade/degrade.hpp"
+#include "glove_driver/glove/gesture_script.hpp"
 #include "physics_node/physics/world.hpp"
 #include "tests/scenario/grasp_matrix/hand_static_clearance.hpp"
 
@@ -45,13 +46,10 @@ struct ScenarioResult {
   std::string events;  // one line per event, for failure messages
 };
 
+using glove::script_samples;  // glove_driver/glove/gesture_script.hpp
+
 // Paths relative to the source tree (config/...). Throws on bad files. `observe`, if given, sees
 // the world after every step (for diagnosing a failing cell).
-// The samples a synthetic glove driver publishes for the script (and its recorder writes):
-// one every 1 / rate_hz from 0 to the script's end.
-std::vector<hand::GloveSample> script_samples(const std::string& script_path,
-                                              const hand::HandModel& hand);
-
 ScenarioResult run_grasp_scenario(const std::string& source_dir, const GraspCase& grasp_case,
                                   const std::string& hand_yaml, const degrade::DegradeSpec& spec,
                                   const std::function<void(const physics::World&)>& observe = {});
