@@ -14,6 +14,7 @@
 #include "hand/glove_log.hpp"
 #include "glove_driver/glove/sample_source.hpp"
 #include "glove_driver/node/recorder.hpp"
+#include "glove_driver/node/replay_commands.hpp"
 #include "glove_driver/node/sample_publisher.hpp"
 #include "common/terminal_progress.hpp"
 #include "hand/hand_yaml.hpp"
@@ -34,6 +35,7 @@ struct Flags {
   double rate = 1.0;
   std::optional<double> rate_hz;
   bool loop = false;
+  bool hold_at_end = false;
   double start_offset_s = 0.0;
   bool lockstep = false;
   int subscribers = 1;
@@ -74,6 +76,9 @@ void add_flags(CLI::App& app, Flags& f) {
   app.add_option("--rate-hz", f.rate_hz, "synthetic samples per second (default: the script's)")
       ->check(CLI::Range(1.0, 100000.0));
   app.add_flag("--loop", f.loop, "replay: start over at the end (time keeps increasing)");
+  app.add_flag("--hold-at-end", f.hold_at_end,
+               "at the end of the samples, wait (until Ctrl-C) for an instructor's restart on "
+               "cockpit/sim_command instead of exiting");
   app.add_option("--start-offset", f.start_offset_s, "replay: skip this many seconds of the log")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--lockstep", f.lockstep,
@@ -100,27 +105,48 @@ void add_flags(CLI::App& app, Flags& f) {
 }
 
 int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Source& source,
-                  const PublisherOptions& options) {
+                  const PublisherOptions& options, bool hold_at_end) {
   SamplePublisher publisher(participant, hand, options);
   publisher.add_load_counts(source.load_counts());
+  ReplayCommands commands(participant, options.node_name);
   if (!publisher.wait_for_subscribers()) return shutdown_requested() ? 0 : 1;
   TerminalProgress progress;
-  const int64_t start_ns = monotonic_now_ns();
+  const int64_t run_start_ns = monotonic_now_ns();
+  int64_t start_ns = run_start_ns;  // wall time of the timeline's 0 (moved by a restart)
+  bool restarted = false;
+  bool ended = false;
   hand::GloveSample sample;
   int64_t due_ns = 0;
-  while (!shutdown_requested() && source.next(sample, due_ns)) {
+  while (!shutdown_requested()) {
+    if (commands.take_restart(source.can_restart())) {
+      source.restart();
+      restarted = true;
+      ended = false;
+    }
+    if (!source.next(sample, due_ns)) {
+      if (!hold_at_end) break;
+      if (!ended) spdlog::info("the samples ended: waiting for a restart (Ctrl-C ends)");
+      ended = true;
+      sleep_until_ns(monotonic_now_ns() + 20'000'000);
+      publisher.tick(monotonic_now_ns());
+      continue;
+    }
+    // after a restart the timeline goes on from the last sample: its next sample is due now,
+    // however long the replay stood at its end
+    if (restarted) start_ns = monotonic_now_ns() - due_ns;
+    restarted = false;
     if (due_ns > 0) sleep_until_ns(start_ns + due_ns);
     publisher.publish(sample);
     const int64_t now_ns = monotonic_now_ns();
     publisher.tick(now_ns);
-    const double wall_s = ns_to_seconds(now_ns - start_ns);
+    const double wall_s = ns_to_seconds(now_ns - run_start_ns);
     progress.update(now_ns, source.position_s(), source.total_s(),
                     wall_s > 0 ? source.position_s() / wall_s : 0.0, publisher.published());
   }
   progress.finish();
   const bool ok = publisher.finish();
   spdlog::info("published {} samples in {:.3f} s ({} write failures); {}", publisher.published(),
-               ns_to_seconds(monotonic_now_ns() - start_ns), publisher.write_failures(),
+               ns_to_seconds(monotonic_now_ns() - run_start_ns), publisher.write_failures(),
                hand::input_counts_text(publisher.counts()));
   return ok ? 0 : 1;
 }
@@ -173,7 +199,7 @@ int run(const Flags& f) {
   options.subscribers = f.subscribers;
   options.match_timeout_s = f.match_timeout_s;
   options.max_gap_ns = std::llround(f.max_gap_s * 1e9);
-  return run_publisher(participant, hand, *source, options);
+  return run_publisher(participant, hand, *source, options, f.hold_at_end);
 }
 
 }  // namespace

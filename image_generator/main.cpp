@@ -42,11 +42,28 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--node-name", options.node_name, "name on cockpit/node_status")
       ->capture_default_str();
+  std::string video_view = "left";
+  app.add_option("--video", options.video_path,
+                 "record the run as an H.264 MP4 here (the ffmpeg program, off the render thread; "
+                 "the sim time burned in; an existing file is kept and -2, -3... added)");
+  app.add_option("--video-view", video_view, "left (the left eye) or side (both eyes)")
+      ->check(CLI::IsMember({"left", "side"}))
+      ->capture_default_str();
+  app.add_option("--video-scale-down", options.video_scale_down,
+                 "divide the video's width and height by this (1: full size)")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
+  app.add_option("--preview-hz", options.preview_hz,
+                 "pictures of the left eye a second on cockpit/preview_frame for instructor "
+                 "displays, made only while one is watching (0: none)")
+      ->check(CLI::Range(0.0, 30.0))
+      ->capture_default_str();
   app.add_option("--stats-out", options.stats_out,
                  "write the run's frames per second and render times (JSON) here at exit");
   add_dds_flags(app, dds_flags);
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  options.video_side_by_side = video_view == "side";
   options.layout = layout == "left"    ? image_generator::SnapshotLayout::kLeft
                    : layout == "right" ? image_generator::SnapshotLayout::kRight
                    : layout == "both"  ? image_generator::SnapshotLayout::kBothSeparate

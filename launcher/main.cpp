@@ -40,10 +40,13 @@ struct Options {
   bool quiet = false;
   std::string participant;  // overrides the rig file's participant profile
   std::string pki_dir;      // DDS Security files for a secured profile (scripts/make-pki)
+  bool ui = false;          // the instructor station too; the replays wait at their end
+  int ui_port = 8077;
 };
 
 int run(RigConfig rig, const Options& options) {
   if (!options.participant.empty()) rig.participant_profile = options.participant;
+  if (options.ui) rig.ui_port = options.ui_port;
   if (!options.pki_dir.empty()) {
     if (!fs::is_directory(options.pki_dir))
       throw std::runtime_error("--pki: not a directory: " + options.pki_dir);
@@ -67,6 +70,10 @@ int run(RigConfig rig, const Options& options) {
   fs::create_directories(out_dir + "/logs");
   fs::remove_all(out_dir + "/frames");  // this run's snapshots only
   fs::remove(out_dir + "/summary.json");
+  for (const auto& entry : fs::directory_iterator(out_dir)) {  // the last run's videos
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("rig", 0) == 0 && name.find(".mp4") != std::string::npos) fs::remove(entry.path());
+  }
   Supervisor supervisor(rig, out_dir, options.bin_dir);
   const auto shm_before = dev_shm_entries();
   const int64_t start_ns = monotonic_now_ns();
@@ -82,6 +89,11 @@ int run(RigConfig rig, const Options& options) {
     spdlog::info("rig {} on domain {}; logs in {}/logs", rig.path, rig.domain_id, out_dir);
     try {
       supervisor.start_nodes();
+      if (options.ui) {
+        spdlog::info("instructor station: http://127.0.0.1:{}/ (the replays wait at their end for "
+                     "a restart; Ctrl-C ends the run)",
+                     rig.ui_port);
+      }
       supervisor.supervise(monitor, isatty(STDERR_FILENO) == 1 && !options.quiet);
     } catch (...) {
       supervisor.stop_nodes();
@@ -124,6 +136,12 @@ int main(int argc, char** argv) {
                  "secure: DDS Security, with --pki)");
   app.add_option("--pki", options.pki_dir,
                  "DDS Security files (scripts/make-pki DIR): each node uses its own identity");
+  app.add_flag("--ui", options.ui,
+               "start the instructor station too (the rig file's with_ui nodes and ui_args): a web "
+               "page on loopback to watch and command the run, which then lasts until Ctrl-C");
+  app.add_option("--ui-port", options.ui_port, "the instructor station's TCP port")
+      ->check(CLI::Range(1, 65535))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
     setup_logging("rig");

@@ -15,7 +15,7 @@ std::string relative_to(const std::string& dir, const std::string& path) {
 
 NodeSpec parse_node(const ConfigNode& node) {
   node.expect_keys({"name", "command", "required", "restart_delay_s", "ends_run", "start_delay_s",
-                    "with_left_log"});
+                    "with_left_log", "with_ui", "ui_args"});
   NodeSpec spec;
   spec.name = node.get_string("name");
   if (spec.name.empty() || spec.name.find_first_of("/ ") != std::string::npos) {
@@ -32,6 +32,9 @@ NodeSpec parse_node(const ConfigNode& node) {
   spec.start_delay_s = node.get_double("start_delay_s", 0.0);
   if (spec.start_delay_s < 0) node["start_delay_s"].fail("must be >= 0");
   spec.with_left_log = node.get_bool("with_left_log", false);
+  spec.with_ui = node.get_bool("with_ui", false);
+  if (auto args = node.find("ui_args"))
+    for (const ConfigNode& arg : args->elements()) spec.ui_args.push_back(arg.as_string());
   return spec;
 }
 
@@ -66,12 +69,15 @@ RigConfig load_rig_config(const std::string& path) {
 std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& rig,
                                         const std::string& out_dir) {
   std::vector<std::string> out;
-  for (std::string arg : node.command) {
+  std::vector<std::string> args = node.command;
+  if (rig.ui_port > 0) args.insert(args.end(), node.ui_args.begin(), node.ui_args.end());
+  for (std::string arg : args) {
     for (const auto& [key, value] : {std::pair<std::string, std::string>{"{log}", rig.log_path},
                                      {"{left_log}", rig.left_log_path},
                                      {"{hands}", rig.left_log_path.empty() ? "right" : "right,left"},
                                      {"{out}", out_dir},
-                                     {"{config}", rig.config_dir}}) {
+                                     {"{config}", rig.config_dir},
+                                     {"{ui_port}", std::to_string(rig.ui_port)}}) {
       for (std::size_t at = arg.find(key); at != std::string::npos; at = arg.find(key, at)) {
         arg.replace(at, key.size(), value);
         at += value.size();
@@ -83,7 +89,7 @@ std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& r
 }
 
 bool node_starts(const NodeSpec& node, const RigConfig& rig) {
-  return !node.with_left_log || !rig.left_log_path.empty();
+  return (!node.with_left_log || !rig.left_log_path.empty()) && (!node.with_ui || rig.ui_port > 0);
 }
 
 }  // namespace vcockpit::rig

@@ -16,6 +16,8 @@ struct NodeSpec {
   bool ends_run = false;
   double start_delay_s = 0.0;
   bool with_left_log = false;  // started only when the rig has a left hand's log ({left_log})
+  bool with_ui = false;        // started only with the instructor station (rig_launcher --ui)
+  std::vector<std::string> ui_args;  // added to the command with the instructor station
 };
 
 struct RigConfig {
@@ -27,15 +29,17 @@ struct RigConfig {
   std::string pki_dir;  // a secured profile's files (rig_launcher --pki); empty: none
   std::string log_path;       // {log}: the right hand's glove log
   std::string left_log_path;  // {left_log}: the left hand's, or empty (no left glove driver)
+  int ui_port = 0;            // {ui_port}: the instructor station's page; 0: no station
   std::vector<NodeSpec> nodes;
 };
 
 RigConfig load_rig_config(const std::string& path);
-// The nodes this rig starts: those `with_left_log` only when it has a left log.
+// The nodes this rig starts: those `with_left_log` only when it has a left log, those `with_ui`
+// only with the instructor station.
 bool node_starts(const NodeSpec& node, const RigConfig& rig);
 
-// {log}, {left_log}, {hands} ("right", or "right,left" with a left log), {out} and {config}
-// replaced in every argument.
+// {log}, {left_log}, {hands} ("right", or "right,left" with a left log), {out}, {config} and
+// {ui_port} replaced in every argument; with the instructor station, the node's ui_args added.
 std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& rig,
                                         const std::string& out_dir);
 

@@ -28,6 +28,13 @@ ReplayCursor::ReplayCursor(const std::vector<hand::GloveSample>& samples, const 
   const int64_t step = samples.size() - first_ > 1 ? samples[first_ + 1].t_ns - samples[first_].t_ns
                                                    : 1'000'000;
   pass_ns_ = span + step;
+  step_ns_ = step;
+}
+
+void ReplayCursor::restart() {
+  if (last_elapsed_ns_ < 0) return;  // nothing given yet: it starts at the start anyway
+  index_ = first_;
+  offset_ns_ = last_elapsed_ns_ + step_ns_;
 }
 
 bool ReplayCursor::next(hand::GloveSample& out, int64_t& due_ns) {
@@ -35,12 +42,14 @@ bool ReplayCursor::next(hand::GloveSample& out, int64_t& due_ns) {
     if (!options_.loop) return false;
     ++pass_;
     index_ = first_;
+    offset_ns_ += pass_ns_;
   }
   const hand::GloveSample& s = samples_[index_++];
   position_ns_ = s.t_ns - samples_[first_].t_ns;
-  const int64_t elapsed_ns = position_ns_ + static_cast<int64_t>(pass_) * pass_ns_;
+  const int64_t elapsed_ns = position_ns_ + offset_ns_;
+  last_elapsed_ns_ = elapsed_ns;
   out = s;
-  out.t_ns = s.t_ns + static_cast<int64_t>(pass_) * pass_ns_;
+  out.t_ns = s.t_ns + offset_ns_;
   due_ns = options_.rate > 0 ? static_cast<int64_t>(static_cast<double>(elapsed_ns) / options_.rate)
                              : 0;
   return true;

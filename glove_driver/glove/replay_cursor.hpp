@@ -1,6 +1,6 @@
 #pragma once
 // Walks a glove log for replay: which sample comes next and when it is due, for a time scale
-// (--rate), a start offset and looping. Pure: the caller owns the clock.
+// (--rate), a start offset, looping and restarting. Pure: the caller owns the clock.
 //
 // Each sample keeps its original relative timing: sample i is due (t_i - t_start) / rate after
 // the replay started. Looping continues the timeline (pass k adds k * pass length), so sample
@@ -27,6 +27,11 @@ class ReplayCursor {
   // The next sample (times shifted for loops) and when it is due after the start (ns of wall
   // time, 0 when rate is 0). False at the end of a non-looping replay.
   bool next(hand::GloveSample& out, int64_t& due_ns);
+  // Starts over at the first played sample (an instructor's restart), the timeline going on:
+  // the next sample comes one sample interval after the last one given, so times keep
+  // increasing and nothing is due in the past or far ahead. Also after the end of a
+  // non-looping replay.
+  void restart();
 
   std::size_t first_index() const { return first_; }
   int64_t pass_duration_ns() const { return pass_ns_; }  // log time of one pass
@@ -41,6 +46,9 @@ class ReplayCursor {
   std::size_t index_ = 0;
   int pass_ = 0;
   int64_t pass_ns_ = 0;
+  int64_t step_ns_ = 0;           // the first two played samples' interval
+  int64_t offset_ns_ = 0;         // added to the log's times: loops and restarts so far
+  int64_t last_elapsed_ns_ = -1;  // timeline position of the last sample given (-1: none)
   int64_t position_ns_ = 0;
 };
 

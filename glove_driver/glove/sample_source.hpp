@@ -20,6 +20,9 @@ class Source {
   virtual double total_s() const = 0;
   // what loading counted (a log: clamped joint values, missing columns), for node_status
   virtual hand::InputCounts load_counts() const { return {}; }
+  // Starts over from the beginning, time going on (an instructor's restart), if it can.
+  virtual bool can_restart() const { return false; }
+  virtual void restart() {}
 };
 
 class ReplaySource : public Source {
@@ -30,6 +33,8 @@ class ReplaySource : public Source {
   double position_s() const override;
   double total_s() const override;
   hand::InputCounts load_counts() const override { return log_.counts; }
+  bool can_restart() const override { return true; }
+  void restart() override { cursor_.restart(); }
 
  private:
   hand::GloveLog log_;

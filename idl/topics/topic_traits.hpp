@@ -28,6 +28,9 @@ VCOCKPIT_TOPIC(ControlInfo, "cockpit/control_info");
 VCOCKPIT_TOPIC(ControlState, "cockpit/control_state");
 VCOCKPIT_TOPIC(ControlEvent, "cockpit/control_event");
 VCOCKPIT_TOPIC(ControlCommand, "cockpit/control_command");
+VCOCKPIT_TOPIC(SimCommand, "cockpit/sim_command");
+VCOCKPIT_TOPIC(SimAck, "cockpit/sim_ack");
+VCOCKPIT_TOPIC(PreviewFrame, "cockpit/preview_frame");
 
 #undef VCOCKPIT_TOPIC
 

@@ -13,10 +13,28 @@
 #include "idl/topics/pose_convert.hpp"
 #include "common/latency_histogram.hpp"
 #include "common/signals.hpp"
+#include "image_generator/node/preview_publisher.hpp"
 #include "image_generator/node/scene_cache.hpp"
+#include "image_generator/node/video_recorder.hpp"
 
 namespace vcockpit::image_generator {
 namespace {
+
+// `path`, or the first of path-2.mp4, path-3.mp4, ... that is free (neither it nor its
+// .partial exists): a restarted image generator keeps the video its first run wrote, or is
+// still writing (a killed one's ffmpeg finishes its file).
+std::string free_video_path(const std::string& path) {
+  const auto taken = [](const std::filesystem::path& p) {
+    return std::filesystem::exists(p) || std::filesystem::exists(p.string() + ".partial");
+  };
+  if (!taken(path)) return path;
+  const std::filesystem::path p(path);
+  for (int n = 2;; ++n) {
+    const std::filesystem::path candidate =
+        p.parent_path() / (p.stem().string() + "-" + std::to_string(n) + p.extension().string());
+    if (!taken(candidate)) return candidate.string();
+  }
+}
 
 class ImageGenerator {
  public:
@@ -33,7 +51,8 @@ class ImageGenerator {
         frame_writer_(participant.make_writer<cockpit::FrameInfo>("stream")),
         status_writer_(participant.make_writer<cockpit::NodeStatus>("state")),
         domain_id_(participant.domain_id()),
-        hmd_(hmd.hmd) {
+        hmd_(hmd.hmd),
+        participant_(participant) {
     cache_.set_ghost_threshold_m(options.ghost_threshold_m);
   }
 
@@ -53,6 +72,8 @@ class ImageGenerator {
   bool wait_for_scene();
   void note_snapshot();
   void publish_status(int64_t now_ns);
+  bool start_video();
+  void finish_video();
 
   IgOptions options_;
   Eigen::Isometry3d X_GHead_;
@@ -68,6 +89,11 @@ class ImageGenerator {
   Writer<cockpit::NodeStatus> status_writer_;
   int domain_id_;
   render::HmdConfig hmd_;
+  DdsParticipant& participant_;
+  std::unique_ptr<VideoRecorder> video_;
+  std::string video_path_;
+  double video_fps_ = 0.0;
+  std::unique_ptr<PreviewPublisher> preview_;
   cockpit::ObjectInfo info_;
   cockpit::HandInfo hand_info_;
   cockpit::ObjectState state_;
@@ -109,6 +135,19 @@ void ImageGenerator::write_stats() const {
   j["render_ms"] = {{"p50", ms(render_ns_.percentile_ns(0.5))},
                     {"p99", ms(render_ns_.percentile_ns(0.99))},
                     {"max", ms(render_ns_.max_ns())}};
+  if (video_) {
+    j["video"] = {{"path", video_path_},
+                  {"ok", video_->finish()},
+                  {"error", video_->error()},
+                  {"width_px", video_->width_px()},
+                  {"height_px", video_->height_px()},
+                  {"fps", video_fps_},
+                  {"frames_submitted", video_->submitted()},
+                  {"frames_dropped", video_->dropped()},
+                  {"video_frames", video_->video_frames()},
+                  {"repeated", video_->repeated()},
+                  {"skipped", video_->skipped()}};
+  }
   write_json_file(options_.stats_out, j);
 }
 
@@ -161,6 +200,43 @@ bool ImageGenerator::wait_for_scene() {
   return false;
 }
 
+// The run's video at the paced frame rate (60 when unpaced); false if it cannot be recorded.
+bool ImageGenerator::start_video() {
+  if (options_.video_path.empty()) return true;
+  VideoOptions video;
+  video.path = free_video_path(options_.video_path);
+  video.fps = options_.fps > 0 ? options_.fps : 60.0;
+  video.view = options_.video_side_by_side ? VideoView::kSideBySide : VideoView::kLeftEye;
+  video.scale_down = options_.video_scale_down;
+  try {
+    const std::filesystem::path dir = std::filesystem::path(video.path).parent_path();
+    if (!dir.empty()) std::filesystem::create_directories(dir);
+    video_ = std::make_unique<VideoRecorder>(video, hmd_.width_px, hmd_.height_px);
+  } catch (const std::exception& e) {
+    spdlog::error("video: {}", e.what());
+    return false;
+  }
+  video_path_ = video.path;
+  video_fps_ = video.fps;
+  spdlog::info("video {}: {}x{} at {} frames a second ({})", video_path_, video_->width_px(),
+               video_->height_px(), video.fps,
+               options_.video_side_by_side ? "both eyes side by side" : "left eye");
+  return true;
+}
+
+void ImageGenerator::finish_video() {
+  if (!video_) return;
+  if (video_->finish()) {
+    spdlog::info("video {}: {} frames ({:.1f} s; {} repeated to keep real time, {} skipped over "
+                 "the rate), {} of {} rendered frames dropped because the encoder was behind",
+                 video_path_, video_->video_frames(),
+                 static_cast<double>(video_->video_frames()) / video_fps_, video_->repeated(),
+                 video_->skipped(), video_->dropped(), video_->submitted());
+  } else {
+    spdlog::error("video {} not written: {}", video_path_, video_->error());
+  }
+}
+
 void ImageGenerator::publish_status(int64_t now_ns) {
   if (now_ns - last_status_ns_ < 1'000'000'000) return;
   const double period_s = ns_to_seconds(now_ns - last_status_ns_);
@@ -177,11 +253,12 @@ void ImageGenerator::publish_status(int64_t now_ns) {
       frames > 0 ? static_cast<double>(render_ns_in_period_) * 1e-3 / static_cast<double>(frames) : 0.0;
   char detail[128];
   std::snprintf(detail, sizeof detail,
-                "%d objects, snapshots %llu written %llu skipped, hand states without hand_info "
-                "%llu",
+                "%d objects, snapshots %llu written %llu skipped, video frames dropped %llu, hand "
+                "states without hand_info %llu",
                 static_cast<int>(cache_.object_count()),
                 static_cast<unsigned long long>(snapshots_ ? snapshots_->written() : 0),
                 static_cast<unsigned long long>(snapshots_ ? snapshots_->skipped() : 0),
+                static_cast<unsigned long long>(video_ ? video_->dropped() : 0),
                 static_cast<unsigned long long>(cache_.hand_states_without_info()));
   status.detail(detail);
   status_writer_.write(status);
@@ -223,6 +300,11 @@ int ImageGenerator::run() {
                    "frame,sim_time_ns,held_object,held_x,held_y,held_z,palm_x,palm_y,palm_z\n");
     }
   }
+  if (!start_video()) return 4;
+  if (options_.preview_hz > 0) {
+    preview_ = std::make_unique<PreviewPublisher>(participant_, hmd_.width_px, hmd_.height_px,
+                                                  options_.preview_hz);
+  }
   const int64_t period_ns = options_.fps > 0 ? std::llround(1e9 / options_.fps) : 0;
   int64_t next_ns = monotonic_now_ns();
   last_status_ns_ = next_ns;
@@ -250,6 +332,8 @@ int ImageGenerator::run() {
     frame_.render_start_ns(start_ns);
     frame_.render_end_ns(end_ns);
     frame_writer_.write(frame_);
+    if (video_) video_->submit(renderer->pixels(), end_ns, cache_.newest_sim_time_ns());
+    if (preview_) preview_->offer(renderer->pixels(), frames_, cache_.newest_sim_time_ns(), end_ns);
     if (snapshots_ && frames_ % static_cast<uint64_t>(options_.snapshot_every) == 0 &&
         snapshots_->submit(frames_, renderer->pixels())) {
       note_snapshot();
@@ -259,6 +343,8 @@ int ImageGenerator::run() {
   }
   const uint64_t written = snapshots_ ? snapshots_->written() : 0;
   snapshots_.reset();  // finishes the queued PNGs
+  preview_.reset();
+  finish_video();
   if (snapshot_index_) std::fclose(snapshot_index_);
   spdlog::info("rendered {} frames; snapshots written {}", frames_, written);
   if (cache_.hand_messages_refused() > 0) {

@@ -3,7 +3,8 @@
 // hand_state (a late starter gets it from the transient-local topics; the hand's geometry comes
 // from the physics node's hand_info, no hand.yaml here), the head from cockpit/head_pose or the
 // design eye point, stereo frames rendered off-screen, cockpit/frame_info for every frame, PNG
-// snapshots every N frames, node_status once a second.
+// snapshots every N frames, the run's video, pictures for instructor displays
+// (cockpit/preview_frame), node_status once a second.
 
 #include <cstdint>
 #include <string>
@@ -26,6 +27,12 @@ struct IgOptions {
   std::string node_name = "image_generator";
   std::string stats_out;         // JSON file of the run's frame rate and render times; empty: none
   double ghost_threshold_m = SceneCache::kDefaultGhostThreshold_m;  // tracked-hand ghost
+  // The run's video (video_recorder.hpp): OUT/rig.mp4 say; empty: none. An existing file is not
+  // overwritten (a restarted image generator writes rig-2.mp4 beside it).
+  std::string video_path;
+  int video_scale_down = 2;      // 1280x720 eyes as a 640x360 video
+  bool video_side_by_side = false;
+  double preview_hz = 4.0;       // cockpit/preview_frame pictures a second; 0: none
 };
 
 // Exit codes: 0 done, 3 no scene arrived in time, 4 rendering failed.

@@ -25,10 +25,30 @@ struct PngError {
 
 void on_png_warning(png_structp, png_const_charp) {}
 
+// Appends libpng's output to a vector. bad_alloc is caught here and turned into a libpng error
+// after the catch block ends, so the longjmp crosses no live C++ object.
+void write_to_memory(png_structp png, png_bytep data, png_size_t length) {
+  auto* out = static_cast<std::vector<uint8_t>*>(png_get_io_ptr(png));
+  bool appended = true;
+  try {
+    out->insert(out->end(), data, data + length);
+  } catch (...) {
+    appended = false;
+  }
+  if (!appended) png_error(png, "out of memory");
+}
+
+void flush_memory(png_structp) {}
+
+// Where encode writes: a file (libpng's own stdio output) or memory.
+struct PngSink {
+  std::FILE* file = nullptr;
+  std::vector<uint8_t>* memory = nullptr;
+};
+
 // Plain C on purpose: libpng reports errors by longjmp, which must not cross C++ objects with
 // destructors. Returns false with error->message set on failure.
-bool encode(std::FILE* file, const uint8_t* rgba, int width, int height, int level,
-            PngError* error) {
+bool encode(PngSink sink, const uint8_t* rgba, int width, int height, int level, PngError* error) {
   png_structp png =
       png_create_write_struct(PNG_LIBPNG_VER_STRING, error, on_png_error, on_png_warning);
   if (!png) return false;
@@ -41,7 +61,11 @@ bool encode(std::FILE* file, const uint8_t* rgba, int width, int height, int lev
     png_destroy_write_struct(&png, &info);
     return false;
   }
-  png_init_io(png, file);
+  if (sink.file) {
+    png_init_io(png, sink.file);
+  } else {
+    png_set_write_fn(png, sink.memory, write_to_memory, flush_memory);
+  }
   png_set_compression_level(png, level);
   png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
   png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
@@ -61,21 +85,26 @@ bool encode(std::FILE* file, const uint8_t* rgba, int width, int height, int lev
   throw std::runtime_error("write_png " + path + ": " + why);
 }
 
+void check_arguments(const char* what, const uint8_t* rgba, int width, int height,
+                     int compression_level) {
+  if (!rgba || width <= 0 || height <= 0) {
+    throw std::invalid_argument(std::string(what) + ": empty image");
+  }
+  if (compression_level < 0 || compression_level > 9) {
+    throw std::invalid_argument(std::string(what) + ": compression_level must be 0..9");
+  }
+}
+
 }  // namespace
 
 void write_png(const std::string& path, const uint8_t* rgba, int width, int height,
                int compression_level) {
-  if (!rgba || width <= 0 || height <= 0) {
-    throw std::invalid_argument("write_png " + path + ": empty image");
-  }
-  if (compression_level < 0 || compression_level > 9) {
-    throw std::invalid_argument("write_png " + path + ": compression_level must be 0..9");
-  }
+  check_arguments(("write_png " + path).c_str(), rgba, width, height, compression_level);
   const std::string partial = path + ".partial";
   std::FILE* file = std::fopen(partial.c_str(), "wb");
   if (!file) fail(path, "cannot open " + partial + ": " + std::strerror(errno));
   PngError error{"libpng could not start"};
-  const bool encoded = encode(file, rgba, width, height, compression_level, &error);
+  const bool encoded = encode({file, nullptr}, rgba, width, height, compression_level, &error);
   const bool closed = std::fclose(file) == 0;  // flushes: a full disk shows here
   std::error_code ignored;
   if (!encoded || !closed) {
@@ -88,6 +117,18 @@ void write_png(const std::string& path, const uint8_t* rgba, int width, int heig
     std::filesystem::remove(partial, ignored);
     fail(path, "cannot rename " + partial + ": " + renamed.message());
   }
+}
+
+std::vector<uint8_t> encode_png(const uint8_t* rgba, int width, int height, int compression_level) {
+  check_arguments("encode_png", rgba, width, height, compression_level);
+  std::vector<uint8_t> out;
+  // a rendered frame compresses to a few percent of its raw size: start at 1/16 of it
+  out.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) / 4 + 1024);
+  PngError error{"libpng could not start"};
+  if (!encode({nullptr, &out}, rgba, width, height, compression_level, &error)) {
+    throw std::runtime_error(std::string("encode_png: ") + error.message);
+  }
+  return out;
 }
 
 void copy_eye(const uint8_t* side_by_side, int eye_width, int height, Eye eye,

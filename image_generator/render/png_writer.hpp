@@ -1,5 +1,6 @@
 #pragma once
-// Frame export: PNG files written atomically, and one eye cut out of a side-by-side frame.
+// Frame export: PNG files written atomically (or PNGs in memory), and one eye cut out of a
+// side-by-side frame.
 
 #include <cstdint>
 #include <string>
@@ -15,6 +16,11 @@ namespace vcockpit::render {
 // path on any I/O or libpng failure (the partial file is removed).
 void write_png(const std::string& path, const uint8_t* rgba, int width, int height,
                int compression_level = 1);
+
+// The same PNG (same libpng settings) in memory. Throws std::invalid_argument for bad arguments
+// and std::runtime_error on a libpng failure.
+std::vector<uint8_t> encode_png(const uint8_t* rgba, int width, int height,
+                                int compression_level = 1);
 
 // One eye of a side-by-side RGBA8 frame (2 * eye_width by height) into out, resized to
 // eye_width * height * 4 (no allocation once out is big enough).

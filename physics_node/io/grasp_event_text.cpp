@@ -11,8 +11,9 @@ std::string grasp_event_text(const physics::GraspEvent& e) {
     std::snprintf(text.data(), text.size(),
                   "stable grasp: %d links, %s opposed at %.0f deg, |F| %.2f N, |M| %.3f N m",
                   e.contacts, e.palm_opposes ? "palm" : "thumb", e.min_thumb_angle_deg, e.residual_force_N, e.residual_torque_Nm);
-  } else if (e.reason == physics::GraspReason::kGloveLost) {
-    std::snprintf(text.data(), text.size(), "glove lost");
+  } else if (e.reason == physics::GraspReason::kGloveLost ||
+             e.reason == physics::GraspReason::kReset) {
+    std::snprintf(text.data(), text.size(), "%s", physics::grasp_reason_name(e.reason));
   } else if (e.reason == physics::GraspReason::kFingersNotOpposed) {
     std::snprintf(text.data(), text.size(),
                   "%s: %d links, thumb %s, best opposition %.0f deg, |F| %.2f N, |M| %.3f N m",

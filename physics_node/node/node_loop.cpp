@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <array>
@@ -19,6 +20,7 @@
 #include "physics_node/io/run_recorder.hpp"
 #include "physics_node/node/loop_stats.hpp"
 #include "physics_node/node/sample_gate.hpp"
+#include "physics_node/node/sim_commands.hpp"
 #include "physics_node/node/state_publisher.hpp"
 
 namespace vcockpit::physics_node {
@@ -62,6 +64,7 @@ struct HandChannel {
   };
   std::vector<Pending> pending;
   std::size_t next = 0;
+  bool arrived_frozen = false;  // lockstep: samples came while time was frozen
 };
 
 // Everything the loop keeps between steps, in one place.
@@ -72,8 +75,10 @@ class Node {
         world_(std::move(scene)),
         reader_(participant.make_reader<cockpit::HandSample>(options.lockstep ? "reliable"
                                                                               : "stream")),
-        command_reader_(participant.make_reader<cockpit::ControlCommand>("event")),
-        publisher_(participant, world_) {
+        // volatile: a node (re)started later does not carry out old commands
+        command_reader_(participant.make_reader<cockpit::ControlCommand>("command")),
+        publisher_(participant, world_),
+        sim_(participant, world_, options.node_name) {
     hands_.reserve(static_cast<std::size_t>(world_.hand_count()));
     for (int h = 0; h < world_.hand_count(); ++h)
       hands_.emplace_back(world_, h, options);
@@ -173,6 +178,13 @@ class Node {
     hand_peak_.record(world_);
     if (recorder_) recorder_->after_step(world_);
     publisher_.publish_events(world_);
+    log_events();
+    ++steps_in_period_;
+    for (int s = 0; s < physics::kStageCount; ++s) stage_ns_[s] += world_.stage_times().ns[s];
+  }
+
+  // The last step's (or reset's) faults, grasp and control events, in the log.
+  void log_events() {
     for (const auto& f : world_.step_faults()) {
       spdlog::warn("object '{}' (#{}): {} at {:.3f} s, put back where it was at the step's start, "
                    "at rest (further faults of it are counted, not logged)",
@@ -197,8 +209,53 @@ class Node {
                    e.link >= 0 ? std::string(physics::link_name(static_cast<physics::Link>(e.link)))
                                : std::string());
     }
-    ++steps_in_period_;
-    for (int s = 0; s < physics::kStageCount; ++s) stage_ns_[s] += world_.stage_times().ns[s];
+  }
+
+  // The instructor's commands (sim_commands.hpp), before a step: a reset's releases and control
+  // changes are published and the world shown at once; after a freeze in lockstep, the hands
+  // take up their gloves from now.
+  void take_sim_commands() {
+    const SimCommands::Taken taken = sim_.take(world_);
+    if (taken.reset) {
+      publisher_.publish_events(world_);
+      log_events();
+      if (options_.lockstep) {
+        publish_lockstep_state();
+      } else {
+        publish_state();
+      }
+    }
+    if (taken.unfrozen && options_.lockstep) resume_lockstep();
+  }
+  // Lockstep, frozen: the samples that keep arriving are not stepped through; each hand keeps
+  // only its newest (the glove's present) for when time goes on.
+  void hold_frozen_lockstep() {
+    for (HandChannel& ch : hands_) {
+      if (ch.next == ch.pending.size()) continue;
+      ch.pending.erase(ch.pending.begin(), ch.pending.end() - 1);
+      ch.next = 0;
+      ch.arrived_frozen = true;
+    }
+  }
+  // Lockstep, unfrozen: the world's time stood still while the gloves' went on; each hand that
+  // sent samples meanwhile starts a new timeline at its newest sample, all at one origin (the
+  // latest of them is the world's present, so none begins in the future: a hand every step
+  // waits for must have its sample now), and the world goes on from where it stopped.
+  void resume_lockstep() {
+    bool any = false;
+    int64_t origin_ns = 0;
+    for (HandChannel& ch : hands_) {
+      if (!ch.arrived_frozen || ch.next == ch.pending.size()) continue;
+      const int64_t t_ns = ch.pending[ch.next].sample.t_ns;
+      origin_ns = any ? std::max(origin_ns, t_ns) : t_ns;
+      any = true;
+    }
+    for (HandChannel& ch : hands_) {
+      if (!ch.arrived_frozen || ch.next == ch.pending.size()) continue;
+      ch.replay.restart();
+      ch.replay.set_origin(origin_ns);
+      ch.arrived_frozen = false;
+    }
   }
 
   void publish_state() {
@@ -260,6 +317,7 @@ class Node {
   cockpit::ControlCommand command_;
   uint64_t commands_refused_ = 0;
   StatePublisher publisher_;
+  SimCommands sim_;
   cockpit::HandSample message_;
   uint64_t received_ = 0;
   uint64_t received_at_last_status_ = 0;
@@ -379,6 +437,8 @@ int Node::run_realtime() {
       if (new_source) ch.follower.reset();
       ch.follower.push(s, take_ns, message_.source_stamp_ns());
     });
+    take_sim_commands();
+    const bool frozen = sim_.frozen();
     const int64_t now_ns = monotonic_now_ns();
     bool any_alive = false;
     bool any_input = false;
@@ -408,19 +468,24 @@ int Node::run_realtime() {
       shown.tracking = ch.tracking;
       any_input = any_input || ch.have_input;
     }
-    step_world();
+    // frozen: time stands still (no step), everything else goes on
+    if (!frozen) step_world();
     const int64_t end_ns = monotonic_now_ns();
-    for (const HandChannel& ch : hands_)
-      if (ch.have_input && ch.tracking)
-        stats_.hand_lag.record_ns(end_ns - shown_[static_cast<std::size_t>(ch.hand)].stamps.source_stamp_ns);
-    if (end_ns > next_ns + period_ns) ++late_steps_;
+    if (!frozen) {
+      for (const HandChannel& ch : hands_)
+        if (ch.have_input && ch.tracking)
+          stats_.hand_lag.record_ns(end_ns - shown_[static_cast<std::size_t>(ch.hand)].stamps.source_stamp_ns);
+      if (end_ns > next_ns + period_ns) ++late_steps_;
+    }
     if (end_ns >= next_publish_ns) {
       publish_state();
       next_publish_ns += publish_period_ns;
       if (next_publish_ns < end_ns) next_publish_ns = end_ns + publish_period_ns;
     }
     // "tracking", "glove lost" (every hand with input lost), or which hand's glove is lost
-    if (!any_input) {
+    if (frozen) {
+      std::snprintf(detail, sizeof detail, "frozen");
+    } else if (!any_input) {
       std::snprintf(detail, sizeof detail, "no glove yet");
     } else if (!any_alive) {
       std::snprintf(detail, sizeof detail, "glove lost");
@@ -487,10 +552,12 @@ int Node::run_lockstep() {
       }
       ch.pending.push_back({s, message_.source_stamp_ns()});
     });
+    take_sim_commands();
+    if (sim_.frozen()) hold_frozen_lockstep();
     // Step as the offline runner does: before each step, each hand takes its samples up to the
     // first at or past the step's end; the step waits until every hand that has begun (and
     // every --lockstep-hands hand) has one.
-    for (;;) {
+    while (!sim_.frozen()) {
       const int64_t step_end_ns = world_.time_ns() + step_ns;
       bool ready = true;
       bool any = false;
@@ -539,8 +606,11 @@ int Node::run_lockstep() {
     const bool alive = any_glove_alive(now_ns);
     bool started = false;
     for (const HandChannel& ch : hands_) started = started || ch.replay.started();
-    maybe_publish_status(now_ns, alive, alive ? "lockstep" : started ? "lockstep, input ended"
-                                                                     : "lockstep, waiting");
+    maybe_publish_status(now_ns, alive,
+                         sim_.frozen() ? "lockstep, frozen"
+                         : alive       ? "lockstep"
+                         : started     ? "lockstep, input ended"
+                                       : "lockstep, waiting");
   }
   const int64_t loop_end_ns = monotonic_now_ns();
   publisher_.flush(500'000'000);

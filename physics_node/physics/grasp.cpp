@@ -18,6 +18,7 @@ const char* grasp_reason_name(GraspReason reason) {
     case GraspReason::kGloveLost: return "glove lost";
     case GraspReason::kHandOpened: return "hand opened";
     case GraspReason::kHandedOver: return "handed over";
+    case GraspReason::kReset: return "scene reset";
   }
   return "unknown";
 }

@@ -40,6 +40,7 @@ enum class GraspReason : uint8_t {
   kGloveLost,          // RELEASE: the hand is not tracked any more
   kHandOpened,         // RELEASE: the tracked fingers opened from their grip (release_opening_deg)
   kHandedOver,         // RELEASE: the other hand took it (its own grasp holds it alone)
+  kReset,              // RELEASE: the scene was reset (World::reset_objects)
 };
 
 const char* grasp_reason_name(GraspReason reason);

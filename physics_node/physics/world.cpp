@@ -254,6 +254,60 @@ void World::restore(const WorldState& state) {
   body_check_.clear_new_faults();
 }
 
+void World::reset_objects(const WorldState& saved) {
+  VCOCKPIT_ASSERT(saved.bodies.size() == state_.bodies.size() &&
+                      saved.controls.size() == state_.controls.size(),
+                  "a world state of another scene (object or control count)");
+  events_.clear();
+  control_events_.clear();
+  applied_.clear();
+  const int64_t t_ns = state_.time_ns;
+  for (std::size_t h = 0; h < hands_.size(); ++h) {
+    HandState& hs = state_.hands[h];
+    for (int i = 0; i < object_count_; ++i) {
+      if ((state_.bodies[static_cast<std::size_t>(i)].holders & hands_[h].holder_bit) != 0) {
+        GraspEvent e;
+        e.t_ns = t_ns;
+        e.grasp = false;
+        e.hand_id = hands_[h].hand_id;
+        e.object = i;
+        e.reason = GraspReason::kReset;
+        events_.push_back(e);
+      }
+      // a fresh hold: no cooldown, no resting links (the object is somewhere else now)
+      hs.grasp[static_cast<std::size_t>(i)] = grasp_tracker_.initial_hold(scene_.objects[static_cast<std::size_t>(i)]);
+    }
+    hs.pushing = false;
+    hs.fingers_on_held = 0;
+    hands_[h].proxy_prev_links_valid = false;
+  }
+  state_.bodies = saved.bodies;
+  for (BodyState& body : state_.bodies) {
+    body.holders = 0;
+    body.held_by = kNotHeld;
+  }
+  for (std::size_t ci = 0; ci < state_.controls.size(); ++ci) {
+    const int from = state_.controls[ci].position;
+    ControlState& c = state_.controls[ci];
+    c = saved.controls[ci];
+    c.push_hand = -1;
+    c.push_link = -1;
+    c.push_direction = 0;
+    if (c.position != from) {
+      ControlEvent e;
+      e.t_ns = t_ns;
+      e.control = static_cast<int>(ci);
+      e.from = from;
+      e.to = c.position;
+      e.cause = ControlCause::kCommanded;
+      control_events_.push_back(e);
+    }
+  }
+  state_.anchors.clear();
+  std::fill(control_at_rest_.begin(), control_at_rest_.end(), 0);
+  std::fill(control_commanded_.begin(), control_commanded_.end(), -1);
+}
+
 void World::set_hand_input(const HandInput& input, int hand) {
   if (hand < 0 || hand >= hand_count()) return;
   HandSim& sim = hands_[static_cast<std::size_t>(hand)];

@@ -115,6 +115,14 @@ class World {
   // stays the authority.
   bool command_control(int control, int position);
 
+  // An instructor's reset: the objects and controls as `saved` has them (the scene's start, or
+  // a checkpoint), each at rest or moving as it was then. Unlike restore(), time goes on and
+  // the hands stay where their gloves put them: what they held is let go (a RELEASE "scene
+  // reset" in step_events()), and a control whose position changes reports it as commanded
+  // (control_events()); both lists are this call's until the next step. `saved` must be a state
+  // of this scene (asserted).
+  void reset_objects(const WorldState& saved);
+
   // Observations of the last step (empty after a restore until the next step).
   const std::vector<GraspEvent>& step_events() const { return events_; }
   const std::vector<ControlEvent>& control_events() const { return control_events_; }

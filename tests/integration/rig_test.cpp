@@ -42,7 +42,8 @@ std::string rig_yaml(const std::string& domain, bool lockstep, const std::string
   text += "  - {name: physics_node, command: [physics_node" + std::string(lockstep ? ", --lockstep" : "") +
           ", --scene, " + config("cockpit.yaml") + "], required: true, start_delay_s: 0.3}\n";
   text += "  - {name: image_generator, command: [image_generator, --hmd, " + config("hmd.yaml") +
-          ", --fps, '30', --out, '{out}/frames', --snapshot-every, '15'], required: false, "
+          ", --fps, '30', --out, '{out}/frames', --snapshot-every, '15', --video, "
+          "'{out}/rig.mp4'], required: false, "
           "restart_delay_s: 0.2, start_delay_s: 0.3}\n";
   return text + glove;
 }
@@ -55,6 +56,36 @@ pid_t pid_of(const std::string& rig_log, const std::string& node, int nth = 1) {
 }
 
 bool process_exists(pid_t pid) { return pid > 0 && ::kill(pid, 0) == 0; }
+
+// What ffprobe reads of a video's first stream: its frames (decoded and counted), rate, duration.
+struct VideoProbe {
+  long frames = -1;
+  std::string rate;
+  double duration_s = -1;
+  std::string codec;
+};
+VideoProbe probe_video(const std::string& path) {
+  VideoProbe probe;
+  const std::string command = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                              "stream=codec_name,r_frame_rate,duration,nb_read_frames -of "
+                              "default=nw=1 '" + path + "' 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return probe;
+  char line[256];
+  while (std::fgets(line, sizeof line, pipe)) {
+    std::string text(line);
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+    const auto eq = text.find('=');
+    if (eq == std::string::npos) continue;
+    const std::string key = text.substr(0, eq), value = text.substr(eq + 1);
+    if (key == "codec_name") probe.codec = value;
+    if (key == "r_frame_rate") probe.rate = value;
+    if (key == "duration") probe.duration_s = std::atof(value.c_str());
+    if (key == "nb_read_frames") probe.frames = std::atol(value.c_str());
+  }
+  pclose(pipe);
+  return probe;
+}
 
 // rig_launcher's summary.json; ordered_json keeps "nodes" in the rig file's order.
 using Json = nlohmann::ordered_json;
@@ -181,6 +212,19 @@ TEST_F(RigTest, FullRigReplaysTheGraspInLockstepLikeTheOfflineRunner) {
     ++held_snapshots;
   }
   EXPECT_GE(held_snapshots, 2) << "snapshots taken while the cup was held";
+
+  // the run's video: H.264 at the display rate (30 here), as long as the frames were rendered
+  // (the real-time timeline), every frame decodable
+  const VideoProbe video = probe_video(dir_ + "/out/rig.mp4");
+  EXPECT_EQ(video.codec, "h264");
+  EXPECT_EQ(video.rate, "30/1");
+  EXPECT_NEAR(static_cast<double>(video.frames), video.duration_s * 30.0, 1.0);
+  const double wall_s = json.value("wall_s", 0.0);
+  EXPECT_GT(video.duration_s, 5.0) << "the 8.5 s replay";
+  EXPECT_LT(video.duration_s, wall_s) << "not longer than the run";
+  EXPECT_FALSE(std::filesystem::exists(dir_ + "/out/rig.mp4.partial"));
+  EXPECT_NE(read_text(dir_ + "/out/logs/image_generator.log").find("video " + dir_ + "/out/rig.mp4: "),
+            std::string::npos);
 }
 
 TEST_F(RigTest, FullRigReportsAControlLogsEventsAsTheOfflineRunnerWritesThem) {

@@ -7,7 +7,7 @@ cd "$1" || exit 2
 status=0
 offend() { echo "layering: $*"; status=1; }
 
-nodes=(glove_driver physics_node image_generator launcher)
+nodes=(glove_driver physics_node image_generator launcher instructor)
 for a in "${nodes[@]}"; do
   for b in "${nodes[@]}"; do
     [ "$a" = "$b" ] && continue
@@ -18,7 +18,7 @@ done
 # below the nodes: the hand library, common and the topics layer include no node folder
 for lower in hand common idl; do
   while IFS= read -r hit; do offend "$hit (a lower layer includes a node)"; done \
-    < <(grep -rnE '#include "(glove_driver|physics_node|image_generator|launcher)/' "$lower" \
+    < <(grep -rnE '#include "(glove_driver|physics_node|image_generator|launcher|instructor)/' "$lower" \
           --include='*.cpp' --include='*.hpp')
 done
 # the pure parts: no DDS, no generated IDL types, no YAML

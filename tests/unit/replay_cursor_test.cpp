@@ -1,4 +1,4 @@
-// ReplayCursor: relative timing, rate, start offset, looping.
+// ReplayCursor: relative timing, rate, start offset, looping, restarting.
 
 #include <gtest/gtest.h>
 
@@ -52,5 +52,32 @@ TEST(ReplayCursor, LoopingKeepsTimeIncreasingWithTheSameSpacing) {
                                          50'000'000, 60'000'000}));
   EXPECT_EQ(due, 0);  // rate 0: nothing waits
 }
+
+TEST(ReplayCursor, RestartStartsTheLogOverWithTimeGoingOn) {
+  auto samples = samples_every_10ms(10);
+  for (int i = 0; i < 10; ++i) samples[i].p_MT_m.x() = i;  // which sample it is
+  ReplayCursor cursor(samples, {1.0, false, 0.0});
+  hand::GloveSample s;
+  int64_t due = -1;
+  cursor.restart();  // before any sample: nothing changes
+  for (int i = 0; i < 4; ++i) ASSERT_TRUE(cursor.next(s, due));
+  EXPECT_EQ(due, 30'000'000);
+  cursor.restart();
+  ASSERT_TRUE(cursor.next(s, due));
+  EXPECT_EQ(s.p_MT_m.x(), 0.0) << "the log's first sample again";
+  EXPECT_EQ(s.t_ns, samples[0].t_ns + 40'000'000) << "one interval after the last one given";
+  EXPECT_EQ(due, 40'000'000);
+  // to the end of the (non-looping) log, then restarted once more
+  int given = 1;
+  while (cursor.next(s, due)) ++given;
+  EXPECT_EQ(given, 10);
+  EXPECT_EQ(due, 130'000'000);
+  cursor.restart();
+  ASSERT_TRUE(cursor.next(s, due));
+  EXPECT_EQ(s.p_MT_m.x(), 0.0);
+  EXPECT_EQ(due, 140'000'000);
+  EXPECT_EQ(s.t_ns, samples[0].t_ns + 140'000'000);
+}
+
 }  // namespace
 }  // namespace vcockpit::glove

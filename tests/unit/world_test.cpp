@@ -132,6 +132,78 @@ TEST(WorldState, RestoringAWorldReplaysItsOwnFuture) {
   EXPECT_EQ(hash_world_state(world.state()), first);
 }
 
+// An instructor's reset (World::reset_objects): the objects and controls go back to the saved
+// state while time goes on and the hand stays where its glove is; the held cup is let go with a
+// "scene reset" release, and a control put back reports a commanded change.
+TEST(WorldReset, ObjectsAndControlsGoBackTimeGoesOnHeldObjectsAreLetGo) {
+  const Cockpit cockpit;
+  World world(cockpit.scene);
+  const WorldState start = world.state();
+  GloveFeed feed{&cockpit.samples};
+  feed.feed(world);
+  feed.run_until(world, 4.0);  // the cup held and lifted
+  ASSERT_NE(world.bodies()[cockpit.cup].held_by, kNotHeld);
+  const int lights = cockpit.scene.find_control("landing_lights");
+  ASSERT_GE(lights, 0);
+  const int lights_start = world.state().controls[static_cast<std::size_t>(lights)].position;
+  ASSERT_TRUE(world.command_control(lights, lights_start == 0 ? 2 : 0));
+  world.step();
+  feed.feed(world);
+  const int lights_moved = world.state().controls[static_cast<std::size_t>(lights)].position;
+  ASSERT_NE(lights_moved, lights_start);
+  const int64_t t_ns = world.time_ns();
+  const uint64_t steps = world.step_count();
+  const Eigen::Isometry3d X_GH = world.X_GH();
+
+  world.reset_objects(start);
+  EXPECT_EQ(world.time_ns(), t_ns) << "time goes on";
+  EXPECT_EQ(world.step_count(), steps);
+  EXPECT_TRUE(same_bits(world.X_GH(), X_GH)) << "the hand stays where its glove is";
+  for (std::size_t i = 0; i < start.bodies.size(); ++i) {
+    EXPECT_TRUE(same_bits(world.bodies()[i].X_GO, start.bodies[i].X_GO)) << "object " << i;
+    EXPECT_EQ(world.bodies()[i].held_by, kNotHeld);
+  }
+  ASSERT_EQ(world.step_events().size(), 1u);
+  EXPECT_FALSE(world.step_events()[0].grasp);
+  EXPECT_EQ(world.step_events()[0].object, cockpit.cup);
+  EXPECT_EQ(world.step_events()[0].reason, GraspReason::kReset);
+  EXPECT_EQ(world.state().controls[static_cast<std::size_t>(lights)].position, lights_start);
+  bool reported = false;
+  for (const ControlEvent& e : world.control_events())
+    reported = reported || (e.control == lights && e.from == lights_moved && e.to == lights_start &&
+                            e.cause == ControlCause::kCommanded);
+  EXPECT_TRUE(reported) << "the control's change back is reported";
+
+  // the world goes on from there: the cup, put back on the console under a hand above it,
+  // stays put and nobody holds it
+  const Eigen::Vector3d cup_start = start.bodies[static_cast<std::size_t>(cockpit.cup)].X_GO.translation();
+  for (int i = 0; i < 200; ++i) world.step();
+  EXPECT_GT(world.time_ns(), t_ns);
+  EXPECT_LT((world.bodies()[cockpit.cup].X_GO.translation() - cup_start).norm(), 0.01);
+}
+
+TEST(WorldReset, ToACheckpointPutsBackItsObjectsFree) {
+  const Cockpit cockpit;
+  World world(cockpit.scene);
+  GloveFeed feed{&cockpit.samples};
+  feed.feed(world);
+  feed.run_until(world, 4.0);  // the cup held, lifted
+  const WorldState checkpoint = world.state();
+  const Eigen::Isometry3d cup_then = checkpoint.bodies[static_cast<std::size_t>(cockpit.cup)].X_GO;
+  feed.run_until(world, 7.5);  // set down and released
+  ASSERT_EQ(world.bodies()[cockpit.cup].held_by, kNotHeld);
+  World start(cockpit.scene);
+  world.reset_objects(start.state());
+  EXPECT_TRUE(same_bits(world.bodies()[cockpit.cup].X_GO, start.bodies()[cockpit.cup].X_GO));
+  world.reset_objects(checkpoint);
+  EXPECT_TRUE(same_bits(world.bodies()[cockpit.cup].X_GO, cup_then));
+  EXPECT_EQ(world.bodies()[cockpit.cup].held_by, kNotHeld) << "where it was held, but free";
+  EXPECT_TRUE(world.step_events().empty()) << "nothing was held at the reset";
+  for (int i = 0; i < 50; ++i) world.step();
+  EXPECT_LT(world.bodies()[cockpit.cup].X_GO.translation().z(), cup_then.translation().z() - 0.005)
+      << "it falls";
+}
+
 TEST(WorldState, HashChangesWhenABodyMovesByOneUlp) {
   const Cockpit cockpit;
   World world(cockpit.scene);

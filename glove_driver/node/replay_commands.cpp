@@ -1,0 +1,39 @@
+#include "glove_driver/node/replay_commands.hpp"
+
+#include <spdlog/spdlog.h>
+
+namespace vcockpit::glove {
+
+ReplayCommands::ReplayCommands(DdsParticipant& participant, std::string node_name)
+    : reader_(participant.make_reader<cockpit::SimCommand>("command")),
+      ack_writer_(participant.make_writer<cockpit::SimAck>("event")),
+      node_name_(std::move(node_name)) {}
+
+bool ReplayCommands::take_restart(bool can_restart) {
+  bool restart = false;
+  while (reader_.take(command_)) {
+    if (command_.kind() != cockpit::RESTART_REPLAY) continue;  // the physics node's
+    cockpit::SimAck ack;
+    ack.command_seq(command_.seq());
+    ack.command_source(command_.source());
+    ack.kind(command_.kind());
+    ack.node_name(node_name_);
+    ack.accepted(can_restart);
+    ack.detail(can_restart ? "the replay starts over from the log's start"
+                           : "this source cannot start over (only a replayed log can)");
+    ack.sim_time_ns(-1);
+    ack.frozen(false);
+    ack_writer_.write(ack);
+    if (can_restart) {
+      spdlog::info("sim command from '{}': the replay starts over", command_.source());
+      restart = true;
+      ++restarts_;
+    } else {
+      spdlog::warn("sim command from '{}' refused: this source cannot start over",
+                   command_.source());
+    }
+  }
+  return restart;
+}
+
+}  // namespace vcockpit::glove

@@ -1,0 +1,404 @@
+#include "image_generator/node/video_recorder.hpp"
+
+#include <fcntl.h>
+#include <pthread.h>
+#include <sched.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <system_error>
+#include <utility>
+
+#include "image_generator/render/image_scale.hpp"
+#include "image_generator/render/png_writer.hpp"
+#include "image_generator/render/text_overlay.hpp"
+
+extern char** environ;
+
+namespace vcockpit::image_generator {
+namespace {
+
+constexpr int kNiceIncrement = 10;
+constexpr int kPipeBytes = 1 << 20;  // fewer wake-ups per frame than the default 64 KiB
+constexpr int kLogLines = 4;         // of ffmpeg's log quoted in error()
+
+// Nice is per thread on Linux, and a child inherits the nice value of the thread that spawns it:
+// lowering this thread first puts the encoder thread and ffmpeg both below render and physics.
+void lower_thread_priority() {
+  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
+  errno = 0;
+  const int current = getpriority(PRIO_PROCESS, tid);
+  if (errno != 0) return;
+  setpriority(PRIO_PROCESS, tid, std::min(current + kNiceIncrement, 19));
+  // SCHED_IDLE: run only on CPU time nothing else wants. On two cores rendering and the physics
+  // take all of it, and even nice 19 would still take a share from them; starved, the encoder
+  // falls behind and frames are dropped and counted instead (the nice value stays, for a system
+  // that refuses the policy).
+  sched_param param{};
+  param.sched_priority = 0;
+  sched_setscheduler(0, SCHED_IDLE, &param);
+}
+
+// A write to a pipe whose reader died raises SIGPIPE on the writing thread; blocked here, the
+// write fails with EPIPE instead and the recorder reports it.
+void block_sigpipe() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGPIPE);
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+}
+
+std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+std::string describe_status(int status) {
+  if (WIFEXITED(status)) return "exit status " + std::to_string(WEXITSTATUS(status));
+  if (WIFSIGNALED(status)) return "killed by signal " + std::to_string(WTERMSIG(status));
+  return "status " + std::to_string(status);
+}
+
+// The last lines of ffmpeg's log, joined with " | ".
+std::string log_tail(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) {
+    text.pop_back();
+  }
+  std::size_t start = text.size();
+  for (int lines = 0; lines < kLogLines && start > 0; ++lines) {
+    const std::size_t nl = start >= 2 ? text.rfind('\n', start - 2) : std::string::npos;
+    start = nl == std::string::npos ? 0 : nl + 1;
+  }
+  std::string tail;
+  for (std::size_t i = start; i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      tail += " | ";
+    } else if (text[i] != '\r') {
+      tail += text[i];
+    }
+  }
+  return tail;
+}
+
+}  // namespace
+
+VideoRecorder::VideoRecorder(VideoOptions options, int eye_width_px, int height_px)
+    : options_(std::move(options)), eye_width_px_(eye_width_px) {
+  if (options_.path.empty()) throw std::invalid_argument("video: empty output path");
+  const std::string what = "video " + options_.path + ": ";
+  if (eye_width_px <= 0 || height_px <= 0) throw std::invalid_argument(what + "empty frame");
+  if (!(options_.fps > 0.0) || !std::isfinite(options_.fps)) {
+    throw std::invalid_argument(what + "fps must be positive");
+  }
+  if (options_.scale_down < 1) throw std::invalid_argument(what + "scale_down must be >= 1");
+  if (options_.queue_frames < 1) throw std::invalid_argument(what + "queue_frames must be >= 1");
+  source_width_px_ = options_.view == VideoView::kLeftEye ? eye_width_px : 2 * eye_width_px;
+  source_height_px_ = height_px;
+  // yuv420p halves chroma both ways: an odd last column or row is cropped
+  width_px_ = (source_width_px_ / options_.scale_down) & ~1;
+  height_px_ = (source_height_px_ / options_.scale_down) & ~1;
+  if (width_px_ < 2 || height_px_ < 2) {
+    throw std::invalid_argument(what + "frame too small for scale_down " +
+                                std::to_string(options_.scale_down));
+  }
+  label_scale_ = std::max(2, height_px_ / 240);  // 18 px high on 360 rows, 27 px on 720
+  partial_path_ = options_.path + ".partial";
+  log_path_ = options_.path + ".ffmpeg.log";
+
+  // clang-format off
+  argv_ = {options_.ffmpeg, "-hide_banner", "-nostats", "-loglevel", "error", "-y",
+           "-f", "rawvideo", "-pix_fmt", "rgb24",
+           "-video_size", std::to_string(width_px_) + "x" + std::to_string(height_px_),
+           "-framerate", format_number(options_.fps), "-i", "pipe:0",
+           "-an", "-c:v", "libx264", "-preset", options_.preset,
+           "-crf", std::to_string(options_.crf), "-pix_fmt", "yuv420p", "-threads", "1",
+           "-movflags", "+faststart", "-f", "mp4", partial_path_};
+  // clang-format on
+
+  slots_.resize(static_cast<std::size_t>(options_.queue_frames));
+  const std::size_t slot_bytes =
+      static_cast<std::size_t>(source_width_px_) * static_cast<std::size_t>(height_px) * 4;
+  for (Slot& slot : slots_)
+    slot.rgba.resize(slot_bytes);
+  if (options_.scale_down > 1) {
+    scaled_.resize(static_cast<std::size_t>(source_width_px_ / options_.scale_down) *
+                   static_cast<std::size_t>(source_height_px_ / options_.scale_down) * 4);
+  }
+  rgb_.resize(static_cast<std::size_t>(width_px_) * static_cast<std::size_t>(height_px_) * 3);
+
+  worker_ = std::thread([this] { work(); });
+  std::unique_lock<std::mutex> lock(mutex_);
+  started_.wait(lock, [this] { return start_done_; });
+  if (!start_error_.empty()) {
+    const std::string why = what + start_error_;
+    lock.unlock();
+    worker_.join();
+    finished_ = true;
+    std::error_code ignored;
+    std::filesystem::remove(log_path_, ignored);
+    throw std::runtime_error(why);
+  }
+}
+
+VideoRecorder::~VideoRecorder() {
+  try {
+    finish();
+  } catch (...) {  // a destructor must not throw; error() would have said why
+  }
+}
+
+bool VideoRecorder::submit(const uint8_t* side_by_side_rgba, int64_t frame_end_ns,
+                           int64_t sim_time_ns) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  ++submitted_;
+  if (!side_by_side_rgba || stopping_ || write_failed_ || head_ - tail_ >= slots_.size()) {
+    ++dropped_;
+    return false;
+  }
+  // the worker never touches the slot at head_ until head_ moves past it, so copy unlocked
+  Slot& slot = slots_[head_ % slots_.size()];
+  lock.unlock();
+  if (options_.view == VideoView::kLeftEye) {
+    render::copy_eye(side_by_side_rgba, eye_width_px_, source_height_px_, render::Eye::kLeft,
+                     slot.rgba);
+  } else {
+    std::memcpy(slot.rgba.data(), side_by_side_rgba, slot.rgba.size());
+  }
+  slot.frame_end_ns = frame_end_ns;
+  slot.sim_time_ns = sim_time_ns;
+  lock.lock();
+  if (stopping_) {  // finish() began during the copy: the worker may be gone
+    ++dropped_;
+    return false;
+  }
+  ++head_;
+  lock.unlock();
+  wake_.notify_one();
+  return true;
+}
+
+uint64_t VideoRecorder::submitted() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return submitted_;
+}
+
+uint64_t VideoRecorder::dropped() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return dropped_;
+}
+
+std::string VideoRecorder::start_ffmpeg() {
+  const int log_fd = open(log_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (log_fd < 0) return "cannot create " + log_path_ + ": " + std::strerror(errno);
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) {
+    const std::string why = std::string("pipe: ") + std::strerror(errno);
+    close(log_fd);
+    return why;
+  }
+  std::vector<char*> argv;
+  for (std::string& arg : argv_)
+    argv.push_back(arg.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, log_fd, STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, log_fd, STDERR_FILENO);
+  // Own process group: a Ctrl-C at the terminal reaches the node, which finishes the video
+  // cleanly, and not ffmpeg, which would stop mid-stream. Default signals, whatever this
+  // thread blocks or the process ignores.
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setflags(&attr,
+                           POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  posix_spawnattr_setpgroup(&attr, 0);
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attr, &none);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  for (int sig : {SIGPIPE, SIGINT, SIGTERM, SIGHUP})
+    sigaddset(&defaults, sig);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+
+  const int rc = posix_spawnp(&pid_, argv[0], &actions, &attr, argv.data(), environ);
+  posix_spawnattr_destroy(&attr);
+  posix_spawn_file_actions_destroy(&actions);
+  close(fds[0]);
+  close(log_fd);
+  if (rc != 0) {
+    close(fds[1]);
+    pid_ = -1;
+    return "cannot start ffmpeg program '" + options_.ffmpeg + "': " + std::strerror(rc);
+  }
+  pipe_fd_ = fds[1];
+  fcntl(pipe_fd_, F_SETPIPE_SZ, kPipeBytes);  // best effort: the default size works too
+  return "";
+}
+
+void VideoRecorder::work() {
+  lower_thread_priority();
+  block_sigpipe();
+  std::string start_error = start_ffmpeg();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    start_done_ = true;
+    start_error_ = std::move(start_error);
+  }
+  started_.notify_all();
+  if (pid_ < 0) return;
+
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    wake_.wait(lock, [this] { return head_ != tail_ || stopping_; });
+    if (head_ == tail_) return;  // stopping, and everything queued is written
+    const Slot& slot = slots_[tail_ % slots_.size()];
+    const bool writing = !write_failed_;
+    lock.unlock();
+    if (writing) encode(slot);  // after a failure the queue just drains
+    lock.lock();
+    ++tail_;
+  }
+}
+
+void VideoRecorder::encode(const Slot& slot) {
+  if (!have_t0_) {
+    t0_ns_ = slot.frame_end_ns;
+    have_t0_ = true;
+  }
+  const int64_t index =
+      std::llround(static_cast<double>(slot.frame_end_ns - t0_ns_) * options_.fps / 1e9);
+  if (index <= last_index_) {
+    ++skipped_;
+    return;
+  }
+  // the previous image again for every video frame the render did not fill
+  for (; last_index_ >= 0 && last_index_ + 1 < index; ++last_index_) {
+    if (!write_rgb()) return;
+    ++repeated_;
+    ++video_frames_;
+  }
+  convert(slot);
+  if (!write_rgb()) return;
+  last_index_ = index;
+  ++video_frames_;
+}
+
+void VideoRecorder::convert(const Slot& slot) {
+  const uint8_t* rgba = slot.rgba.data();
+  int rgba_width = source_width_px_;
+  if (options_.scale_down > 1) {
+    render::downscale_rgba(rgba, source_width_px_, source_height_px_, options_.scale_down, scaled_);
+    rgba = scaled_.data();
+    rgba_width = source_width_px_ / options_.scale_down;
+  }
+  render::rgba_to_rgb(rgba, rgba_width, width_px_, height_px_, rgb_.data());
+  char label[48];
+  std::snprintf(label, sizeof label, "sim %.3f s", static_cast<double>(slot.sim_time_ns) * 1e-9);
+  render::draw_text(rgb_.data(), width_px_, height_px_, 3, label_scale_, label_scale_, label_scale_,
+                    label);
+}
+
+bool VideoRecorder::write_rgb() {
+  const uint8_t* data = rgb_.data();
+  std::size_t left = rgb_.size();
+  while (left > 0) {
+    const ssize_t n = write(pipe_fd_, data, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail_writing(errno == EPIPE ? std::string("ffmpeg stopped reading its input")
+                                  : std::string("writing to ffmpeg: ") + std::strerror(errno));
+      return false;
+    }
+    data += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+void VideoRecorder::fail_writing(const std::string& why) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  write_failed_ = true;
+  write_error_ = why;
+}
+
+std::string VideoRecorder::finish_error(const std::string& why, int status) const {
+  std::string text = "video " + options_.path + ": " + why;
+  if (status >= 0) text += "; ffmpeg (" + options_.ffmpeg + ") " + describe_status(status);
+  const std::string tail = log_tail(log_path_);
+  if (!tail.empty()) text += "; its log (" + log_path_ + "): " + tail;
+  return text;
+}
+
+bool VideoRecorder::finish() {
+  if (finished_) return ok_;
+  finished_ = true;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  if (worker_.joinable()) worker_.join();
+  if (pipe_fd_ >= 0) {
+    close(pipe_fd_);  // end of input: ffmpeg flushes the encoder and writes the index
+    pipe_fd_ = -1;
+  }
+  int status = -1;
+  if (pid_ > 0) {
+    int raw = 0;
+    pid_t r;
+    while ((r = waitpid(pid_, &raw, 0)) < 0 && errno == EINTR) {
+    }
+    if (r == pid_) status = raw;
+    pid_ = -1;
+  }
+
+  std::error_code ignored;
+  std::string why;
+  if (write_failed_) {
+    why = write_error_;
+  } else if (video_frames_ == 0) {
+    why = "no frames were recorded";
+  } else if (status < 0) {
+    why = "ffmpeg's exit status was lost";
+  } else if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    why = "ffmpeg failed";
+  }
+  if (why.empty()) {
+    std::error_code renamed;
+    std::filesystem::rename(partial_path_, options_.path, renamed);
+    if (renamed) why = "cannot rename " + partial_path_ + ": " + renamed.message();
+  }
+  if (!why.empty()) {
+    const bool nothing_recorded = video_frames_ == 0 && !write_failed_;
+    error_ = finish_error(why, nothing_recorded ? -1 : status);
+    std::filesystem::remove(partial_path_, ignored);
+    // the log stays when it says something about the failure
+    if (nothing_recorded || std::filesystem::file_size(log_path_, ignored) == 0) {
+      std::filesystem::remove(log_path_, ignored);
+    }
+    return ok_ = false;
+  }
+  std::filesystem::remove(log_path_, ignored);
+  return ok_ = true;
+}
+
+}  // namespace vcockpit::image_generator

@@ -1,0 +1,60 @@
+#include "instructor/station_link.hpp"
+
+#include "common/clock.hpp"
+
+namespace vcockpit::instructor {
+
+StationLink::StationLink(DdsParticipant& participant, StationModel& model, std::string source_name)
+    : model_(model),
+      source_name_(std::move(source_name)),
+      status_reader_(participant.make_reader<cockpit::NodeStatus>("state")),
+      hand_reader_(participant.make_reader<cockpit::HandState>("stream")),
+      object_info_reader_(participant.make_reader<cockpit::ObjectInfo>("state")),
+      object_reader_(participant.make_reader<cockpit::ObjectState>("state")),
+      control_info_reader_(participant.make_reader<cockpit::ControlInfo>("state")),
+      control_reader_(participant.make_reader<cockpit::ControlState>("state")),
+      grasp_reader_(participant.make_reader<cockpit::GraspEvent>("event")),
+      control_event_reader_(participant.make_reader<cockpit::ControlEvent>("event")),
+      ack_reader_(participant.make_reader<cockpit::SimAck>("event")),
+      preview_reader_(participant.make_reader<cockpit::PreviewFrame>("preview")),
+      sim_writer_(participant.make_writer<cockpit::SimCommand>("command")),
+      control_writer_(participant.make_writer<cockpit::ControlCommand>("command")) {}
+
+void StationLink::poll() {
+  const int64_t now_ns = monotonic_now_ns();
+  // names before the events that use them
+  while (object_info_reader_.take(object_info_)) model_.on_object_info(object_info_);
+  while (control_info_reader_.take(control_info_)) model_.on_control_info(control_info_);
+  while (status_reader_.take(status_)) model_.on_status(status_, now_ns);
+  while (hand_reader_.take(hand_)) model_.on_hand(hand_);
+  while (object_reader_.take(object_)) model_.on_object_state(object_);
+  while (control_reader_.take(control_)) model_.on_control_state(control_);
+  while (grasp_reader_.take(grasp_)) model_.on_grasp_event(grasp_);
+  while (control_event_reader_.take(control_event_)) model_.on_control_event(control_event_);
+  while (ack_reader_.take(ack_)) model_.on_ack(ack_);
+  while (preview_reader_.take(preview_)) model_.on_preview(preview_, now_ns);
+}
+
+int64_t StationLink::send_sim(cockpit::SimCommandKind kind, const std::string& checkpoint) {
+  std::lock_guard<std::mutex> lock(send_mutex_);
+  cockpit::SimCommand command;
+  command.seq(next_seq_);
+  command.kind(kind);
+  command.checkpoint(checkpoint.substr(0, 64));
+  command.source(source_name_);
+  if (!sim_writer_.write(command)) return -1;
+  return static_cast<int64_t>(next_seq_++);
+}
+
+int64_t StationLink::send_control(uint32_t control_id, uint32_t position) {
+  std::lock_guard<std::mutex> lock(send_mutex_);
+  cockpit::ControlCommand command;
+  command.seq(next_seq_);
+  command.control_id(control_id);
+  command.position(position);
+  command.source(source_name_);
+  if (!control_writer_.write(command)) return -1;
+  return static_cast<int64_t>(next_seq_++);
+}
+
+}  // namespace vcockpit::instructor

@@ -1,0 +1,296 @@
+#include "instructor/station_model.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "common/clock.hpp"
+
+namespace vcockpit::instructor {
+namespace {
+
+const char* node_state_name(cockpit::NodeState state) {
+  switch (state) {
+    case cockpit::STARTING: return "STARTING";
+    case cockpit::RUNNING: return "RUNNING";
+    case cockpit::DEGRADED: return "DEGRADED";
+    case cockpit::STOPPING: return "STOPPING";
+  }
+  return "UNKNOWN";
+}
+
+const char* control_kind_name(cockpit::ControlKind kind) {
+  switch (kind) {
+    case cockpit::PUSH_BUTTON: return "PUSH_BUTTON";
+    case cockpit::TOGGLE: return "TOGGLE";
+    case cockpit::ROTARY: return "ROTARY";
+    case cockpit::LEVER: return "LEVER";
+    case cockpit::GUARD: return "GUARD";
+  }
+  return "UNKNOWN";
+}
+
+const char* control_cause_name(cockpit::ControlCause cause) {
+  switch (cause) {
+    case cockpit::PUSHED: return "pushed";
+    case cockpit::GRASPED: return "grasped";
+    case cockpit::COMMANDED: return "commanded";
+    case cockpit::MECHANISM: return "mechanism";
+    case cockpit::OBJECT_PUSHED: return "pushed by an object";
+  }
+  return "unknown";
+}
+
+const char* side_name(int64_t hand_id) { return hand_id == 1 ? "left" : "right"; }
+
+// ControlInfo.position_names: each name ended by '|'
+std::vector<std::string> split_positions(const std::string& names, uint32_t count) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (out.size() < count) {
+    const std::size_t bar = names.find('|', start);
+    if (bar == std::string::npos) break;
+    out.push_back(names.substr(start, bar - start));
+    start = bar + 1;
+  }
+  while (out.size() < count) out.push_back("#" + std::to_string(out.size()));
+  return out;
+}
+
+}  // namespace
+
+const char* sim_command_word(cockpit::SimCommandKind kind) {
+  switch (kind) {
+    case cockpit::FREEZE: return "freeze";
+    case cockpit::UNFREEZE: return "unfreeze";
+    case cockpit::RESET_TO_START: return "reset_start";
+    case cockpit::SAVE_CHECKPOINT: return "save_checkpoint";
+    case cockpit::RESET_TO_CHECKPOINT: return "reset_checkpoint";
+    case cockpit::RESTART_REPLAY: return "restart_replay";
+  }
+  return "unknown";
+}
+
+void StationModel::on_status(const cockpit::NodeStatus& status, int64_t now_ns) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Node& node = nodes_[status.node_name().to_string()];
+  node.status = status;
+  node.taken_ns = now_ns;
+}
+
+void StationModel::note_sim_time(int64_t sim_time_ns) {
+  if (!have_sim_time_ || sim_time_ns > sim_time_ns_) sim_time_ns_ = sim_time_ns;
+  have_sim_time_ = true;
+}
+
+void StationModel::on_hand(const cockpit::HandState& hand) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Hand& h = hands_[hand.hand_id()];
+  h.tracking = hand.tracking();
+  h.holding = hand.grasped_object_id();
+  note_sim_time(hand.sim_time_ns());
+}
+
+void StationModel::on_object_info(const cockpit::ObjectInfo& info) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  object_names_[info.object_id()] = info.name().to_string();
+}
+
+void StationModel::on_object_state(const cockpit::ObjectState& state) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  note_sim_time(state.sim_time_ns());
+}
+
+void StationModel::on_control_info(const cockpit::ControlInfo& info) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Control& c = controls_[info.control_id()];
+  c.name = info.name().to_string();
+  c.kind = control_kind_name(info.kind());
+  c.positions = split_positions(info.position_names().to_string(), std::min<uint32_t>(info.position_count(), 8));
+}
+
+void StationModel::on_control_state(const cockpit::ControlState& state) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  Control& c = controls_[state.control_id()];
+  c.have_state = true;
+  c.position = state.position();
+  c.coordinate = state.coordinate();
+  c.lit = state.lit();
+  c.held_by = state.held_by_hand_id();
+}
+
+std::string StationModel::object_name(uint32_t id) const {
+  const auto it = object_names_.find(id);
+  return it != object_names_.end() ? it->second : "object " + std::to_string(id);
+}
+
+void StationModel::add_event(std::string kind, int64_t sim_time_ns, std::string text) {
+  Event e;
+  e.seq = next_event_seq_++;
+  e.kind = std::move(kind);
+  e.sim_time_s = ns_to_seconds(sim_time_ns);
+  e.text = std::move(text);
+  events_.push_back(std::move(e));
+  while (events_.size() > kMaxEvents) events_.pop_front();
+}
+
+void StationModel::on_grasp_event(const cockpit::GraspEvent& event) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const bool grasp = event.kind() == cockpit::GRASP;
+  add_event(grasp ? "grasp" : "release", event.sim_time_ns(),
+            std::string(grasp ? "GRASP " : "RELEASE ") + object_name(event.object_id()) + " (" +
+                side_name(event.hand_id()) + " hand): " + event.reason().to_string());
+}
+
+void StationModel::on_control_event(const cockpit::ControlEvent& event) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = controls_.find(event.control_id());
+  std::string name = "control " + std::to_string(event.control_id());
+  std::string from = std::to_string(event.from_position());
+  std::string to = std::to_string(event.to_position());
+  if (it != controls_.end()) {
+    if (!it->second.name.empty()) name = it->second.name;
+    const auto& p = it->second.positions;
+    if (event.from_position() < p.size()) from = p[event.from_position()];
+    if (event.to_position() < p.size()) to = p[event.to_position()];
+  }
+  std::string text = "CONTROL " + name + " " + from + " -> " + to + " (" +
+                     control_cause_name(event.cause());
+  if (event.hand_id() >= 0) text += std::string(", ") + side_name(event.hand_id()) + " hand";
+  add_event("control", event.sim_time_ns(), text + ")");
+}
+
+void StationModel::on_ack(const cockpit::SimAck& ack) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (ack.sim_time_ns() >= 0) {  // the physics node's: the world's state after it
+    frozen_ = ack.frozen();
+    note_sim_time(ack.sim_time_ns());
+    if (ack.accepted() && ack.kind() == cockpit::SAVE_CHECKPOINT) {
+      // the name is the detail's quoted word: "checkpoint 'NAME' saved at ..."
+      const std::string d = ack.detail().to_string();
+      const std::size_t a = d.find('\''), b = d.find('\'', a + 1);
+      if (a != std::string::npos && b != std::string::npos) {
+        const std::string name = d.substr(a + 1, b - a - 1);
+        if (std::find(checkpoints_.begin(), checkpoints_.end(), name) == checkpoints_.end())
+          checkpoints_.push_back(name);
+      }
+    }
+  }
+  last_ack_ = {{"seq", ack.command_seq()},
+               {"source", ack.command_source().to_string()},
+               {"command", sim_command_word(ack.kind())},
+               {"node", ack.node_name().to_string()},
+               {"accepted", ack.accepted()},
+               {"detail", ack.detail().to_string()}};
+  add_event("sim", std::max<int64_t>(ack.sim_time_ns(), 0),
+            std::string("SIM ") + sim_command_word(ack.kind()) + " by " + ack.node_name().to_string() +
+                (ack.accepted() ? ": " : " refused: ") + ack.detail().to_string());
+}
+
+void StationModel::on_command_sent(const std::string& text) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  add_event("sim", have_sim_time_ ? sim_time_ns_ : 0, text);
+}
+
+void StationModel::on_preview(const cockpit::PreviewFrame& frame, int64_t now_ns) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  png_.assign(frame.png().begin(), frame.png().end());
+  frame_seq_ = frame.frame_seq();
+  frame_sim_time_ns_ = frame.sim_time_ns();
+  frame_width_px_ = frame.width_px();
+  frame_height_px_ = frame.height_px();
+  frame_taken_ns_ = now_ns;
+}
+
+nlohmann::json StationModel::state_json(int64_t now_ns) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  nlohmann::json j;
+  j["stamp_s"] = ns_to_seconds(now_ns);
+  j["sim"] = {{"sim_time_s", have_sim_time_ ? nlohmann::json(ns_to_seconds(sim_time_ns_))
+                                            : nlohmann::json(nullptr)},
+              {"frozen", frozen_},
+              {"checkpoints", checkpoints_},
+              {"last_ack", last_ack_}};
+  nlohmann::json nodes = nlohmann::json::array();
+  for (const auto& [name, node] : nodes_) {
+    const cockpit::NodeStatus& s = node.status;
+    const int64_t age_ns = now_ns - node.taken_ns;
+    nodes.push_back({{"name", name},
+                     {"state", node_state_name(s.state())},
+                     {"detail", s.detail().to_string()},
+                     {"loop_rate_hz", s.loop_rate_hz()},
+                     {"input_rate_hz", s.input_rate_hz()},
+                     {"late_steps", s.late_steps()},
+                     {"rejected", s.rejected()},
+                     {"glove_lost", s.glove_lost()},
+                     {"age_s", ns_to_seconds(age_ns)},
+                     {"alive", age_ns <= kStaleAfter_ns && s.state() != cockpit::STOPPING}});
+  }
+  j["nodes"] = nodes;
+  nlohmann::json hands = nlohmann::json::array();
+  for (const auto& [id, h] : hands_) {
+    hands.push_back({{"hand_id", id},
+                     {"side", side_name(id)},
+                     {"tracking", h.tracking},
+                     {"holding", h.holding >= 0 ? nlohmann::json(object_name(static_cast<uint32_t>(h.holding)))
+                                                : nlohmann::json(nullptr)}});
+  }
+  j["hands"] = hands;
+  nlohmann::json controls = nlohmann::json::array();
+  for (const auto& [id, c] : controls_) {
+    if (c.name.empty()) continue;  // a state before its info: not shown yet
+    controls.push_back({{"control_id", id},
+                        {"name", c.name},
+                        {"kind", c.kind},
+                        {"positions", c.positions},
+                        {"position", c.position},
+                        {"position_name", c.position < c.positions.size() ? c.positions[c.position] : ""},
+                        {"coordinate", c.coordinate},
+                        {"lit", c.lit},
+                        {"held_by", c.held_by}});
+  }
+  j["controls"] = controls;
+  if (png_.empty()) {
+    j["view"] = nullptr;
+  } else {
+    j["view"] = {{"frame_seq", frame_seq_},
+                 {"sim_time_s", ns_to_seconds(frame_sim_time_ns_)},
+                 {"width_px", frame_width_px_},
+                 {"height_px", frame_height_px_},
+                 {"age_s", ns_to_seconds(now_ns - frame_taken_ns_)}};
+  }
+  j["events_next"] = next_event_seq_;
+  return j;
+}
+
+nlohmann::json StationModel::events_json(int64_t after) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  nlohmann::json list = nlohmann::json::array();
+  std::size_t first = 0;
+  if (after < 0) {
+    first = events_.size() > kEventsPerReply ? events_.size() - kEventsPerReply : 0;
+  } else {
+    while (first < events_.size() && events_[first].seq <= after) ++first;
+  }
+  for (std::size_t i = first; i < events_.size() && list.size() < kEventsPerReply; ++i) {
+    const Event& e = events_[i];
+    list.push_back({{"seq", e.seq}, {"kind", e.kind}, {"sim_time_s", e.sim_time_s}, {"text", e.text}});
+  }
+  const int64_t next = list.empty() ? (after < 0 ? next_event_seq_ : std::max<int64_t>(after + 1, 0))
+                                    : list.back()["seq"].get<int64_t>() + 1;
+  return {{"events", list}, {"next", next}};
+}
+
+bool StationModel::view_png(std::string& out) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (png_.empty()) return false;
+  out = png_;
+  return true;
+}
+
+bool StationModel::has_control_position(uint32_t control_id, uint32_t position) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = controls_.find(control_id);
+  return it != controls_.end() && position < it->second.positions.size();
+}
+
+}  // namespace vcockpit::instructor

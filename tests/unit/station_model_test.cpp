@@ -1,0 +1,179 @@
+// The instructor station's model (instructor/station_model.hpp): what the page reads. Node
+// status goes stale after 3 s; the sim time is the newest seen and stands still with the world;
+// the physics node's acknowledgement says whether time is frozen and names saved checkpoints;
+// events are numbered, named (objects, controls, positions) and read from a cursor; controls
+// come with their positions; the pilot's view is the newest picture.
+
+#include "instructor/station_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace vcockpit::instructor {
+namespace {
+
+constexpr int64_t kSecond = 1'000'000'000;
+
+cockpit::NodeStatus status(const std::string& name) {
+  cockpit::NodeStatus s;
+  s.node_name(name);
+  s.state(cockpit::RUNNING);
+  s.detail("tracking");
+  s.loop_rate_hz(1000.0);
+  return s;
+}
+
+TEST(StationModel, NodesAreAliveUntilThreeSecondsWithoutStatus) {
+  StationModel model;
+  model.on_status(status("physics_node"), 10 * kSecond);
+  auto nodes = model.state_json(12 * kSecond)["nodes"];
+  ASSERT_EQ(nodes.size(), 1u);
+  EXPECT_EQ(nodes[0]["name"], "physics_node");
+  EXPECT_TRUE(nodes[0]["alive"].get<bool>());
+  EXPECT_DOUBLE_EQ(nodes[0]["age_s"].get<double>(), 2.0);
+  nodes = model.state_json(13 * kSecond + 1)["nodes"];
+  EXPECT_FALSE(nodes[0]["alive"].get<bool>()) << "stale";
+}
+
+TEST(StationModel, SimTimeIsTheNewestSeenAndFrozenComesFromThePhysicsAck) {
+  StationModel model;
+  EXPECT_TRUE(model.state_json(0)["sim"]["sim_time_s"].is_null()) << "nothing seen yet";
+  cockpit::HandState hand;
+  hand.hand_id(0);
+  hand.sim_time_ns(2 * kSecond);
+  hand.tracking(true);
+  hand.grasped_object_id(-1);
+  model.on_hand(hand);
+  cockpit::ObjectState older;
+  older.sim_time_ns(kSecond);  // a late state of an object that stopped moving
+  model.on_object_state(older);
+  EXPECT_DOUBLE_EQ(model.state_json(0)["sim"]["sim_time_s"].get<double>(), 2.0);
+
+  cockpit::SimAck ack;
+  ack.command_seq(4);
+  ack.command_source("instructor_station");
+  ack.kind(cockpit::FREEZE);
+  ack.node_name("physics_node");
+  ack.accepted(true);
+  ack.detail("frozen at 2.000 s");
+  ack.sim_time_ns(2 * kSecond);
+  ack.frozen(true);
+  model.on_ack(ack);
+  const auto sim = model.state_json(0)["sim"];
+  EXPECT_TRUE(sim["frozen"].get<bool>());
+  EXPECT_EQ(sim["last_ack"]["seq"], 4);
+  EXPECT_EQ(sim["last_ack"]["command"], "freeze");
+  EXPECT_EQ(sim["last_ack"]["detail"], "frozen at 2.000 s");
+
+  // a glove driver's acknowledgement (no world time) changes nothing about the world
+  ack.kind(cockpit::RESTART_REPLAY);
+  ack.node_name("glove_driver");
+  ack.sim_time_ns(-1);
+  ack.frozen(false);
+  model.on_ack(ack);
+  EXPECT_TRUE(model.state_json(0)["sim"]["frozen"].get<bool>());
+
+  ack.kind(cockpit::SAVE_CHECKPOINT);
+  ack.node_name("physics_node");
+  ack.detail("checkpoint 'before taxi' saved at 2.000 s");
+  ack.sim_time_ns(2 * kSecond);
+  ack.frozen(true);
+  model.on_ack(ack);
+  model.on_ack(ack);  // saved over: named once
+  EXPECT_EQ(model.state_json(0)["sim"]["checkpoints"], nlohmann::json({"before taxi"}));
+}
+
+TEST(StationModel, ControlsComeWithTheirPositionsAndEventsNameThem) {
+  StationModel model;
+  cockpit::ControlInfo info;
+  info.control_id(2);
+  info.name("landing_lights");
+  info.kind(cockpit::TOGGLE);
+  info.position_count(3);
+  info.position_names("off|taxi|on|");
+  model.on_control_info(info);
+  cockpit::ControlState state;
+  state.control_id(2);
+  state.position(1);
+  state.coordinate(0.0);
+  state.held_by_hand_id(-1);
+  model.on_control_state(state);
+  const auto controls = model.state_json(0)["controls"];
+  ASSERT_EQ(controls.size(), 1u);
+  EXPECT_EQ(controls[0]["positions"], nlohmann::json({"off", "taxi", "on"}));
+  EXPECT_EQ(controls[0]["position_name"], "taxi");
+  EXPECT_EQ(controls[0]["kind"], "TOGGLE");
+  EXPECT_TRUE(model.has_control_position(2, 2));
+  EXPECT_FALSE(model.has_control_position(2, 3));
+  EXPECT_FALSE(model.has_control_position(7, 0));
+
+  cockpit::ControlEvent event;
+  event.control_id(2);
+  event.from_position(1);
+  event.to_position(2);
+  event.cause(cockpit::PUSHED);
+  event.hand_id(1);
+  event.sim_time_ns(3 * kSecond);
+  model.on_control_event(event);
+  cockpit::ObjectInfo cup;
+  cup.object_id(5);
+  cup.name("cup");
+  model.on_object_info(cup);
+  cockpit::GraspEvent grasp;
+  grasp.object_id(5);
+  grasp.hand_id(0);
+  grasp.kind(cockpit::GRASP);
+  grasp.reason("stable grasp: 3 links");
+  model.on_grasp_event(grasp);
+  const auto events = model.events_json(-1);
+  ASSERT_EQ(events["events"].size(), 2u);
+  EXPECT_EQ(events["events"][0]["text"], "CONTROL landing_lights taxi -> on (pushed, left hand)");
+  EXPECT_EQ(events["events"][0]["kind"], "control");
+  EXPECT_DOUBLE_EQ(events["events"][0]["sim_time_s"].get<double>(), 3.0);
+  EXPECT_EQ(events["events"][1]["text"], "GRASP cup (right hand): stable grasp: 3 links");
+  EXPECT_EQ(events["next"], 2);
+}
+
+TEST(StationModel, EventsAreReadFromACursorAndTheOldestGoFirst) {
+  StationModel model;
+  for (int i = 0; i < 250; ++i) model.on_command_sent("SENT freeze (#" + std::to_string(i) + ")");
+  auto reply = model.events_json(-1);
+  ASSERT_EQ(reply["events"].size(), StationModel::kEventsPerReply) << "the newest, at most 200";
+  EXPECT_EQ(reply["events"].front()["seq"], 50);
+  EXPECT_EQ(reply["next"], 250);
+  reply = model.events_json(247);
+  ASSERT_EQ(reply["events"].size(), 2u);
+  EXPECT_EQ(reply["events"][0]["seq"], 248);
+  reply = model.events_json(249);
+  EXPECT_TRUE(reply["events"].empty());
+  EXPECT_EQ(reply["next"], 250);
+  reply = model.events_json(5000);  // a cursor from a station that restarted since
+  EXPECT_TRUE(reply["events"].empty());
+  for (std::size_t i = 0; i < StationModel::kMaxEvents; ++i) model.on_command_sent("more");
+  reply = model.events_json(0);
+  EXPECT_EQ(reply["events"].front()["seq"], 250) << "only the last kMaxEvents are kept";
+}
+
+TEST(StationModel, TheViewIsTheNewestPicture) {
+  StationModel model;
+  std::string png;
+  EXPECT_FALSE(model.view_png(png));
+  EXPECT_TRUE(model.state_json(0)["view"].is_null());
+  cockpit::PreviewFrame frame;
+  frame.frame_seq(41);
+  frame.sim_time_ns(kSecond / 2);
+  frame.width_px(640);
+  frame.height_px(360);
+  frame.png({0x89, 'P', 'N', 'G'});
+  model.on_preview(frame, 5 * kSecond);
+  ASSERT_TRUE(model.view_png(png));
+  EXPECT_EQ(png, std::string("\x89PNG"));
+  const auto view = model.state_json(6 * kSecond)["view"];
+  EXPECT_EQ(view["frame_seq"], 41);
+  EXPECT_DOUBLE_EQ(view["age_s"].get<double>(), 1.0);
+  EXPECT_EQ(view["width_px"], 640);
+}
+
+}  // namespace
+}  // namespace vcockpit::instructor
