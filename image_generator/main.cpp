@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <optional>
+
 #include "common/logging.hpp"
 #include "common/signals.hpp"
 #include "image_generator/node/ig_loop.hpp"
@@ -28,9 +30,18 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"side", "left", "right", "both"}))
       ->capture_default_str();
   app.add_option("--frames", options.frames, "render this many frames and exit (0: until Ctrl-C)");
-  app.add_option("--fps", options.fps, "frame rate to pace at (0: as fast as possible)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  std::optional<double> fps;
+  app.add_option("--fps", fps,
+                 "frame rate to pace at (default: the HMD's refresh_hz; 0: as fast as possible)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("!--no-background-cache", options.background_cache,
+               "draw the whole cockpit every frame (default: the static cockpit is drawn once and "
+               "copied, only what moves is drawn)");
+  app.add_flag("--predict-hand", options.predict_hand,
+               "draw the hands extrapolated to the moment the frame will be finished");
+  app.add_option("--frame-log", options.frame_log,
+                 "CSV of every frame's hand: stamps, the tracked index fingertip as drawn and as "
+                 "predicted (for bench/fingertip_error)");
   app.add_option("--wait-timeout", options.wait_timeout_s,
                  "seconds to wait for the scene (cockpit/object_info) before giving up")
       ->check(CLI::PositiveNumber)
@@ -72,6 +83,7 @@ int main(int argc, char** argv) {
     setup_logging("image_generator", log_level);
     install_shutdown_handlers();
     const HmdSetup hmd = load_hmd_config(hmd_path);
+    options.fps = fps.value_or(hmd.refresh_hz);
     DdsParticipant participant(resolve_dds_options(dds_flags, "image_generator"), options.node_name);
     return image_generator::run_image_generator(participant, hmd, options);
   } catch (const std::exception& e) {

@@ -18,7 +18,8 @@ render::EyeFov parse_fov(const ConfigNode& node) {
 }  // namespace
 
 HmdSetup parse_hmd_config(const ConfigNode& root) {
-  root.expect_keys({"ipd_m", "width_px", "height_px", "near_m", "far_m", "fov_deg", "head"});
+  root.expect_keys(
+      {"ipd_m", "width_px", "height_px", "near_m", "far_m", "fov_deg", "head", "refresh_hz"});
   HmdSetup setup;
   render::HmdConfig& hmd = setup.hmd;
   hmd.ipd_m = root.get_double("ipd_m", hmd.ipd_m);
@@ -26,6 +27,9 @@ HmdSetup parse_hmd_config(const ConfigNode& root) {
   hmd.height_px = static_cast<int>(root.get_int("height_px", hmd.height_px));
   hmd.near_m = root.get_double("near_m", hmd.near_m);
   hmd.far_m = root.get_double("far_m", hmd.far_m);
+  setup.refresh_hz = root.get_double("refresh_hz", setup.refresh_hz);
+  if (!(setup.refresh_hz >= 1.0 && setup.refresh_hz <= 1000.0))
+    root["refresh_hz"].fail("must be in 1..1000 (frames a second)");
   if (auto fov = root.find("fov_deg")) {
     fov->expect_keys({"left_eye", "right_eye"});
     hmd.fov[0] = parse_fov((*fov)["left_eye"]);

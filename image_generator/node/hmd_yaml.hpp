@@ -14,6 +14,7 @@ namespace vcockpit {
 struct HmdSetup {
   render::HmdConfig hmd;
   Eigen::Isometry3d X_GHead = Eigen::Isometry3d::Identity();  // design eye point
+  double refresh_hz = 90.0;  // the display's: the image generator paces its frames to it
 };
 
 HmdSetup load_hmd_config(const std::string& path);

@@ -72,6 +72,7 @@ class ImageGenerator {
   bool wait_for_scene();
   void note_snapshot();
   void publish_status(int64_t now_ns);
+  void log_frame(int64_t end_ns, int64_t display_ns);
   bool start_video();
   void finish_video();
 
@@ -102,7 +103,17 @@ class ImageGenerator {
   cockpit::ControlInfo control_info_;
   cockpit::ControlState control_;
   cockpit::FrameInfo frame_;
-  std::vector<render::Instance> instances_;
+  std::vector<render::Instance> instances_;  // the moving layer
+  std::vector<render::Instance> fixed_;      // the background layer
+  int64_t expected_tail_ns_ = 0;             // latch -> frame end, smoothed
+  uint64_t late_frames_ = 0;                 // ended after their display slot
+  uint64_t missed_slots_ = 0;                // display slots no frame ended in
+  uint64_t background_redraws_ = 0;
+  LatencyHistogram background_ns_;  // per frame: background copied (or redrawn)
+  LatencyHistogram latch_ns_;       // taking the newest state and building the moving layer
+  LatencyHistogram moving_ns_;      // submitting the moving layer
+  LatencyHistogram finish_ns_;      // the flush: rasterising
+  std::FILE* frame_log_ = nullptr;
   uint64_t frames_ = 0;
   uint64_t frames_at_last_status_ = 0;
   int64_t render_ns_in_period_ = 0;
@@ -135,6 +146,19 @@ void ImageGenerator::write_stats() const {
   j["render_ms"] = {{"p50", ms(render_ns_.percentile_ns(0.5))},
                     {"p99", ms(render_ns_.percentile_ns(0.99))},
                     {"max", ms(render_ns_.max_ns())}};
+  const auto part = [&](const LatencyHistogram& h) {
+    return nlohmann::ordered_json{{"p50", ms(h.percentile_ns(0.5))},
+                                  {"p99", ms(h.percentile_ns(0.99))}};
+  };
+  j["frame_parts_ms"] = {{"background", part(background_ns_)},
+                         {"latch", part(latch_ns_)},
+                         {"moving", part(moving_ns_)},
+                         {"finish", part(finish_ns_)}};
+  j["background_cache"] = options_.background_cache;
+  j["background_redraws"] = background_redraws_;
+  j["predict_hand"] = options_.predict_hand;
+  j["late_frames"] = late_frames_;
+  j["missed_slots"] = missed_slots_;
   if (video_) {
     j["video"] = {{"path", video_path_},
                   {"ok", video_->finish()},
@@ -149,6 +173,23 @@ void ImageGenerator::write_stats() const {
                   {"skipped", video_->skipped()}};
   }
   write_json_file(options_.stats_out, j);
+}
+
+// --frame-log: each drawn hand's stamps and its tracked index fingertip as received and as
+// predicted for the frame's end (bench/fingertip_error compares them with the glove log).
+void ImageGenerator::log_frame(int64_t end_ns, int64_t display_ns) {
+  for (uint32_t id = 0; id < SceneCache::kHandSlots; ++id) {
+    Eigen::Vector3d tip, predicted;
+    if (!cache_.tracked_index_tip(id, 0, tip) || !cache_.tracked_index_tip(id, display_ns, predicted))
+      continue;
+    const cockpit::HandState& hand = cache_.hand_state(id);
+    std::fprintf(frame_log_, "%llu,%lld,%u,%lld,%lld,%lld,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n",
+                 static_cast<unsigned long long>(frames_), static_cast<long long>(end_ns), id,
+                 static_cast<long long>(hand.sample_time_ns()),
+                 static_cast<long long>(hand.source_stamp_ns()),
+                 static_cast<long long>(cache_.prediction_horizon_ns(id, display_ns)), tip.x(),
+                 tip.y(), tip.z(), predicted.x(), predicted.y(), predicted.z());
+  }
 }
 
 // snapshots.csv: which world state each snapshot shows (the held object and where it was).
@@ -305,20 +346,61 @@ int ImageGenerator::run() {
     preview_ = std::make_unique<PreviewPublisher>(participant_, hmd_.width_px, hmd_.height_px,
                                                   options_.preview_hz);
   }
-  const int64_t period_ns = options_.fps > 0 ? std::llround(1e9 / options_.fps) : 0;
-  int64_t next_ns = monotonic_now_ns();
-  last_status_ns_ = next_ns;
-  while (!shutdown_requested() && (options_.frames == 0 || frames_ < options_.frames)) {
-    if (period_ns > 0) {
-      sleep_until_ns(next_ns);
-      next_ns += period_ns;
-      if (next_ns < monotonic_now_ns()) next_ns = monotonic_now_ns();  // do not burst after a stall
+  renderer->set_background_cache(options_.background_cache);
+  if (!options_.frame_log.empty()) {
+    frame_log_ = std::fopen(options_.frame_log.c_str(), "w");
+    if (!frame_log_) {
+      spdlog::error("--frame-log: cannot write {}", options_.frame_log);
+      return 4;
     }
-    drain();
-    cache_.build(instances_);
+    std::fprintf(frame_log_, "frame,render_end_ns,hand_id,sample_time_ns,source_stamp_ns,"
+                             "horizon_ns,tip_x,tip_y,tip_z,predicted_x,predicted_y,predicted_z\n");
+  }
+  spdlog::info("frames paced at {} Hz{}; static cockpit {}; hands {}", options_.fps,
+               options_.fps > 0 ? "" : " (unpaced)",
+               options_.background_cache ? "cached" : "drawn every frame",
+               options_.predict_hand ? "predicted to each frame's end" : "as last received");
+  // Display slots of period_ns from the first frame: a frame starts at its slot and should end
+  // within it; one that ends later is counted late, and the next starts at the next free slot
+  // (never two back to back to catch up).
+  const int64_t period_ns = options_.fps > 0 ? std::llround(1e9 / options_.fps) : 0;
+  int64_t slot_ns = monotonic_now_ns();
+  last_status_ns_ = slot_ns;
+  while (!shutdown_requested() && (options_.frames == 0 || frames_ < options_.frames)) {
+    if (period_ns > 0) sleep_until_ns(slot_ns);
     const int64_t start_ns = monotonic_now_ns();
-    renderer->render(instances_, X_GHead_);
+    // the background first (the static cockpit and the head: copied, or redrawn if they changed)
+    drain();
+    cache_.build_fixed(fixed_);
+    renderer->begin_frame(fixed_, X_GHead_);
+    // then, as late as possible, the newest hands and objects: latched here, rasterised at the
+    // end_frame() flush a few ms later
+    drain();
+    const int64_t latch_ns = monotonic_now_ns();
+    const int64_t display_ns = latch_ns + expected_tail_ns_;  // when this frame will be done
+    cache_.build_moving(instances_, options_.predict_hand ? display_ns : 0);
+    renderer->draw_moving(instances_);
+    renderer->end_frame();
     const int64_t end_ns = monotonic_now_ns();
+    const auto& cost = renderer->last_cost();
+    // what the frame takes after the latch, smoothed: the prediction's horizon
+    const int64_t tail_ns = end_ns - latch_ns;
+    expected_tail_ns_ = expected_tail_ns_ == 0 ? tail_ns : (7 * expected_tail_ns_ + tail_ns) / 8;
+    background_ns_.record_ns(cost.background_ns);
+    latch_ns_.record_ns(latch_ns - start_ns - cost.background_ns);
+    moving_ns_.record_ns(cost.moving_ns);
+    finish_ns_.record_ns(cost.finish_ns);
+    if (cost.background_redrawn) ++background_redraws_;
+    if (period_ns > 0) {
+      slot_ns += period_ns;
+      if (end_ns > slot_ns) {  // missed its display slot
+        ++late_frames_;
+        const int64_t missed = (end_ns - slot_ns) / period_ns + 1;
+        missed_slots_ += static_cast<uint64_t>(missed);
+        slot_ns += missed * period_ns;
+      }
+    }
+    if (frame_log_) log_frame(end_ns, display_ns);
     render_ns_in_period_ += end_ns - start_ns;
     if (frames_ == 0) first_frame_start_ns_ = start_ns;
     last_frame_end_ns_ = end_ns;
@@ -329,7 +411,7 @@ int ImageGenerator::run() {
     frame_.sim_time_ns(cache_.newest_sim_time_ns());
     frame_.sample_time_ns(cache_.has_hand() ? cache_.hand().sample_time_ns() : 0);
     frame_.source_stamp_ns(cache_.has_hand() ? cache_.hand().source_stamp_ns() : 0);
-    frame_.render_start_ns(start_ns);
+    frame_.render_start_ns(latch_ns);  // the hand data drawn was taken here
     frame_.render_end_ns(end_ns);
     frame_writer_.write(frame_);
     if (video_) video_->submit(renderer->pixels(), end_ns, cache_.newest_sim_time_ns());
@@ -343,6 +425,15 @@ int ImageGenerator::run() {
   }
   const uint64_t written = snapshots_ ? snapshots_->written() : 0;
   snapshots_.reset();  // finishes the queued PNGs
+  if (frame_log_) std::fclose(frame_log_);
+  spdlog::info("frames: {} late (after their display slot), {} display slots missed; background "
+               "redrawn {} times; per frame p50: background {:.2f} ms, latch {:.2f} ms, moving "
+               "{:.2f} ms, finish {:.2f} ms",
+               late_frames_, missed_slots_, background_redraws_,
+               static_cast<double>(background_ns_.percentile_ns(0.5)) * 1e-6,
+               static_cast<double>(latch_ns_.percentile_ns(0.5)) * 1e-6,
+               static_cast<double>(moving_ns_.percentile_ns(0.5)) * 1e-6,
+               static_cast<double>(finish_ns_.percentile_ns(0.5)) * 1e-6);
   preview_.reset();
   finish_video();
   if (snapshot_index_) std::fclose(snapshot_index_);

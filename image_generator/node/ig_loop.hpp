@@ -22,7 +22,7 @@ struct IgOptions {
   int snapshot_every = 30;       // frames between snapshots; 0: none
   SnapshotLayout layout = SnapshotLayout::kSideBySide;
   uint64_t frames = 0;           // render this many and exit; 0: until a signal
-  double fps = 60.0;             // frame pacing; 0: as fast as possible
+  double fps = 90.0;             // frame pacing (the display's refresh); 0: as fast as possible
   double wait_timeout_s = 10.0;  // for the first object_info
   std::string node_name = "image_generator";
   std::string stats_out;         // JSON file of the run's frame rate and render times; empty: none
@@ -33,6 +33,9 @@ struct IgOptions {
   int video_scale_down = 2;      // 1280x720 eyes as a 640x360 video
   bool video_side_by_side = false;
   double preview_hz = 4.0;       // cockpit/preview_frame pictures a second; 0: none
+  bool background_cache = true;  // the static cockpit drawn once (stereo_renderer.hpp)
+  bool predict_hand = false;     // hands extrapolated to the frame's end (hand_prediction.hpp)
+  std::string frame_log;         // per frame and hand: stamps and index fingertips (CSV); "": none
 };
 
 // Exit codes: 0 done, 3 no scene arrived in time, 4 rendering failed.

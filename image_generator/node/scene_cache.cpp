@@ -30,6 +30,9 @@ void SceneCache::on_info(const cockpit::ObjectInfo& info) {
   in.size_m = Eigen::Vector3d(d[0], d[1], d[2]);
   const auto& c = info.color_rgba();
   in.rgba = {c[0], c[1], c[2], c[3]};
+  // the background layer: what does not move (a control's moving part does, whatever its kind)
+  o.is_static = info.kind() == cockpit::STATIC_OBJECT;
+  in.fixed = o.is_static && !o.is_control;
 }
 
 void SceneCache::on_state(const cockpit::ObjectState& state) {
@@ -41,6 +44,9 @@ void SceneCache::on_state(const cockpit::ObjectState& state) {
 }
 
 void SceneCache::on_control_info(const cockpit::ControlInfo& info) {
+  Object& body = objects_[info.object_id()];
+  body.is_control = true;
+  body.instance.fixed = false;
   if (info.lit_position() < 0) return;  // no light
   ControlLights& lights = control_lights_[info.control_id()];
   lights.body = info.object_id();
@@ -90,6 +96,7 @@ void SceneCache::on_hand(const cockpit::HandState& hand) {
   Hand& h = hands_[hand.hand_id()];
   h.state = hand;
   h.have_state = true;
+  h.predictor.on_state(hand);
   if (!h.have_info) {
     ++hand_states_without_info_;
     return;
@@ -113,26 +120,73 @@ Eigen::Vector3d SceneCache::object_position(uint32_t id) const {
 
 void SceneCache::build(std::vector<render::Instance>& out) const {
   out.clear();
-  for (const auto& [id, o] : objects_) {
-    if (!o.have_info || !o.have_pose) continue;
-    out.push_back(o.instance);
-    if (o.light > 0) {
-      out.back().highlight = true;  // a lit cap or annunciator glows
-    } else if (o.light < 0) {
-      for (int k = 0; k < 3; ++k) out.back().rgba[k] *= kUnlitScale;  // and is dull when off
-    }
-  }
+  for (const auto& [id, o] : objects_) append_object(o, out);
   for (const Hand& h : hands_) {
-    if (h.have_info && h.have_state) append_hand(h, out);
+    if (h.have_info && h.have_state) append_hand(h, 0, out);
   }
 }
 
-void SceneCache::append_hand(const Hand& hand, std::vector<render::Instance>& out) const {
+void SceneCache::build_fixed(std::vector<render::Instance>& out) const {
+  out.clear();
+  append_objects(out, true);
+}
+
+void SceneCache::build_moving(std::vector<render::Instance>& out, int64_t display_ns) const {
+  out.clear();
+  append_objects(out, false);
+  for (const Hand& h : hands_) {
+    if (h.have_info && h.have_state) append_hand(h, display_ns, out);
+  }
+}
+
+bool SceneCache::tracked_index_tip(uint32_t hand_id, int64_t display_ns, Eigen::Vector3d& p_G) const {
+  if (hand_id >= kHandSlots) return false;
+  const Hand& h = hands_[hand_id];
+  if (!h.have_info || !h.have_state) return false;
+  LinkPoses links;
+  if (display_ns > 0) {
+    h.predictor.predict(display_ns, true, links);
+  } else {
+    for (std::size_t l = 0; l < links.size(); ++l) links[l] = to_eigen(h.state.tracked_X_GL()[l]);
+  }
+  // the distal phalanx's capsule runs along its frame's x axis: its tip is length_m out
+  const auto distal = static_cast<std::size_t>(hand::Link::kIndexDistal);
+  p_G = links[distal] * Eigen::Vector3d(h.geometry.capsules[distal].length_m, 0, 0);
+  return true;
+}
+
+void SceneCache::append_objects(std::vector<render::Instance>& out, bool fixed) const {
+  for (const auto& [id, o] : objects_)
+    if (o.instance.fixed == fixed) append_object(o, out);
+}
+
+void SceneCache::append_object(const Object& o, std::vector<render::Instance>& out) const {
+  if (!o.have_info || !o.have_pose) return;
+  out.push_back(o.instance);
+  if (o.light > 0) {
+    out.back().highlight = true;  // a lit cap or annunciator glows
+  } else if (o.light < 0) {
+    for (int k = 0; k < 3; ++k) out.back().rgba[k] *= kUnlitScale;  // and is dull when off
+  }
+}
+
+void SceneCache::append_hand(const Hand& hand, int64_t display_ns,
+                             std::vector<render::Instance>& out) const {
   const cockpit::HandState& state = hand.state;
   const auto& colour = state.tracking() ? kSkin : kGlove;  // grey while the glove is lost
+  LinkPoses links, tracked;
+  if (display_ns > 0) {
+    hand.predictor.predict(display_ns, false, links);
+    hand.predictor.predict(display_ns, true, tracked);
+  } else {
+    for (std::size_t l = 0; l < links.size(); ++l) {
+      links[l] = to_eigen(state.X_GL()[l]);
+      tracked[l] = to_eigen(state.tracked_X_GL()[l]);
+    }
+  }
   render::Instance palm;
   palm.primitive = render::Primitive::kBox;
-  palm.X_GO = to_eigen(state.X_GL()[0]);  // the palm link frame is the palm box centre (X_HP)
+  palm.X_GO = links[0];  // the palm link frame is the palm box centre (X_HP)
   palm.size_m = hand.geometry.palm_size_m;
   palm.rgba = colour;
   out.push_back(palm);
@@ -142,19 +196,20 @@ void SceneCache::append_hand(const Hand& hand, std::vector<render::Instance>& ou
     const hand::Capsule& c = hand.geometry.capsules[l];
     render::Instance phalanx;
     phalanx.primitive = render::Primitive::kCapsule;
-    phalanx.X_GO = to_eigen(state.X_GL()[l]) *
+    phalanx.X_GO = links[static_cast<std::size_t>(l)] *
                    Eigen::Translation3d(0.5 * c.length_m, 0, 0) * z_to_x;
     phalanx.size_m = Eigen::Vector3d(c.radius_m, c.length_m, 0);
     phalanx.rgba = colour;
     out.push_back(phalanx);
   }
-  append_ghost(hand, out);
+  append_ghost(hand, tracked, out);
 }
 
 // The tracked hand, where it differs from the drawn one by more than the threshold: a thin pale
 // skeleton (the renderer draws opaque) that shows the pilot where the glove really is while the
 // simulated hand rests on a panel or round an object (Prachyabrued & Borst 2014).
-void SceneCache::append_ghost(const Hand& hand, std::vector<render::Instance>& out) const {
+void SceneCache::append_ghost(const Hand& hand, const LinkPoses& tracked,
+                              std::vector<render::Instance>& out) const {
   const cockpit::HandState& state = hand.state;
   if (!(state.tracked_offset_m() > ghost_threshold_m_)) return;
   const Eigen::Isometry3d z_to_x(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()));
@@ -162,7 +217,7 @@ void SceneCache::append_ghost(const Hand& hand, std::vector<render::Instance>& o
     const hand::Capsule& c = hand.geometry.capsules[l];
     render::Instance bone;
     bone.primitive = render::Primitive::kCapsule;
-    bone.X_GO = to_eigen(state.tracked_X_GL()[l]) *
+    bone.X_GO = tracked[static_cast<std::size_t>(l)] *
                 Eigen::Translation3d(0.5 * c.length_m, 0, 0) * z_to_x;
     bone.size_m = Eigen::Vector3d(kGhostRadiusScale * c.radius_m, c.length_m, 0);
     bone.rgba = kGhost;

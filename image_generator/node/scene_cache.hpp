@@ -15,6 +15,7 @@
 
 #include "cockpit.h"
 #include "hand/hand_model.hpp"
+#include "image_generator/node/hand_prediction.hpp"
 #include "image_generator/render/stereo_renderer.hpp"
 
 namespace vcockpit::image_generator {
@@ -39,6 +40,7 @@ class SceneCache {
   // A hand that is drawn (info and state), and the state of the one updated last.
   bool has_hand() const { return shown_ >= 0; }
   const cockpit::HandState& hand() const { return hands_[shown_ < 0 ? 0 : shown_].state; }
+  const cockpit::HandState& hand_state(uint32_t hand_id) const { return hands_[hand_id].state; }
   bool has_hand_info(uint32_t hand_id) const {
     return hand_id < kHandSlots && hands_[hand_id].have_info;
   }
@@ -60,12 +62,26 @@ class SceneCache {
   // Objects with both info and a pose, then for each drawn hand its palm box and 15 phalanx
   // capsules, and the tracked hand's 15 bones when it is a ghost.
   void build(std::vector<render::Instance>& out) const;
+  // The same in two layers: the static objects (Instance::fixed, not a control's moving part),
+  // and everything else (the renderer's background and moving layers).
+  // display_ns > 0: the hands as predicted for that moment (hand_prediction.hpp).
+  void build_fixed(std::vector<render::Instance>& out) const;
+  void build_moving(std::vector<render::Instance>& out, int64_t display_ns = 0) const;
+  // The tracked hand's index fingertip in the world, now (display_ns 0) or predicted for
+  // display_ns; false if the hand is not drawn.
+  bool tracked_index_tip(uint32_t hand_id, int64_t display_ns, Eigen::Vector3d& p_G) const;
+  // How far ahead of the shown state display_ns is (for the frame log).
+  int64_t prediction_horizon_ns(uint32_t hand_id, int64_t display_ns) const {
+    return hand_id < kHandSlots ? hands_[hand_id].predictor.horizon_ns(display_ns) : 0;
+  }
 
  private:
   struct Object {
     bool have_info = false;
     bool have_pose = false;
     int light = 0;  // 0 no light, 1 lit, -1 a light that is off
+    bool is_static = false;   // ObjectInfo says STATIC_OBJECT
+    bool is_control = false;  // a control's moving part
     render::Instance instance;
   };
   struct ControlLights {
@@ -78,10 +94,14 @@ class SceneCache {
     bool have_state = false;
     hand::HandModel geometry;  // capsules and palm box only (from_hand_info)
     cockpit::HandState state;
+    HandPredictor predictor;
   };
 
-  void append_hand(const Hand& hand, std::vector<render::Instance>& out) const;
-  void append_ghost(const Hand& hand, std::vector<render::Instance>& out) const;
+  void append_objects(std::vector<render::Instance>& out, bool fixed) const;
+  void append_object(const Object& o, std::vector<render::Instance>& out) const;
+  void append_hand(const Hand& hand, int64_t display_ns, std::vector<render::Instance>& out) const;
+  void append_ghost(const Hand& hand, const LinkPoses& tracked,
+                    std::vector<render::Instance>& out) const;
 
   static constexpr float kUnlitScale = 0.35f;  // a light that is off, against its colour
   static constexpr double kGhostRadiusScale = 0.3;  // the ghost's bones against the drawn radii

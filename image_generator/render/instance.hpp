@@ -17,6 +17,10 @@ struct Instance {
   Eigen::Vector3d size_m = Eigen::Vector3d::Zero();
   std::array<float, 4> rgba{0.6f, 0.6f, 0.6f, 1.0f};  // 0..1; alpha is ignored (drawn opaque)
   bool highlight = false;  // drawn brighter, as if glowing (held or hovered object)
+  // Part of the background layer: the cockpit's shell and whatever else does not move. The
+  // renderer draws these once into a cached image per eye and redraws it only when one of them
+  // or the head changes (stereo_renderer.hpp).
+  bool fixed = false;
 };
 
 }  // namespace vcockpit::render

@@ -17,8 +17,8 @@ void count(std::span<const Instance> instances, std::array<int, kUnitMeshCount>&
         ++counts[2];
         break;
       case Primitive::kCapsule:
-        counts[1] += 2;
         ++counts[2];
+        counts[3] += 2;
         break;
     }
   }
@@ -47,7 +47,7 @@ void pack_instances(std::span<const Instance> instances, PackedInstances& packed
   packed.records.resize(static_cast<size_t>(first));  // no allocation within capacity
 
   std::array<int, kUnitMeshCount> next{packed.ranges[0].first, packed.ranges[1].first,
-                                       packed.ranges[2].first};
+                                       packed.ranges[2].first, packed.ranges[3].first};
   auto put = [&](UnitMesh mesh, const Eigen::Isometry3d& X_GO, const Eigen::Vector3d& scale,
                  const Instance& instance) {
     packed.records[static_cast<size_t>(next[static_cast<int>(mesh)]++)] =
@@ -68,10 +68,13 @@ void pack_instances(std::span<const Instance> instances, PackedInstances& packed
       case Primitive::kCapsule: {
         const double half_length_m = 0.5 * s.y();
         put(UnitMesh::kCylinder, instance.X_GO, {s.x(), s.x(), s.y()}, instance);
-        for (const double z_m : {half_length_m, -half_length_m}) {
-          put(UnitMesh::kSphere, instance.X_GO * Eigen::Translation3d(0.0, 0.0, z_m),
-              Eigen::Vector3d::Constant(s.x()), instance);
-        }
+        // the +z cap as it is, the -z cap turned half a turn about x to face -z
+        put(UnitMesh::kCap, instance.X_GO * Eigen::Translation3d(0.0, 0.0, half_length_m),
+            Eigen::Vector3d::Constant(s.x()), instance);
+        put(UnitMesh::kCap,
+            instance.X_GO * Eigen::Translation3d(0.0, 0.0, -half_length_m) *
+                Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()),
+            Eigen::Vector3d::Constant(s.x()), instance);
         break;
       }
     }

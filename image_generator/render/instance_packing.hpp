@@ -1,7 +1,8 @@
 #pragma once
 // Instances -> per-instance GPU records grouped by unit mesh, so that each mesh is drawn with one
 // instanced call. A capsule becomes a cylinder plus two sphere caps (uniformly scaled, so caps
-// stay round whatever the capsule's proportions). Reuses the records' capacity: no allocation
+// stay round whatever the capsule's proportions; hemispheres, their open side inside the
+// cylinder). Reuses the records' capacity: no allocation
 // once the instance count has peaked.
 
 #include <array>
@@ -12,8 +13,10 @@
 
 namespace vcockpit::render {
 
-enum class UnitMesh { kBox, kSphere, kCylinder };
-constexpr int kUnitMeshCount = 3;
+// kCap: a capsule's end, the +z half of a coarser sphere (the other half is inside the
+// capsule's cylinder: not drawn, the hands' 60 caps cost a quarter of the triangles of spheres).
+enum class UnitMesh { kBox, kSphere, kCylinder, kCap };
+constexpr int kUnitMeshCount = 4;
 
 // Matches the shader's per-instance attributes (see shaders.hpp).
 struct InstanceRecord {

@@ -49,7 +49,8 @@ void bind_vertex_attributes(GLuint vertex_buffer) {
 
 MeshBuffers::MeshBuffers() {
   glGenBuffers(1, &instance_buffer_);
-  const std::array<MeshData, kUnitMeshCount> data{unit_box(), unit_sphere(), unit_cylinder()};
+  const std::array<MeshData, kUnitMeshCount> data{unit_box(), unit_sphere(), unit_cylinder(),
+                                                  unit_hemisphere()};
   for (int m = 0; m < kUnitMeshCount; ++m) {
     GpuMesh& mesh = meshes_[m];
     glGenVertexArrays(1, &mesh.vertex_array);

@@ -88,6 +88,30 @@ MeshData unit_sphere(int slices, int stacks) {
   return mesh;
 }
 
+MeshData unit_hemisphere(int slices, int stacks) {
+  MeshData mesh;
+  // latitude theta from the pole (+z) down to the equator
+  for (int i = 0; i <= stacks; ++i) {
+    const float theta =
+        0.5f * std::numbers::pi_v<float> * static_cast<float>(i) / static_cast<float>(stacks);
+    for (int j = 0; j <= slices; ++j) {
+      const float phi = kTwoPi * static_cast<float>(j) / static_cast<float>(slices);
+      const std::array<float, 3> p{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                   std::cos(theta)};
+      mesh.vertices.push_back({p, p});
+    }
+  }
+  const auto row = static_cast<uint32_t>(slices + 1);
+  for (uint32_t i = 0; i < static_cast<uint32_t>(stacks); ++i) {
+    for (uint32_t j = 0; j < static_cast<uint32_t>(slices); ++j) {
+      const uint32_t a = i * row + j, b = a + row, c = b + 1, d = a + 1;
+      add_triangle(mesh, a, b, c);
+      if (i > 0) add_triangle(mesh, a, c, d);  // the pole's collapse
+    }
+  }
+  return mesh;
+}
+
 MeshData unit_cylinder(int slices) {
   MeshData mesh;
   for (int j = 0; j <= slices; ++j) {

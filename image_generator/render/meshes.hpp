@@ -27,5 +27,7 @@ struct MeshData {
 MeshData unit_box();
 MeshData unit_sphere(int slices = 16, int stacks = 8);
 MeshData unit_cylinder(int slices = 16);
+// The +z half of a unit sphere, open at z = 0 (a capsule's end cap).
+MeshData unit_hemisphere(int slices = 12, int stacks = 3);
 
 }  // namespace vcockpit::render

@@ -1,6 +1,8 @@
 #include "image_generator/render/stereo_renderer.hpp"
 
 #include <cstdio>
+#include <cstring>
+#include <ctime>
 #include <string>
 
 #include "image_generator/render/camera.hpp"
@@ -23,66 +25,185 @@ void check_gl(const char* stage) {
 }
 
 constexpr std::array<UnitMesh, kUnitMeshCount> kMeshes{UnitMesh::kBox, UnitMesh::kSphere,
-                                                       UnitMesh::kCylinder};
+                                                       UnitMesh::kCylinder, UnitMesh::kCap};
+
+int64_t now_ns() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
+}
+
+bool same_records(const std::vector<InstanceRecord>& a, const std::vector<InstanceRecord>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(InstanceRecord)) == 0);
+}
+
+bool same_pose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return std::memcmp(a.matrix().data(), b.matrix().data(), sizeof(double) * 16) == 0;
+}
+
+// A framebuffer with an RGBA8 colour and a 24-bit depth renderbuffer of the given size.
+void make_framebuffer(GLsizei width, GLsizei height, unsigned& framebuffer, unsigned& colour,
+                      unsigned& depth) {
+  glGenFramebuffers(1, &framebuffer);
+  glGenRenderbuffers(1, &colour);
+  glGenRenderbuffers(1, &depth);
+  glBindRenderbuffer(GL_RENDERBUFFER, colour);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, depth);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw RenderError("GL: a framebuffer of renderbuffers is incomplete");
+}
+
+void delete_framebuffer(unsigned framebuffer, unsigned colour, unsigned depth) {
+  glDeleteFramebuffers(1, &framebuffer);
+  glDeleteRenderbuffers(1, &colour);
+  glDeleteRenderbuffers(1, &depth);
+}
 
 }  // namespace
 
 StereoRenderer::StereoRenderer(const HmdConfig& config) : config_(config) {
   config_.validate();
+  // Frames are drawn upside down (y flipped in the projection), so that glReadPixels, which
+  // returns the bottom row first, gives the image top row first with no flip afterwards.
+  const Eigen::Matrix4f flip_y = Eigen::Vector4f(1, -1, 1, 1).asDiagonal();
   for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
     projection_[eye_index(eye)] =
-        off_axis_projection(config_.eye_fov(eye), config_.near_m, config_.far_m);
+        flip_y * off_axis_projection(config_.eye_fov(eye), config_.near_m, config_.far_m);
   }
-  context_ = std::make_unique<GlContext>(2 * config_.width_px, config_.height_px);
+  // The frame is drawn into framebuffers of the renderer's own; OSMesa's buffer is only what
+  // the context needs to be current.
+  context_ = std::make_unique<GlContext>(1, 1);
   check_gl("context creation");
   program_ = std::make_unique<LitProgram>();
   meshes_ = std::make_unique<MeshBuffers>();
+  background_meshes_ = std::make_unique<MeshBuffers>();
+  pixels_.assign(static_cast<std::size_t>(2 * config_.width_px) * config_.height_px * 4, 0);
+  // the frame and the background layer, both eyes side by side; the same formats, so the
+  // background is restored by copying images (a memcpy in llvmpipe; a blit of the depth was
+  // a shader pass costing 9 ms a frame here)
+  make_framebuffer(2 * config_.width_px, config_.height_px, frame_framebuffer_, frame_colour_,
+                   frame_depth_);
+  make_framebuffer(2 * config_.width_px, config_.height_px, background_framebuffer_,
+                   background_colour_, background_depth_);
+  glBindFramebuffer(GL_FRAMEBUFFER, frame_framebuffer_);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  glEnable(GL_CULL_FACE);  // closed meshes, counter-clockwise outside
+  glEnable(GL_CULL_FACE);  // closed meshes, counter-clockwise outside (clockwise once flipped)
   glCullFace(GL_BACK);
-  glFrontFace(GL_CCW);
+  glFrontFace(GL_CW);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glClearColor(kBackgroundRgb[0], kBackgroundRgb[1], kBackgroundRgb[2], 1.0f);
   check_gl("renderer set-up");
 }
 
 StereoRenderer::~StereoRenderer() {
   context_->make_current();  // GL objects are deleted by the members below, in this context
+  delete_framebuffer(background_framebuffer_, background_colour_, background_depth_);
+  delete_framebuffer(frame_framebuffer_, frame_colour_, frame_depth_);
+  background_meshes_.reset();
   meshes_.reset();
   program_.reset();
 }
 
 void StereoRenderer::render(const std::vector<Instance>& instances,
                             const Eigen::Isometry3d& X_GHead) {
-  context_->make_current();
-  pack_instances(instances, packed_);
-  meshes_->upload(packed_);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);  // both halves at once
-  program_->use();
-  last_draw_calls_ = 0;
-  draw_eye(Eye::kLeft, X_GHead);
-  draw_eye(Eye::kRight, X_GHead);
-  glFinish();  // llvmpipe renders lazily: the buffer is complete only after this
-  while (glGetError() != GL_NO_ERROR)
-    ++gl_error_count_;
+  split_fixed_.clear();
+  split_.clear();
+  for (const Instance& instance : instances) (instance.fixed ? split_fixed_ : split_).push_back(instance);
+  begin_frame(split_fixed_, X_GHead);
+  draw_moving(split_);
+  end_frame();
 }
 
-void StereoRenderer::draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead) {
+void StereoRenderer::begin_frame(std::span<const Instance> fixed, const Eigen::Isometry3d& X_GHead) {
+  frame_start_ns_ = now_ns();
+  context_->make_current();
+  cost_ = FrameCost{};
+  last_draw_calls_ = 0;
+  X_GHead_ = X_GHead;
+  pack_instances(fixed, background_packed_);
+  if (!cache_on_) {  // everything drawn every frame, straight into the frame
+    background_valid_ = false;
+    glBindFramebuffer(GL_FRAMEBUFFER, frame_framebuffer_);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);  // both halves at once
+    background_meshes_->upload(background_packed_);
+    program_->use();
+    draw_eye(Eye::kLeft, X_GHead, *background_meshes_, background_packed_);
+    draw_eye(Eye::kRight, X_GHead, *background_meshes_, background_packed_);
+    cost_.background_ns = now_ns() - frame_start_ns_;
+    return;
+  }
+  if (!background_valid_ || !same_pose(X_GHead, background_X_GHead_) ||
+      !same_records(background_packed_.records, background_records_)) {
+    redraw_background(X_GHead);
+  }
+  // the frame starts as a copy of the background: colour and depth, both eyes
+  const GLsizei w = 2 * config_.width_px, h = config_.height_px;
+  glCopyImageSubData(background_colour_, GL_RENDERBUFFER, 0, 0, 0, 0, frame_colour_,
+                     GL_RENDERBUFFER, 0, 0, 0, 0, w, h, 1);
+  glCopyImageSubData(background_depth_, GL_RENDERBUFFER, 0, 0, 0, 0, frame_depth_,
+                     GL_RENDERBUFFER, 0, 0, 0, 0, w, h, 1);
+  glBindFramebuffer(GL_FRAMEBUFFER, frame_framebuffer_);
+  cost_.background_ns = now_ns() - frame_start_ns_;
+}
+
+void StereoRenderer::redraw_background(const Eigen::Isometry3d& X_GHead) {
+  glBindFramebuffer(GL_FRAMEBUFFER, background_framebuffer_);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  background_meshes_->upload(background_packed_);
+  program_->use();
+  draw_eye(Eye::kLeft, X_GHead, *background_meshes_, background_packed_);
+  draw_eye(Eye::kRight, X_GHead, *background_meshes_, background_packed_);
+  glBindFramebuffer(GL_FRAMEBUFFER, frame_framebuffer_);
+  background_records_ = background_packed_.records;
+  background_X_GHead_ = X_GHead;
+  background_valid_ = true;
+  cost_.background_redrawn = true;
+  ++background_redraws_;
+}
+
+void StereoRenderer::draw_moving(std::span<const Instance> moving) {
+  const int64_t start_ns = now_ns();
+  pack_instances(moving, packed_);
+  meshes_->upload(packed_);
+  program_->use();
+  draw_eye(Eye::kLeft, X_GHead_, *meshes_, packed_);
+  draw_eye(Eye::kRight, X_GHead_, *meshes_, packed_);
+  cost_.moving_ns = now_ns() - start_ns;
+}
+
+void StereoRenderer::end_frame() {
+  const int64_t start_ns = now_ns();
+  // llvmpipe renders lazily: reading the pixels flushes, then copies them (top row first, as
+  // drawn upside down)
+  glReadPixels(0, 0, 2 * config_.width_px, config_.height_px, GL_RGBA, GL_UNSIGNED_BYTE,
+               pixels_.data());
+  while (glGetError() != GL_NO_ERROR)
+    ++gl_error_count_;
+  cost_.finish_ns = now_ns() - start_ns;
+}
+
+void StereoRenderer::draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead, const MeshBuffers& meshes,
+                              const PackedInstances& packed) {
   const int i = eye_index(eye);
   glViewport(i * config_.width_px, 0, config_.width_px, config_.height_px);
   const Eigen::Isometry3d X_GE = eye_pose(config_, eye, X_GHead);
   program_->set_view_projection(projection_[i] * view_matrix(X_GE));
   program_->set_eye_position(X_GE.translation().cast<float>());
   for (const UnitMesh mesh : kMeshes) {
-    const MeshRange& range = packed_.range(mesh);
-    meshes_->draw(mesh, range);
+    const MeshRange& range = packed.range(mesh);
+    meshes.draw(mesh, range);
     if (range.count > 0) ++last_draw_calls_;
   }
 }
 
-const uint8_t* StereoRenderer::pixels() const {
-  return context_->pixels();
-}
+const uint8_t* StereoRenderer::pixels() const { return pixels_.data(); }
 
 std::string StereoRenderer::gl_renderer() const {
   return context_->renderer();

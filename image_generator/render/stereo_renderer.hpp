@@ -4,6 +4,15 @@
 // and no throw after the first frames: instance buffers are reused and grow only with the
 // instance count, and each unit mesh is one instanced draw call per eye.
 //
+// Two layers, as VR compositors do: the fixed instances (Instance::fixed: the cockpit's shell,
+// most of the pixels) are drawn into an offscreen colour and depth image (both eyes) only when
+// they or the head pose change; every frame starts from a copy of it and draws only the moving
+// instances on top. The result equals a full redraw (the same depth test, the same shading).
+// A frame can also be made in three calls, so the moving instances are taken as late as
+// possible: begin_frame() restores the background, draw_moving() draws what moves (built from
+// the newest state just before), end_frame() waits for the pixels (llvmpipe rasterises lazily,
+// at the flush, so the moving data is used within a few ms of being taken).
+//
 // The OSMesa context is bound to the thread that calls the constructor and render(); a renderer
 // used from another thread rebinds it there (one thread at a time).
 
@@ -11,6 +20,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -38,6 +48,28 @@ class StereoRenderer {
 
   void render(const std::vector<Instance>& instances, const Eigen::Isometry3d& X_GHead);
 
+  // The frame in three steps (render() is the three). `fixed` are the fixed instances (their
+  // `fixed` flag is not looked at); the background is redrawn if they or the head differ from
+  // the last frame's, or when the cache is off.
+  void begin_frame(std::span<const Instance> fixed, const Eigen::Isometry3d& X_GHead);
+  void draw_moving(std::span<const Instance> moving);
+  void end_frame();
+
+  // Off: every frame draws everything (the fixed layer too), for comparison.
+  void set_background_cache(bool on) { cache_on_ = on; }
+  bool background_cache() const { return cache_on_; }
+
+  // What the last frame cost, by part (ns of wall time): restoring (or redrawing) the background,
+  // submitting the moving instances, and waiting for the rasteriser at the end.
+  struct FrameCost {
+    int64_t background_ns = 0;
+    int64_t moving_ns = 0;
+    int64_t finish_ns = 0;
+    bool background_redrawn = false;
+  };
+  const FrameCost& last_cost() const { return cost_; }
+  uint64_t background_redraws() const { return background_redraws_; }
+
   // The last frame: 2 * width_px() by height_px(), RGBA8, row 0 at the top. Valid until the
   // next render() or the renderer's destruction.
   const uint8_t* pixels() const;
@@ -53,14 +85,36 @@ class StereoRenderer {
   int last_draw_calls() const { return last_draw_calls_; }
 
  private:
-  void draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead);
+  void draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead, const MeshBuffers& meshes,
+                const PackedInstances& packed);
+  void redraw_background(const Eigen::Isometry3d& X_GHead);
 
   HmdConfig config_;
   std::array<Eigen::Matrix4f, 2> projection_;  // per eye, constant
   std::unique_ptr<GlContext> context_;         // declared first: destroyed last
   std::unique_ptr<LitProgram> program_;
-  std::unique_ptr<MeshBuffers> meshes_;
+  std::unique_ptr<MeshBuffers> meshes_;             // the moving layer's
+  std::unique_ptr<MeshBuffers> background_meshes_;  // the fixed layer's
   PackedInstances packed_;
+  PackedInstances background_packed_;
+  std::vector<Instance> split_;  // render(): the moving instances
+  std::vector<Instance> split_fixed_;
+  std::vector<uint8_t> pixels_;  // the last frame, read back
+  unsigned frame_framebuffer_ = 0;  // the frame being drawn: colour and depth of both eyes
+  unsigned frame_colour_ = 0;
+  unsigned frame_depth_ = 0;
+  // the cached background: colour and depth of both eyes, and what it shows
+  unsigned background_framebuffer_ = 0;
+  unsigned background_colour_ = 0;
+  unsigned background_depth_ = 0;
+  bool background_valid_ = false;
+  std::vector<InstanceRecord> background_records_;
+  Eigen::Isometry3d background_X_GHead_ = Eigen::Isometry3d::Identity();
+  bool cache_on_ = true;
+  Eigen::Isometry3d X_GHead_ = Eigen::Isometry3d::Identity();  // this frame's
+  FrameCost cost_;
+  int64_t frame_start_ns_ = 0;
+  uint64_t background_redraws_ = 0;
   uint64_t gl_error_count_ = 0;
   int last_draw_calls_ = 0;
 };

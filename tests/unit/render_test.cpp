@@ -272,7 +272,7 @@ TEST(HmdConfig, RejectsEachBadValue) {
 // ---------------------------------------------------------------------------------------------
 // CPU side of the draw: packing and unit meshes
 
-TEST(InstancePacking, CapsuleIsACylinderAndTwoRoundCaps) {
+TEST(InstancePacking, CapsuleIsACylinderAndTwoRoundCapsFacingOut) {
   const Eigen::Isometry3d X_GO =
       at(1.0, 0.5, 0.2) * Eigen::AngleAxisd(90 * kDeg, Eigen::Vector3d::UnitX());
   const std::vector<Instance> instances{
@@ -283,21 +283,25 @@ TEST(InstancePacking, CapsuleIsACylinderAndTwoRoundCaps) {
   pack_instances(instances, packed);
   ASSERT_EQ(packed.records.size(), 5u);
   EXPECT_EQ(packed.range(UnitMesh::kBox).count, 1);
-  EXPECT_EQ(packed.range(UnitMesh::kSphere).count, 3);
+  EXPECT_EQ(packed.range(UnitMesh::kSphere).count, 1);
   EXPECT_EQ(packed.range(UnitMesh::kCylinder).count, 1);
+  EXPECT_EQ(packed.range(UnitMesh::kCap).count, 2);
 
   const InstanceRecord& cylinder = packed.records[packed.range(UnitMesh::kCylinder).first];
   EXPECT_EQ(cylinder.scale_highlight, (std::array<float, 4>{0.02f, 0.02f, 0.10f, 1.0f}));
   EXPECT_EQ(cylinder.rgba, kYellow);
   std::vector<Eigen::Vector3d> cap_centres;
-  for (int i = 0; i < 3; ++i) {
-    const InstanceRecord& s = packed.records[packed.range(UnitMesh::kSphere).first + i];
-    if (s.rgba != kYellow) continue;
+  for (int i = 0; i < 2; ++i) {
+    const InstanceRecord& s = packed.records[packed.range(UnitMesh::kCap).first + i];
+    EXPECT_EQ(s.rgba, kYellow);
     EXPECT_EQ(s.scale_highlight, (std::array<float, 4>{0.02f, 0.02f, 0.02f, 1.0f}));
-    cap_centres.push_back(
-        Eigen::Map<const Eigen::Matrix4f>(s.X_GO.data()).col(3).head<3>().cast<double>());
+    const Eigen::Matrix4f X = Eigen::Map<const Eigen::Matrix4f>(s.X_GO.data());
+    const Eigen::Vector3d centre = X.col(3).head<3>().cast<double>();
+    cap_centres.push_back(centre);
+    // each hemisphere's dome (its +z) points away from the capsule's middle
+    const Eigen::Vector3d dome = X.col(2).head<3>().cast<double>();
+    EXPECT_GT(dome.dot(centre - Eigen::Vector3d(1.0, 0.5, 0.2)), 0.0) << "cap " << i;
   }
-  ASSERT_EQ(cap_centres.size(), 2u);
   // the capsule's z axis is world -y after the 90 deg roll
   for (const Eigen::Vector3d& c : cap_centres) {
     EXPECT_NEAR(std::abs(c.y() - 0.5), 0.05, 1e-6);
@@ -339,7 +343,12 @@ TEST(Meshes, UnitMeshesAreOutwardWoundAndUnitSized) {
   expect_outward(unit_box(), "box");
   expect_outward(unit_sphere(), "sphere");
   expect_outward(unit_cylinder(), "cylinder");
+  expect_outward(unit_hemisphere(), "hemisphere");
   EXPECT_EQ(unit_box().indices.size(), 36u);
+  for (const Vertex& v : unit_hemisphere().vertices) {
+    EXPECT_NEAR(Eigen::Vector3f(v.position.data()).norm(), 1.0f, 1e-5f);
+    EXPECT_GE(v.position[2], -1e-6f) << "the +z half only";
+  }
   for (const Vertex& v : unit_sphere().vertices) {
     EXPECT_NEAR(Eigen::Vector3f(v.position.data()).norm(), 1.0f, 1e-5f);
   }
@@ -526,7 +535,7 @@ TEST_F(RenderTest, EachPrimitiveRenders) {
       make(Primitive::kCylinder, at(1.0, 0.0, kHeadHeightM), {r_m, length_m, 0}, kBlue),
       make(Primitive::kCapsule, at(1.0, -0.25, kHeadHeightM), {r_m, length_m, 0}, kYellow)};
   renderer().render(scene, head_pose());
-  EXPECT_EQ(renderer().last_draw_calls(), 4) << "sphere and cylinder meshes, two eyes";
+  EXPECT_EQ(renderer().last_draw_calls(), 6) << "sphere, cylinder and cap meshes, two eyes";
   const Eigen::Vector3d past_end_G(0.0, 0.0, 0.5 * length_m + 0.5 * r_m);
   for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
     const Rgb sphere = pixel_at(renderer(), eye, projected(config(), eye, sphere_G));
@@ -614,7 +623,7 @@ TEST_F(RenderTest, TwoHundredInstancesInOneCall) {
   }
   ASSERT_EQ(scene.size(), 200u);
   renderer().render(scene, head_pose());
-  EXPECT_EQ(renderer().last_draw_calls(), 6);
+  EXPECT_EQ(renderer().last_draw_calls(), 8) << "box, sphere, cylinder and cap meshes, two eyes";
   EXPECT_EQ(renderer().gl_error_count(), 0u);
   int wrong = 0;
   for (size_t i = 0; i < scene.size(); ++i) {
@@ -702,6 +711,63 @@ TEST_F(RenderTest, SecondRendererHasItsOwnContext) {
   const Eigen::Vector2d c = projected(small, Eye::kRight, Eigen::Vector3d(1.0, 0.0, kHeadHeightM));
   EXPECT_TRUE(is_green(pixel_at(other, Eye::kRight, c)));
   EXPECT_TRUE(is_background(pixel_at(renderer(), Eye::kRight, 640, 360)));
+}
+
+// The background layer (stereo_renderer.hpp): a frame made from the cached background plus the
+// moving instances is the frame a full redraw makes, pixel for pixel (within one grey level),
+// also where moving and fixed instances cut into each other; the cache is redrawn when a fixed
+// instance or the head changes, and only then.
+TEST_F(RenderTest, CachedBackgroundFrameEqualsAFullRedraw) {
+  std::vector<Instance> scene;
+  auto fixed = [&](Primitive p, const Eigen::Isometry3d& X, const Eigen::Vector3d& size,
+                   const std::array<float, 4>& rgba) {
+    Instance in = make(p, X, size, rgba);
+    in.fixed = true;
+    scene.push_back(in);
+  };
+  fixed(Primitive::kBox, at(1.2, 0.0, kHeadHeightM - 0.3), {0.1, 1.5, 0.6}, {0.35f, 0.36f, 0.4f, 1});
+  fixed(Primitive::kBox, at(0.8, -0.3, kHeadHeightM - 0.25), {0.4, 0.3, 0.05}, {0.5f, 0.5f, 0.45f, 1});
+  fixed(Primitive::kCylinder, at(1.0, 0.25, kHeadHeightM - 0.1), {0.05, 0.4, 0}, kGreen);
+  const std::size_t fixed_count = scene.size();
+  auto with_moving = [&](double x) {
+    std::vector<Instance> all(scene.begin(), scene.begin() + static_cast<std::ptrdiff_t>(fixed_count));
+    // a sphere and a capsule pushed into the panel and the slab: depth against the cached depth
+    all.push_back(make(Primitive::kSphere, at(x, -0.1, kHeadHeightM - 0.2), {0.08, 0, 0}, kRed));
+    all.push_back(make(Primitive::kCapsule, at(x - 0.3, -0.3, kHeadHeightM - 0.22), {0.03, 0.2, 0},
+                       {0.85f, 0.66f, 0.55f, 1}));
+    return all;
+  };
+  StereoRenderer full(config());
+  full.set_background_cache(false);
+  const uint64_t redraws_before = renderer().background_redraws();
+  for (const double x : {1.1, 1.15, 1.2}) {
+    const std::vector<Instance> frame = with_moving(x);
+    renderer().render(frame, head_pose());
+    full.render(frame, head_pose());
+    const std::size_t bytes = static_cast<std::size_t>(2 * 1280 * 720 * 4);
+    int worst = 0;
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < bytes; ++i) {
+      const int d = std::abs(int{renderer().pixels()[i]} - int{full.pixels()[i]});
+      worst = std::max(worst, d);
+      if (d > 0) ++differing;
+    }
+    EXPECT_LE(worst, 1) << "at x " << x << ": " << differing << " bytes differ";
+    EXPECT_EQ(renderer().gl_error_count(), 0u);
+    EXPECT_EQ(full.gl_error_count(), 0u);
+  }
+  EXPECT_EQ(renderer().background_redraws(), redraws_before + 1) << "drawn once for three frames";
+  // a fixed instance changes colour (an annunciator lit): redrawn; the head moves: redrawn
+  std::vector<Instance> lit = with_moving(1.2);
+  lit[2].highlight = true;
+  renderer().render(lit, head_pose());
+  EXPECT_EQ(renderer().background_redraws(), redraws_before + 2);
+  EXPECT_TRUE(renderer().last_cost().background_redrawn);
+  renderer().render(lit, head_pose() * Eigen::Translation3d(0, 0.01, 0));
+  EXPECT_EQ(renderer().background_redraws(), redraws_before + 3);
+  renderer().render(lit, head_pose() * Eigen::Translation3d(0, 0.01, 0));
+  EXPECT_EQ(renderer().background_redraws(), redraws_before + 3);
+  EXPECT_FALSE(renderer().last_cost().background_redrawn);
 }
 
 TEST(StereoRenderer, RejectsABadConfig) {
