@@ -140,9 +140,17 @@ def main():
     rt = load(out_dir, "physics_rt.json")
     ig = load(out_dir, "ig.json")
     ig_video = load(out_dir, "ig_video.json")
+    ig_nocache = load(out_dir, "ig_nocache.json")
+    tips = {case: load(out_dir, f"tip_{case}.json")
+            for case in ("bundled", "typical", "harsh", "real_leap")}
     video = ig_video.get("video", {})
     fps_drop = 100.0 * (1.0 - ig_video["fps"] / ig["fps"]) if ig["fps"] > 0 else 0.0
     rig = load(out_dir, "rig/summary.json")
+    rig_fps = rig["frames_rendered"] / rig["wall_s"] if rig.get("wall_s") else 0.0
+    rig_novideo = load(out_dir, "rig_novideo/summary.json")
+    rig_novideo_fps = (rig_novideo["frames_rendered"] / rig_novideo["wall_s"]
+                       if rig_novideo.get("wall_s") else 0.0)
+    rig_drop = 100.0 * (1.0 - rig_fps / rig_novideo_fps) if rig_novideo_fps > 0 else 0.0
     offline = load(out_dir, "offline/summary.json")
     rows, fk = physics_rows(gbench)
     follow = input_rows(out_dir)
@@ -167,11 +175,12 @@ def main():
          "measured": f"{transit['p99']:.0f} us vs floor {floor_transit['p99']:.0f} us "
                      f"({transit['p99'] / max(floor_transit['p99'], 1e-9):.2f}x)",
          "met": transit["p99"] <= 2.0 * floor_transit["p99"]},
-        {"target": "stereo 1280x720 per eye at 60 fps or better",
-         "measured": f"{ig['fps']:.1f} fps", "met": ig["fps"] >= 60.0},
-        {"target": "recording the video costs under 5 % of the frame rate",
-         "measured": f"{ig['fps']:.1f} -> {ig_video['fps']:.1f} fps ({fps_drop:+.1f} % drop)",
-         "met": fps_drop < 5.0},
+        {"target": "stereo 1280x720 per eye at 90 fps or better (physics and glove at 1 kHz)",
+         "measured": f"{ig['fps']:.1f} fps", "met": ig["fps"] >= 90.0},
+        {"target": "the default rig's frame rate drops under 5 % with its video recorded",
+         "measured": f"{rig_novideo_fps:.1f} -> {rig_fps:.1f} fps ({rig_drop:+.1f} %); unpaced, "
+                     f"{ig['fps']:.1f} -> {ig_video['fps']:.1f} fps ({fps_drop:+.1f} %)",
+         "met": rig_drop < 5.0},
         {"target": "glove-to-frame latency p99 under 20 ms",
          "measured": f"p99 {e2e['p99']:.1f} ms", "met": e2e["p99"] < 20.0},
         {"target": "offline runner at 50x real time or better",
@@ -189,6 +198,8 @@ def main():
                                                   "step_compute_us")},
         "image_generator": ig,
         "image_generator_recording_video": ig_video,
+        "image_generator_without_background_cache": ig_nocache,
+        "fingertip_error_at_frame_end": tips,
         "end_to_end": {"glove_to_frame_latency_ms": e2e,
                        "parts_ms": rig.get("latency_parts_ms"),
                        "frames_rendered": rig.get("frames_rendered")},
@@ -272,6 +283,16 @@ def main():
               f"(llvmpipe), unpaced, physics and glove running at 1 kHz on the same cores: "
               f"{ig['frames']} frames in {ig['wall_s']:.2f} s = **{ig['fps']:.1f} fps**; render "
               f"p50 {ig['render_ms']['p50']:.1f} ms, p99 {ig['render_ms']['p99']:.1f} ms.\n")
+    parts = ig.get("frame_parts_ms", {})
+    md.append(f"Each frame's parts (p50, ms): background restored "
+              f"{parts.get('background', {}).get('p50', 0):.2f}, newest state latched "
+              f"{parts.get('latch', {}).get('p50', 0):.2f}, moving layer submitted "
+              f"{parts.get('moving', {}).get('p50', 0):.2f}, rasterised and read back "
+              f"{parts.get('finish', {}).get('p50', 0):.2f}; the static cockpit drawn "
+              f"{ig.get('background_redraws', 0)} time(s). Drawing the whole cockpit every frame "
+              f"instead (`--no-background-cache`, as before the cache): "
+              f"**{ig_nocache['fps']:.1f} fps**, render p50 "
+              f"{ig_nocache['render_ms']['p50']:.1f} ms.\n")
     md.append(f"The same, recording the run's video ({video.get('width_px')}x"
               f"{video.get('height_px')} H.264 at {video.get('fps')} fps): "
               f"**{ig_video['fps']:.1f} fps** ({fps_drop:.1f} % fewer); render p50 "
@@ -279,9 +300,26 @@ def main():
               f"{video.get('video_frames')} video frames ({video.get('repeated')} repeated), "
               f"{video.get('frames_dropped')} of {video.get('frames_submitted')} rendered frames "
               f"left out because the encoder, on idle CPU time only, was behind.\n")
+    md.append("## The drawn fingertip against the glove at frame end\n")
+    md.append("Real time (rate 1): the physics at 1 kHz, frames at the HMD's 90 Hz; for each "
+              "frame the tracked index fingertip drawn, as received and as predicted for the "
+              "frame's end (`--predict-hand`), against the glove log's at that moment "
+              "(`bench/fingertip_error`).\n")
+    md.append("| log | frames | without prediction p50 / p99 (mm) | with prediction p50 / p99 (mm) "
+              "| horizon p50 (ms) |")
+    md.append("|---|---|---|---|---|")
+    names = {"bundled": "bundled grasp", "typical": "degraded: typical (60 Hz, jitter, noise, "
+             "dropouts)", "harsh": "degraded: harsh (30 Hz, gaps, ...)",
+             "real_leap": "real Leap Motion recording"}
+    for case, t in tips.items():
+        a, b = t["without_prediction_mm"], t["with_prediction_mm"]
+        md.append(f"| {names[case]} | {t['frames']} | {a['p50']:.1f} / {a['p99']:.1f} | "
+                  f"{b['p50']:.1f} / {b['p99']:.1f} | {t['horizon_ms']['p50']:.1f} |")
+    md.append("")
     md.append("## End to end: glove sample -> rendered frame\n")
     parts = rig.get("latency_parts_ms") or {}
-    md.append(f"The default rig (`config/rig.yaml`: lockstep replay, frames paced at 60 fps), "
+    md.append(f"The default rig (`config/rig.yaml`: lockstep replay, frames paced at the HMD's "
+              f"90 Hz, hands predicted to the frame's end), "
               f"{e2e['samples']} hand samples drawn: p50 {e2e['p50']:.1f} ms, p99 {e2e['p99']:.1f} "
               f"ms, max {e2e['max']:.1f} ms. Of which: the sample's age when the frame began "
               f"p50 {parts.get('age_at_render_start_p50', 0):.1f} ms (p99 "

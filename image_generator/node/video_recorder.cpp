@@ -165,8 +165,20 @@ VideoRecorder::~VideoRecorder() {
 
 bool VideoRecorder::submit(const uint8_t* side_by_side_rgba, int64_t frame_end_ns,
                            int64_t sim_time_ns) {
+  // the frame's place on the video's timeline; a frame in the same video frame as the last one
+  // taken is not copied at all (rendering faster than the video's rate)
+  if (!have_submit_t0_) {
+    submit_t0_ns_ = frame_end_ns;
+    have_submit_t0_ = true;
+  }
+  const int64_t index =
+      std::llround(static_cast<double>(frame_end_ns - submit_t0_ns_) * options_.fps / 1e9);
   std::unique_lock<std::mutex> lock(mutex_);
   ++submitted_;
+  if (side_by_side_rgba && index <= last_submitted_index_) {
+    ++skipped_;
+    return true;
+  }
   if (!side_by_side_rgba || stopping_ || write_failed_ || head_ - tail_ >= slots_.size()) {
     ++dropped_;
     return false;
@@ -182,7 +194,9 @@ bool VideoRecorder::submit(const uint8_t* side_by_side_rgba, int64_t frame_end_n
   }
   slot.frame_end_ns = frame_end_ns;
   slot.sim_time_ns = sim_time_ns;
+  slot.index = index;
   lock.lock();
+  last_submitted_index_ = index;
   if (stopping_) {  // finish() began during the copy: the worker may be gone
     ++dropped_;
     return false;
@@ -280,12 +294,7 @@ void VideoRecorder::work() {
 }
 
 void VideoRecorder::encode(const Slot& slot) {
-  if (!have_t0_) {
-    t0_ns_ = slot.frame_end_ns;
-    have_t0_ = true;
-  }
-  const int64_t index =
-      std::llround(static_cast<double>(slot.frame_end_ns - t0_ns_) * options_.fps / 1e9);
+  const int64_t index = slot.index;
   if (index <= last_index_) {
     ++skipped_;
     return;

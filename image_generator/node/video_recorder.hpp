@@ -48,7 +48,8 @@ class VideoRecorder {
   VideoRecorder& operator=(const VideoRecorder&) = delete;
 
   // Render thread (one thread submits): copies the view's region of the side-by-side RGBA8
-  // frame (2 * eye_width by height) into a free slot and returns true; false (counted as
+  // frame (2 * eye_width by height) into a free slot and returns true; a frame in the same video
+  // frame as the last one taken is skipped without a copy (counted, true); false (counted as
   // dropped) when every slot is busy, ffmpeg has failed or finish() has begun. Never blocks on
   // the encoder. frame_end_ns: monotonic time the frame was finished (its place on the
   // timeline); sim_time_ns: burned into the top-left corner ("sim 12.345 s").
@@ -75,6 +76,7 @@ class VideoRecorder {
     std::vector<uint8_t> rgba;  // the view's region, full size
     int64_t frame_end_ns = 0;
     int64_t sim_time_ns = 0;
+    int64_t index = 0;  // its video frame
   };
   void work();
   std::string start_ffmpeg();  // on the worker; "" or why not
@@ -112,11 +114,13 @@ class VideoRecorder {
   std::atomic<uint64_t> repeated_{0};
   std::atomic<uint64_t> skipped_{0};
 
+  // the submitting thread's: the timeline's start, the last video frame taken (under mutex_)
+  bool have_submit_t0_ = false;
+  int64_t submit_t0_ns_ = 0;
+  int64_t last_submitted_index_ = -1;
   // worker only (read by finish() after the join)
   pid_t pid_ = -1;
   int pipe_fd_ = -1;
-  bool have_t0_ = false;
-  int64_t t0_ns_ = 0;
   int64_t last_index_ = -1;
   std::vector<uint8_t> scaled_;
   std::vector<uint8_t> rgb_;

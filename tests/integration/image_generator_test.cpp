@@ -5,6 +5,7 @@
 // missing topics or a bad HMD config are clear errors with their own exit codes.
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 #include <thread>
@@ -31,6 +32,7 @@ fov_deg:
   left_eye:  {left: -52, right: 45, up: 42, down: -48}
   right_eye: {left: -45, right: 52, up: 42, down: -48}
 head: {position: [0.0, 0.0, 1.0], rpy_deg: [0, 0, 0]}
+refresh_hz: 40
 )";
 
 struct Box {
@@ -175,6 +177,42 @@ TEST_F(ImageGeneratorTest, FrameInfoArrivesForEveryFrameWithConsistentStamps) {
     }
   }
   EXPECT_EQ(seen.frames.back().source_stamp_ns, kHandStamp) << "the hand data drawn";
+}
+
+// Pacing: frames at the HMD's refresh_hz by default, none late when the renderer keeps up; at a
+// rate it cannot keep, late frames and missed display slots are counted and the frames are not
+// bunched to catch up (the rate stays what the renderer can do). The static boxes are drawn
+// into the background once.
+TEST_F(ImageGeneratorTest, FramesArePacedToTheDisplayAndLateOnesAreCounted) {
+  ChildProcess scene = start("test_scene_pub", {"--box", "1,0,0,1,0,1,0.1", "--box", "0,1,0,1.5,0.3,1,0.2"},
+                             "scene.log");
+  auto run = [&](std::vector<std::string> args, const std::string& name) {
+    args.insert(args.end(), {"--hmd", dir_ + "/hmd.yaml", "--frames", "60", "--stats-out",
+                             dir_ + "/" + name + ".json"});
+    ChildProcess ig = start("image_generator", args, name + ".log");
+    EXPECT_EQ(ig.wait(60 * kSecond), 0) << text(name + ".log");
+    return nlohmann::json::parse(text(name + ".json"), nullptr, false);
+  };
+  const auto paced = run({}, "paced");
+  ASSERT_TRUE(paced.is_object()) << text("paced.log");
+  EXPECT_EQ(paced["paced_fps"], 40.0) << "hmd.yaml's refresh_hz";
+  // 60 frames over 59 slots and one render: just above 40
+  EXPECT_LE(paced["fps"].get<double>(), 41.0);
+  if (!sanitized()) {
+    EXPECT_GT(paced["fps"].get<double>(), 36.0);
+    EXPECT_EQ(paced["late_frames"], 0) << text("paced.log");
+  }
+  EXPECT_EQ(paced["background_redraws"], 1) << "the boxes do not move";
+  const auto too_fast = run({"--fps", "5000"}, "too_fast");
+  ASSERT_TRUE(too_fast.is_object()) << text("too_fast.log");
+  EXPECT_GT(too_fast["late_frames"].get<int>(), 30) << "a 0.2 ms slot is missed by nearly all";
+  EXPECT_GE(too_fast["missed_slots"].get<int>(), too_fast["late_frames"].get<int>());
+  const auto unpaced = run({"--fps", "0"}, "unpaced");
+  ASSERT_TRUE(unpaced.is_object());
+  EXPECT_EQ(unpaced["late_frames"], 0) << "no slots, none late";
+  EXPECT_LE(too_fast["fps"].get<double>(), 1.2 * unpaced["fps"].get<double>())
+      << "late frames are not bunched to catch up";
+  EXPECT_EQ(scene.stop(), 0);
 }
 
 TEST_F(ImageGeneratorTest, NoSceneAndBadHmdConfigAreClearErrors) {
