@@ -36,6 +36,7 @@ struct Flags {
   std::optional<double> rate_hz;
   bool loop = false;
   bool hold_at_end = false;
+  int64_t start_at_ns = 0;
   double start_offset_s = 0.0;
   bool lockstep = false;
   int subscribers = 1;
@@ -76,6 +77,11 @@ void add_flags(CLI::App& app, Flags& f) {
   app.add_option("--rate-hz", f.rate_hz, "synthetic samples per second (default: the script's)")
       ->check(CLI::Range(1.0, 100000.0));
   app.add_flag("--loop", f.loop, "replay: start over at the end (time keeps increasing)");
+  app.add_option("--start-at-ns", f.start_at_ns,
+                 "publish the first sample at this CLOCK_MONOTONIC time (ns), not before: glove "
+                 "drivers started together begin together however long each takes to match its "
+                 "reader (rig_launcher's {start_at_ns})")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--hold-at-end", f.hold_at_end,
                "at the end of the samples, wait (until Ctrl-C) for an instructor's restart on "
                "cockpit/sim_command instead of exiting");
@@ -105,11 +111,12 @@ void add_flags(CLI::App& app, Flags& f) {
 }
 
 int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Source& source,
-                  const PublisherOptions& options, bool hold_at_end) {
+                  const PublisherOptions& options, bool hold_at_end, int64_t start_at_ns) {
   SamplePublisher publisher(participant, hand, options);
   publisher.add_load_counts(source.load_counts());
   ReplayCommands commands(participant, options.node_name);
   if (!publisher.wait_for_subscribers()) return shutdown_requested() ? 0 : 1;
+  if (start_at_ns > monotonic_now_ns()) sleep_until_ns(start_at_ns);
   TerminalProgress progress;
   const int64_t run_start_ns = monotonic_now_ns();
   int64_t start_ns = run_start_ns;  // wall time of the timeline's 0 (moved by a restart)
@@ -199,7 +206,7 @@ int run(const Flags& f) {
   options.subscribers = f.subscribers;
   options.match_timeout_s = f.match_timeout_s;
   options.max_gap_ns = std::llround(f.max_gap_s * 1e9);
-  return run_publisher(participant, hand, *source, options, f.hold_at_end);
+  return run_publisher(participant, hand, *source, options, f.hold_at_end, f.start_at_ns);
 }
 
 }  // namespace

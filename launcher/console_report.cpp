@@ -29,7 +29,7 @@ void print_console_report(const RunSummary& s) {
               static_cast<unsigned long long>(s.late_steps));
   std::printf("  glove->frame latency p50 %.1f ms, p99 %.1f ms, max %.1f ms (%zu samples)\n",
               s.latency_p50_ms, s.latency_p99_ms, s.latency_max_ms, s.latency_samples);
-  std::printf("    of which: sample age at render start p50 %.1f ms, render p50 %.1f ms\n",
+  std::printf("    of which: sample age when latched p50 %.1f ms, latch to frame end p50 %.1f ms\n",
               s.age_at_render_start_p50_ms, s.render_p50_ms);
   std::printf("  summary              %s/summary.json, logs %s/logs/\n", s.out_dir.c_str(),
               s.out_dir.c_str());

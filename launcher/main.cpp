@@ -32,6 +32,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The glove drivers begin this long after the launch: room for every node to start and match
+// (Fast DDS's first handshake takes up to a second now and then).
+constexpr int64_t kGloveStartMargin_ns = 3'000'000'000;
+
 struct Options {
   std::string rig_path;
   std::vector<std::string> log_paths;  // one per hand; empty: the rig file's
@@ -47,6 +51,7 @@ struct Options {
 int run(RigConfig rig, const Options& options) {
   if (!options.participant.empty()) rig.participant_profile = options.participant;
   if (options.ui) rig.ui_port = options.ui_port;
+  rig.start_at_ns = monotonic_now_ns() + kGloveStartMargin_ns;
   if (!options.pki_dir.empty()) {
     if (!fs::is_directory(options.pki_dir))
       throw std::runtime_error("--pki: not a directory: " + options.pki_dir);

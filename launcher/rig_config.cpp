@@ -77,7 +77,8 @@ std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& r
                                      {"{hands}", rig.left_log_path.empty() ? "right" : "right,left"},
                                      {"{out}", out_dir},
                                      {"{config}", rig.config_dir},
-                                     {"{ui_port}", std::to_string(rig.ui_port)}}) {
+                                     {"{ui_port}", std::to_string(rig.ui_port)},
+                                     {"{start_at_ns}", std::to_string(rig.start_at_ns)}}) {
       for (std::size_t at = arg.find(key); at != std::string::npos; at = arg.find(key, at)) {
         arg.replace(at, key.size(), value);
         at += value.size();

@@ -2,6 +2,7 @@
 // config/rig.yaml: which nodes the launcher starts, how, and what happens when one ends.
 // Every bad value is a ConfigError naming file, line and key.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,10 @@ struct RigConfig {
   std::string log_path;       // {log}: the right hand's glove log
   std::string left_log_path;  // {left_log}: the left hand's, or empty (no left glove driver)
   int ui_port = 0;            // {ui_port}: the instructor station's page; 0: no station
+  // {start_at_ns}: CLOCK_MONOTONIC time a few seconds after the launch, when the glove drivers
+  // begin together (a lockstep world waits for every hand: one that began later would hold the
+  // other's samples back for the whole run)
+  int64_t start_at_ns = 0;
   std::vector<NodeSpec> nodes;
 };
 

@@ -414,7 +414,7 @@ int ImageGenerator::run() {
     frame_.render_start_ns(latch_ns);  // the hand data drawn was taken here
     frame_.render_end_ns(end_ns);
     frame_writer_.write(frame_);
-    if (video_) video_->submit(renderer->pixels(), end_ns, cache_.newest_sim_time_ns());
+    if (video_) video_->submit(renderer->shared_pixels(), end_ns, cache_.newest_sim_time_ns());
     if (preview_) preview_->offer(renderer->pixels(), frames_, cache_.newest_sim_time_ns(), end_ns);
     if (snapshots_ && frames_ % static_cast<uint64_t>(options_.snapshot_every) == 0 &&
         snapshots_->submit(frames_, renderer->pixels())) {

@@ -165,6 +165,25 @@ VideoRecorder::~VideoRecorder() {
 
 bool VideoRecorder::submit(const uint8_t* side_by_side_rgba, int64_t frame_end_ns,
                            int64_t sim_time_ns) {
+  return submit_frame(side_by_side_rgba, nullptr, frame_end_ns, sim_time_ns);
+}
+
+bool VideoRecorder::submit(SharedFrame side_by_side_rgba, int64_t frame_end_ns, int64_t sim_time_ns) {
+  const uint8_t* pixels = side_by_side_rgba ? side_by_side_rgba->data() : nullptr;
+  return submit_frame(pixels, std::move(side_by_side_rgba), frame_end_ns, sim_time_ns);
+}
+
+void VideoRecorder::cut_view(const uint8_t* side_by_side_rgba, Slot& slot) const {
+  if (options_.view == VideoView::kLeftEye) {
+    render::copy_eye(side_by_side_rgba, eye_width_px_, source_height_px_, render::Eye::kLeft,
+                     slot.rgba);
+  } else {
+    std::memcpy(slot.rgba.data(), side_by_side_rgba, slot.rgba.size());
+  }
+}
+
+bool VideoRecorder::submit_frame(const uint8_t* side_by_side_rgba, SharedFrame frame,
+                                 int64_t frame_end_ns, int64_t sim_time_ns) {
   // the frame's place on the video's timeline; a frame in the same video frame as the last one
   // taken is not copied at all (rendering faster than the video's rate)
   if (!have_submit_t0_) {
@@ -186,11 +205,10 @@ bool VideoRecorder::submit(const uint8_t* side_by_side_rgba, int64_t frame_end_n
   // the worker never touches the slot at head_ until head_ moves past it, so copy unlocked
   Slot& slot = slots_[head_ % slots_.size()];
   lock.unlock();
-  if (options_.view == VideoView::kLeftEye) {
-    render::copy_eye(side_by_side_rgba, eye_width_px_, source_height_px_, render::Eye::kLeft,
-                     slot.rgba);
+  if (frame) {
+    slot.frame = std::move(frame);  // cut by the worker
   } else {
-    std::memcpy(slot.rgba.data(), side_by_side_rgba, slot.rgba.size());
+    cut_view(side_by_side_rgba, slot);
   }
   slot.frame_end_ns = frame_end_ns;
   slot.sim_time_ns = sim_time_ns;
@@ -198,6 +216,7 @@ bool VideoRecorder::submit(const uint8_t* side_by_side_rgba, int64_t frame_end_n
   lock.lock();
   last_submitted_index_ = index;
   if (stopping_) {  // finish() began during the copy: the worker may be gone
+    slot.frame.reset();
     ++dropped_;
     return false;
   }
@@ -284,10 +303,11 @@ void VideoRecorder::work() {
   while (true) {
     wake_.wait(lock, [this] { return head_ != tail_ || stopping_; });
     if (head_ == tail_) return;  // stopping, and everything queued is written
-    const Slot& slot = slots_[tail_ % slots_.size()];
+    Slot& slot = slots_[tail_ % slots_.size()];
     const bool writing = !write_failed_;
     lock.unlock();
     if (writing) encode(slot);  // after a failure the queue just drains
+    slot.frame.reset();  // a frame handed over whole: the renderer may read into it again
     lock.lock();
     ++tail_;
   }
@@ -305,23 +325,27 @@ void VideoRecorder::encode(const Slot& slot) {
     ++repeated_;
     ++video_frames_;
   }
-  convert(slot);
+  if (slot.frame) {  // the view straight from the frame it is in: no copy of it first
+    convert(slot.frame->data(), 2 * eye_width_px_, slot.sim_time_ns);
+  } else {
+    convert(slot.rgba.data(), source_width_px_, slot.sim_time_ns);
+  }
   if (!write_rgb()) return;
   last_index_ = index;
   ++video_frames_;
 }
 
-void VideoRecorder::convert(const Slot& slot) {
-  const uint8_t* rgba = slot.rgba.data();
-  int rgba_width = source_width_px_;
+void VideoRecorder::convert(const uint8_t* rgba, int stride_px, int64_t sim_time_ns) {
+  int rgba_width = stride_px;
   if (options_.scale_down > 1) {
-    render::downscale_rgba(rgba, source_width_px_, source_height_px_, options_.scale_down, scaled_);
+    render::downscale_rgba(rgba, source_width_px_, source_height_px_, options_.scale_down, scaled_,
+                           stride_px);
     rgba = scaled_.data();
     rgba_width = source_width_px_ / options_.scale_down;
   }
   render::rgba_to_rgb(rgba, rgba_width, width_px_, height_px_, rgb_.data());
   char label[48];
-  std::snprintf(label, sizeof label, "sim %.3f s", static_cast<double>(slot.sim_time_ns) * 1e-9);
+  std::snprintf(label, sizeof label, "sim %.3f s", static_cast<double>(sim_time_ns) * 1e-9);
   render::draw_text(rgb_.data(), width_px_, height_px_, 3, label_scale_, label_scale_, label_scale_,
                     label);
 }

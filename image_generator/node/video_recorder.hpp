@@ -17,6 +17,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -54,6 +55,11 @@ class VideoRecorder {
   // the encoder. frame_end_ns: monotonic time the frame was finished (its place on the
   // timeline); sim_time_ns: burned into the top-left corner ("sim 12.345 s").
   bool submit(const uint8_t* side_by_side_rgba, int64_t frame_end_ns, int64_t sim_time_ns);
+  // The same without the copy on the render thread: the slot keeps the frame's buffer (the
+  // renderer reads its next frames into others, stereo_renderer.hpp) and the encoder thread cuts
+  // the view out of it and lets it go.
+  using SharedFrame = std::shared_ptr<const std::vector<uint8_t>>;
+  bool submit(SharedFrame side_by_side_rgba, int64_t frame_end_ns, int64_t sim_time_ns);
 
   // Encodes what is queued, closes ffmpeg's input and waits for it to write the file. On success
   // renames path.partial to path and returns true. On failure (or when no frame was recorded)
@@ -74,14 +80,19 @@ class VideoRecorder {
  private:
   struct Slot {
     std::vector<uint8_t> rgba;  // the view's region, full size
+    SharedFrame frame;          // or the whole frame, the region still to be cut (worker)
     int64_t frame_end_ns = 0;
     int64_t sim_time_ns = 0;
     int64_t index = 0;  // its video frame
   };
   void work();
+  bool submit_frame(const uint8_t* side_by_side_rgba, SharedFrame frame, int64_t frame_end_ns,
+                    int64_t sim_time_ns);
+  void cut_view(const uint8_t* side_by_side_rgba, Slot& slot) const;
   std::string start_ffmpeg();  // on the worker; "" or why not
   void encode(const Slot& slot);
-  void convert(const Slot& slot);  // slot -> rgb_ (scaled, cropped, labelled)
+  // the view's pixels (stride_px from row to row) -> rgb_ (scaled, cropped, labelled)
+  void convert(const uint8_t* rgba, int stride_px, int64_t sim_time_ns);
   bool write_rgb();
   void fail_writing(const std::string& why);
   std::string finish_error(const std::string& why, int status) const;

@@ -6,19 +6,25 @@
 
 namespace vcockpit::render {
 
+// src_stride_px: pixels from one source row to the next (0: src_w), so one eye of a
+// side-by-side frame is scaled where it is, without cutting it out first.
 void downscale_rgba(const uint8_t* src, int src_w, int src_h, int factor,
-                    std::vector<uint8_t>& out) {
+                    std::vector<uint8_t>& out, int src_stride_px) {
   if (factor < 1) throw std::invalid_argument("downscale_rgba: factor must be >= 1");
   const int out_w = src_w / factor;
   const int out_h = src_h / factor;
   if (!src || out_w <= 0 || out_h <= 0) {
     throw std::invalid_argument("downscale_rgba: image smaller than the factor");
   }
-  const std::size_t src_row = static_cast<std::size_t>(src_w) * 4;
+  if (src_stride_px != 0 && src_stride_px < src_w)
+    throw std::invalid_argument("downscale_rgba: a row stride shorter than the row");
+  const std::size_t src_row = static_cast<std::size_t>(src_stride_px != 0 ? src_stride_px : src_w) * 4;
   const std::size_t out_row = static_cast<std::size_t>(out_w) * 4;
   out.resize(out_row * static_cast<std::size_t>(out_h));
   if (factor == 1) {
-    std::memcpy(out.data(), src, out.size());
+    for (int y = 0; y < out_h; ++y)
+      std::memcpy(out.data() + static_cast<std::size_t>(y) * out_row,
+                  src + static_cast<std::size_t>(y) * src_row, out_row);
     return;
   }
   const unsigned area = static_cast<unsigned>(factor * factor);

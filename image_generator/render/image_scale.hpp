@@ -12,7 +12,7 @@ namespace vcockpit::render {
 // rows left over at the right and bottom edges are dropped. No allocation once out is big
 // enough. factor 1 copies. Throws std::invalid_argument for a factor < 1 or an empty result.
 void downscale_rgba(const uint8_t* src, int src_w, int src_h, int factor,
-                    std::vector<uint8_t>& out);
+                    std::vector<uint8_t>& out, int src_stride_px = 0);
 
 // The top-left width x height of an RGBA8 image src_w pixels wide, as packed RGB8 into rgb
 // (width * height * 3 bytes, preallocated by the caller); alpha is dropped.

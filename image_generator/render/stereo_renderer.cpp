@@ -83,7 +83,8 @@ StereoRenderer::StereoRenderer(const HmdConfig& config) : config_(config) {
   program_ = std::make_unique<LitProgram>();
   meshes_ = std::make_unique<MeshBuffers>();
   background_meshes_ = std::make_unique<MeshBuffers>();
-  pixels_.assign(static_cast<std::size_t>(2 * config_.width_px) * config_.height_px * 4, 0);
+  frames_.push_back(std::make_shared<std::vector<uint8_t>>(
+      static_cast<std::size_t>(2 * config_.width_px) * config_.height_px * 4, 0));
   // the frame and the background layer, both eyes side by side; the same formats, so the
   // background is restored by copying images (a memcpy in llvmpipe; a blit of the depth was
   // a shader pass costing 9 ms a frame here)
@@ -182,8 +183,15 @@ void StereoRenderer::end_frame() {
   const int64_t start_ns = now_ns();
   // llvmpipe renders lazily: reading the pixels flushes, then copies them (top row first, as
   // drawn upside down)
+  // into a buffer nobody else holds (a frame kept by the video encoder stays whole)
+  std::size_t free = frames_.size();
+  for (std::size_t i = 0; i < frames_.size() && free == frames_.size(); ++i)
+    if (frames_[i].use_count() == 1) free = i;
+  if (free == frames_.size())
+    frames_.push_back(std::make_shared<std::vector<uint8_t>>(frames_.front()->size(), 0));
+  current_ = free;
   glReadPixels(0, 0, 2 * config_.width_px, config_.height_px, GL_RGBA, GL_UNSIGNED_BYTE,
-               pixels_.data());
+               frames_[current_]->data());
   while (glGetError() != GL_NO_ERROR)
     ++gl_error_count_;
   cost_.finish_ns = now_ns() - start_ns;
@@ -203,7 +211,7 @@ void StereoRenderer::draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead, const M
   }
 }
 
-const uint8_t* StereoRenderer::pixels() const { return pixels_.data(); }
+const uint8_t* StereoRenderer::pixels() const { return frames_[current_]->data(); }
 
 std::string StereoRenderer::gl_renderer() const {
   return context_->renderer();

@@ -73,6 +73,10 @@ class StereoRenderer {
   // The last frame: 2 * width_px() by height_px(), RGBA8, row 0 at the top. Valid until the
   // next render() or the renderer's destruction.
   const uint8_t* pixels() const;
+  // The same frame as a buffer a consumer may keep (a video encoder's queue): the renderer reads
+  // later frames into other buffers while one is held (a small pool, grown only when every
+  // buffer is held).
+  std::shared_ptr<const std::vector<uint8_t>> shared_pixels() const { return frames_[current_]; }
   int width_px() const { return config_.width_px; }  // per eye
   int height_px() const { return config_.height_px; }
   const HmdConfig& config() const { return config_; }
@@ -99,7 +103,8 @@ class StereoRenderer {
   PackedInstances background_packed_;
   std::vector<Instance> split_;  // render(): the moving instances
   std::vector<Instance> split_fixed_;
-  std::vector<uint8_t> pixels_;  // the last frame, read back
+  std::vector<std::shared_ptr<std::vector<uint8_t>>> frames_;  // read-back buffers
+  std::size_t current_ = 0;                                   // the last frame's
   unsigned frame_framebuffer_ = 0;  // the frame being drawn: colour and depth of both eyes
   unsigned frame_colour_ = 0;
   unsigned frame_depth_ = 0;

@@ -770,6 +770,24 @@ TEST_F(RenderTest, CachedBackgroundFrameEqualsAFullRedraw) {
   EXPECT_FALSE(renderer().last_cost().background_redrawn);
 }
 
+// A frame a consumer keeps (shared_pixels) stays as it was while the renderer goes on: later
+// frames are read into other buffers; once let go, its buffer is used again.
+TEST_F(RenderTest, AHeldFrameIsNotOverwritten) {
+  renderer().render({make(Primitive::kBox, at(1.0, 0.0, kHeadHeightM), {0.1, 0.1, 0.1}, kRed)},
+                    head_pose());
+  auto held = renderer().shared_pixels();
+  const std::vector<uint8_t> copy = *held;
+  renderer().render({}, head_pose());
+  EXPECT_NE(renderer().pixels(), held->data()) << "the next frame went elsewhere";
+  EXPECT_TRUE(*held == copy) << "the held frame is unchanged";
+  EXPECT_TRUE(is_background(pixel_at(renderer(), Eye::kLeft, 640, 360)));
+  const uint8_t* buffer = held->data();
+  held.reset();
+  renderer().render({}, head_pose());
+  renderer().render({}, head_pose());
+  EXPECT_EQ(renderer().pixels(), buffer) << "let go, it is used again (the pool does not grow)";
+}
+
 TEST(StereoRenderer, RejectsABadConfig) {
   HmdConfig config;
   config.ipd_m = 0.5;

@@ -293,6 +293,27 @@ TEST(VideoRecorder, OneVideoFramePerDisplayPeriod) {
   EXPECT_EQ(p.rate, "60/1");
 }
 
+// A shared frame is not copied on the submitting thread: the slot keeps the buffer until the
+// encoder has cut its view, then lets it go; the video is the same as from copies.
+TEST(VideoRecorder, SharedFramesAreKeptUntilEncodedThenLetGo) {
+  SKIP_WITHOUT_FFMPEG();
+  Recording r = recording("shared.mp4");
+  const int n = 12;
+  r.options.queue_frames = n;
+  VideoRecorder video(r.options, 96, 64);
+  std::vector<VideoRecorder::SharedFrame> frames;
+  for (int i = 0; i < n; ++i) {
+    frames.push_back(std::make_shared<const std::vector<uint8_t>>(stereo_frame(96, 64, i)));
+    ASSERT_TRUE(video.submit(frames.back(), frame_time_ns(60.0, i), i * 16'666'667));
+  }
+  ASSERT_TRUE(video.finish()) << video.error();
+  for (const auto& f : frames) EXPECT_EQ(f.use_count(), 1) << "every buffer let go";
+  EXPECT_EQ(video.video_frames(), uint64_t{n});
+  EXPECT_EQ(probe(r.options.path).frames, n);
+  EXPECT_FALSE(video.submit(VideoRecorder::SharedFrame{}, frame_time_ns(60.0, n), 0))
+      << "a missing frame is refused";
+}
+
 TEST(VideoRecorder, SlowerRenderRepeatsFramesToKeepRealTime) {
   SKIP_WITHOUT_FFMPEG();
   Recording r = recording("half_rate.mp4");
