@@ -321,9 +321,9 @@ def main():
     md.append(f"The default rig (`config/rig.yaml`: lockstep replay, frames paced at the HMD's "
               f"90 Hz, hands predicted to the frame's end), "
               f"{e2e['samples']} hand samples drawn: p50 {e2e['p50']:.1f} ms, p99 {e2e['p99']:.1f} "
-              f"ms, max {e2e['max']:.1f} ms. Of which: the sample's age when the frame began "
+              f"ms, max {e2e['max']:.1f} ms. Of which: the sample's age when the frame took it (the latch) "
               f"p50 {parts.get('age_at_render_start_p50', 0):.1f} ms (p99 "
-              f"{parts.get('age_at_render_start_p99', 0):.1f}), the render p50 "
+              f"{parts.get('age_at_render_start_p99', 0):.1f}), latch to frame end p50 "
               f"{parts.get('render_p50', 0):.1f} ms (p99 {parts.get('render_p99', 0):.1f}).\n")
     md.append("## Offline runner\n")
     st = offline["stage_wall_s"]
