@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -35,21 +36,24 @@ constexpr int kNiceIncrement = 10;
 constexpr int kPipeBytes = 1 << 20;  // fewer wake-ups per frame than the default 64 KiB
 constexpr int kLogLines = 4;         // of ffmpeg's log quoted in error()
 
-// Nice is per thread on Linux, and a child inherits the nice value of the thread that spawns it:
-// lowering this thread first puts the encoder thread and ffmpeg both below render and physics.
-void lower_thread_priority() {
-  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
+// Below render and physics (nice and policy are per thread on Linux; tid 0: the calling thread).
+// SCHED_IDLE runs only on CPU time nothing else wants: on two cores rendering and the physics take
+// all of it, and even nice 19 would still take a share from them; starved, ffmpeg falls behind and
+// frames are dropped and counted instead. Only ffmpeg gets it: a SCHED_IDLE thread of the node
+// itself, on a busy machine, would hold up the node's death by kill -9 (or a crash) for seconds
+// (a process is gone only when each of its threads has run to exit), and its restart with it.
+enum class Priority { kNice, kIdle };
+void lower_priority(pid_t tid_or_0, Priority priority) {
+  const auto tid = static_cast<id_t>(tid_or_0 == 0 ? syscall(SYS_gettid) : tid_or_0);
   errno = 0;
   const int current = getpriority(PRIO_PROCESS, tid);
   if (errno != 0) return;
   setpriority(PRIO_PROCESS, tid, std::min(current + kNiceIncrement, 19));
-  // SCHED_IDLE: run only on CPU time nothing else wants. On two cores rendering and the physics
-  // take all of it, and even nice 19 would still take a share from them; starved, the encoder
-  // falls behind and frames are dropped and counted instead (the nice value stays, for a system
-  // that refuses the policy).
-  sched_param param{};
-  param.sched_priority = 0;
-  sched_setscheduler(0, SCHED_IDLE, &param);
+  if (priority == Priority::kIdle) {  // the nice value stays, for a system that refuses the policy
+    sched_param param{};
+    param.sched_priority = 0;
+    sched_setscheduler(static_cast<pid_t>(tid), SCHED_IDLE, &param);
+  }
 }
 
 // A write to a pipe whose reader died raises SIGPIPE on the writing thread; blocked here, the
@@ -96,6 +100,12 @@ std::string log_tail(const std::string& path) {
   return tail;
 }
 
+int64_t steady_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 }  // namespace
 
 VideoRecorder::VideoRecorder(VideoOptions options, int eye_width_px, int height_px)
@@ -108,6 +118,9 @@ VideoRecorder::VideoRecorder(VideoOptions options, int eye_width_px, int height_
   }
   if (options_.scale_down < 1) throw std::invalid_argument(what + "scale_down must be >= 1");
   if (options_.queue_frames < 1) throw std::invalid_argument(what + "queue_frames must be >= 1");
+  if (!(options_.finish_timeout_s > 0.0) || !std::isfinite(options_.finish_timeout_s)) {
+    throw std::invalid_argument(what + "finish_timeout_s must be positive");
+  }
   source_width_px_ = options_.view == VideoView::kLeftEye ? eye_width_px : 2 * eye_width_px;
   source_height_px_ = height_px;
   // yuv420p halves chroma both ways: an odd last column or row is cropped
@@ -142,18 +155,15 @@ VideoRecorder::VideoRecorder(VideoOptions options, int eye_width_px, int height_
   }
   rgb_.resize(static_cast<std::size_t>(width_px_) * static_cast<std::size_t>(height_px_) * 3);
 
-  worker_ = std::thread([this] { work(); });
-  std::unique_lock<std::mutex> lock(mutex_);
-  started_.wait(lock, [this] { return start_done_; });
-  if (!start_error_.empty()) {
-    const std::string why = what + start_error_;
-    lock.unlock();
-    worker_.join();
+  // started here, not on the low-priority worker: on a busy machine the node would wait for it
+  const std::string start_error = start_ffmpeg();
+  if (!start_error.empty()) {
     finished_ = true;
     std::error_code ignored;
     std::filesystem::remove(log_path_, ignored);
-    throw std::runtime_error(why);
+    throw std::runtime_error(what + start_error);
   }
+  worker_ = std::thread([this] { work(); });
 }
 
 VideoRecorder::~VideoRecorder() {
@@ -194,6 +204,7 @@ bool VideoRecorder::submit_frame(const uint8_t* side_by_side_rgba, SharedFrame f
       std::llround(static_cast<double>(frame_end_ns - submit_t0_ns_) * options_.fps / 1e9);
   std::unique_lock<std::mutex> lock(mutex_);
   ++submitted_;
+  if (side_by_side_rgba) last_rendered_index_ = std::max(last_rendered_index_, index);
   if (side_by_side_rgba && index <= last_submitted_index_) {
     ++skipped_;
     return true;
@@ -282,27 +293,29 @@ std::string VideoRecorder::start_ffmpeg() {
     pid_ = -1;
     return "cannot start ffmpeg program '" + options_.ffmpeg + "': " + std::strerror(rc);
   }
+  // lowered from here (glibc's posix_spawn takes no SCHED_IDLE): its first milliseconds, before
+  // it reads a frame, run at this thread's priority
+  lower_priority(pid_, Priority::kIdle);
   pipe_fd_ = fds[1];
   fcntl(pipe_fd_, F_SETPIPE_SZ, kPipeBytes);  // best effort: the default size works too
   return "";
 }
 
 void VideoRecorder::work() {
-  lower_thread_priority();
+  worker_tid_ = static_cast<pid_t>(syscall(SYS_gettid));
+  lower_priority(0, Priority::kNice);
   block_sigpipe();
-  std::string start_error = start_ffmpeg();
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    start_done_ = true;
-    start_error_ = std::move(start_error);
-  }
-  started_.notify_all();
-  if (pid_ < 0) return;
-
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     wake_.wait(lock, [this] { return head_ != tail_ || stopping_; });
-    if (head_ == tail_) return;  // stopping, and everything queued is written
+    if (head_ == tail_) {  // stopping, and everything queued is written
+      const int64_t end_index = last_rendered_index_;
+      const bool writing = !write_failed_;
+      lock.unlock();
+      if (writing) hold_last_frame_until(end_index);
+      lock.lock();
+      break;
+    }
     Slot& slot = slots_[tail_ % slots_.size()];
     const bool writing = !write_failed_;
     lock.unlock();
@@ -311,6 +324,8 @@ void VideoRecorder::work() {
     lock.lock();
     ++tail_;
   }
+  worker_done_ = true;
+  drained_.notify_all();
 }
 
 void VideoRecorder::encode(const Slot& slot) {
@@ -333,6 +348,17 @@ void VideoRecorder::encode(const Slot& slot) {
   if (!write_rgb()) return;
   last_index_ = index;
   ++video_frames_;
+}
+
+void VideoRecorder::hold_last_frame_until(int64_t end_index) {
+  // frames dropped at the end (the encoder behind): the last image stays, so the video still
+  // lasts as long as the run
+  while (last_index_ >= 0 && last_index_ < end_index) {
+    if (!write_rgb()) return;
+    ++last_index_;
+    ++repeated_;
+    ++video_frames_;
+  }
 }
 
 void VideoRecorder::convert(const uint8_t* rgba, int stride_px, int64_t sim_time_ns) {
@@ -381,32 +407,85 @@ std::string VideoRecorder::finish_error(const std::string& why, int status) cons
   return text;
 }
 
+void VideoRecorder::raise_priorities() const {
+  errno = 0;
+  const int own_nice = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+  if (errno != 0) return;
+  sched_param normal{};
+  normal.sched_priority = 0;
+  for (const pid_t tid : {worker_tid_.load(), pid_}) {
+    if (tid <= 0) continue;
+    // refused without CAP_SYS_NICE (or RLIMIT_NICE): finish_timeout_s still bounds the wait
+    sched_setscheduler(tid, SCHED_OTHER, &normal);
+    setpriority(PRIO_PROCESS, static_cast<id_t>(tid), own_nice);
+  }
+}
+
+bool VideoRecorder::wait_for_ffmpeg(int64_t deadline_ns, int& status) const {
+  while (true) {
+    int raw = 0;
+    const pid_t r = waitpid(pid_, &raw, WNOHANG);
+    if (r == pid_) {
+      status = raw;
+      return true;
+    }
+    if (r < 0 && errno != EINTR) return true;  // status stays lost
+    if (steady_now_ns() >= deadline_ns) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
 bool VideoRecorder::finish() {
   if (finished_) return ok_;
   finished_ = true;
+  const int64_t deadline_ns =
+      steady_now_ns() + static_cast<int64_t>(std::llround(options_.finish_timeout_s * 1e9));
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stopping_ = true;
   }
   wake_.notify_all();
-  if (worker_.joinable()) worker_.join();
+  // Low priority kept the encoder from taking time from rendering during the run; now the queued
+  // frames and ffmpeg's last ones stand between the node and its exit, and on a busy machine a
+  // SCHED_IDLE process may not run for seconds.
+  raise_priorities();
+  bool timed_out = false;
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    const auto deadline = std::chrono::steady_clock::time_point(std::chrono::nanoseconds(deadline_ns));
+    timed_out = !drained_.wait_until(lock, deadline, [this] { return worker_done_; });
+  }
+  // a killed ffmpeg also frees a worker blocked writing into a full pipe (EPIPE)
+  if (timed_out && pid_ > 0) kill(pid_, SIGKILL);
+  worker_.join();
   if (pipe_fd_ >= 0) {
     close(pipe_fd_);  // end of input: ffmpeg flushes the encoder and writes the index
     pipe_fd_ = -1;
   }
   int status = -1;
   if (pid_ > 0) {
-    int raw = 0;
-    pid_t r;
-    while ((r = waitpid(pid_, &raw, 0)) < 0 && errno == EINTR) {
+    if (!timed_out && !wait_for_ffmpeg(deadline_ns, status)) {
+      timed_out = true;
+      kill(pid_, SIGKILL);
     }
-    if (r == pid_) status = raw;
+    if (timed_out) {
+      int raw = 0;
+      pid_t r;
+      while ((r = waitpid(pid_, &raw, 0)) < 0 && errno == EINTR) {
+      }
+      if (r == pid_) status = raw;
+    }
     pid_ = -1;
   }
 
   std::error_code ignored;
   std::string why;
-  if (write_failed_) {
+  if (timed_out) {
+    char text[96];
+    std::snprintf(text, sizeof text, "not finished %.1f s after the run's end: ffmpeg was killed",
+                  options_.finish_timeout_s);
+    why = text;
+  } else if (write_failed_) {
     why = write_error_;
   } else if (video_frames_ == 0) {
     why = "no frames were recorded";

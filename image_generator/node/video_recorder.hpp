@@ -10,7 +10,9 @@
 // The first frame is video frame 0 at t0; a frame finished at t is video frame
 // k = llround((t - t0) * fps / 1e9). Missing indices before it repeat the previous image (render
 // slower than fps, or dropped frames); a frame whose k is not past the last one written is
-// skipped (render faster than fps).
+// skipped (render faster than fps). Frames dropped after the last one written (the encoder
+// behind at the end) leave its image held to the last rendered frame's k: the video always lasts
+// as long as the rendering did.
 
 #include <sys/types.h>
 
@@ -36,6 +38,10 @@ struct VideoOptions {
   int queue_frames = 3;             // preallocated slots between the render thread and the encoder
   int crf = 23;                     // x264 quality (lower is better and bigger)
   std::string preset = "ultrafast";  // x264 speed preset
+  // finish() waits this long for the queue to drain and ffmpeg to write the file, then kills
+  // ffmpeg and reports the video lost: the node's own stop must stay bounded (the launcher
+  // kills a node still running 3 s after asking it to stop)
+  double finish_timeout_s = 2.0;
 };
 
 class VideoRecorder {
@@ -89,11 +95,14 @@ class VideoRecorder {
   bool submit_frame(const uint8_t* side_by_side_rgba, SharedFrame frame, int64_t frame_end_ns,
                     int64_t sim_time_ns);
   void cut_view(const uint8_t* side_by_side_rgba, Slot& slot) const;
-  std::string start_ffmpeg();  // on the worker; "" or why not
+  std::string start_ffmpeg();  // "" or why not
+  void raise_priorities() const;
+  bool wait_for_ffmpeg(int64_t deadline_ns, int& status) const;
   void encode(const Slot& slot);
   // the view's pixels (stride_px from row to row) -> rgb_ (scaled, cropped, labelled)
   void convert(const uint8_t* rgba, int stride_px, int64_t sim_time_ns);
   bool write_rgb();
+  void hold_last_frame_until(int64_t end_index);
   void fail_writing(const std::string& why);
   std::string finish_error(const std::string& why, int status) const;
 
@@ -111,12 +120,12 @@ class VideoRecorder {
   std::vector<Slot> slots_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;     // worker: a slot was published, or stop
-  std::condition_variable started_;  // constructor: ffmpeg started or failed to
+  std::condition_variable drained_;  // finish(): the worker has returned
   uint64_t head_ = 0;                // slots published by submit (ring index head_ % size)
   uint64_t tail_ = 0;                // slots released by the worker
   bool stopping_ = false;
-  bool start_done_ = false;
-  std::string start_error_;
+  bool worker_done_ = false;
+  std::atomic<pid_t> worker_tid_{0};  // for finish() to raise its priority again
   bool write_failed_ = false;
   std::string write_error_;
   uint64_t submitted_ = 0;
@@ -129,9 +138,11 @@ class VideoRecorder {
   bool have_submit_t0_ = false;
   int64_t submit_t0_ns_ = 0;
   int64_t last_submitted_index_ = -1;
-  // worker only (read by finish() after the join)
+  int64_t last_rendered_index_ = -1;  // of every frame submitted, the dropped ones too
+  // set by the constructor; written to by the worker; closed by finish() after the join
   pid_t pid_ = -1;
   int pipe_fd_ = -1;
+  // worker only (read by finish() after the join)
   int64_t last_index_ = -1;
   std::vector<uint8_t> scaled_;
   std::vector<uint8_t> rgb_;
