@@ -49,7 +49,11 @@ RigConfig load_rig_config(const std::string& path) {
   rig.domain_id = static_cast<int>(root.get_int("domain", rig.domain_id));
   if (rig.domain_id < 0 || rig.domain_id > 232) root["domain"].fail("must be in 0..232");
   rig.qos_file = relative_to(rig.config_dir, root.get_string("qos", "qos.xml"));
-  if (!fs::exists(rig.qos_file)) root["qos"].fail("no such file: " + rig.qos_file);
+  // the error_code form: a path the system refuses (too long, ...) is a bad value, not a crash
+  std::error_code ec;
+  if (!fs::exists(rig.qos_file, ec)) {
+    root["qos"].fail("no such file: " + rig.qos_file + (ec ? " (" + ec.message() + ")" : ""));
+  }
   rig.participant_profile = root.get_string("participant", rig.participant_profile);
   if (auto log = root.find("log")) rig.log_path = relative_to(rig.config_dir, log->as_string());
   if (auto log = root.find("left_log"); log && !log->as_string().empty())

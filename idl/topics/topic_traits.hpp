@@ -1,18 +1,20 @@
 #pragma once
-// The project's topics: each IDL type with its PubSubType and its one topic name.
+// The project's topics: each IDL type with its PubSubType (the generated one, made not to throw on
+// a malformed sample: checked_type.hpp) and its one topic name.
 
 #include "cockpitPubSubTypes.h"
+#include "idl/topics/checked_type.hpp"
 
 namespace vcockpit {
 
 template <class T>
 struct TopicTraits;
 
-#define VCOCKPIT_TOPIC(Type, topic_name)                   \
-  template <>                                              \
-  struct TopicTraits<cockpit::Type> {                      \
-    using PubSubType = cockpit::Type##PubSubType;          \
-    static constexpr const char* kName = topic_name;       \
+#define VCOCKPIT_TOPIC(Type, topic_name)                       \
+  template <>                                                  \
+  struct TopicTraits<cockpit::Type> {                          \
+    using PubSubType = CheckedType<cockpit::Type##PubSubType>; \
+    static constexpr const char* kName = topic_name;           \
   }
 
 VCOCKPIT_TOPIC(HandSample, "cockpit/hand_sample");
