@@ -4,7 +4,6 @@
 
 #include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -16,12 +15,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// One directory for every run (libFuzzer leaves without running atexit handlers); each process
+// writes its own file there and removes it after each input.
 const fs::path& scratch_dir() {
   static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / ("vcockpit_fuzz_rig_" + std::to_string(getpid()));
+    fs::path d = fs::temp_directory_path() / "vcockpit_fuzz_rig";
     fs::create_directories(d);
     std::ofstream(d / "qos.xml") << "<dds/>\n";
-    std::atexit([] { std::error_code ec; fs::remove_all(scratch_dir(), ec); });
     return d;
   }();
   return dir;
@@ -31,7 +31,7 @@ const fs::path& scratch_dir() {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   using namespace vcockpit;
-  const fs::path path = scratch_dir() / "rig.yaml";
+  const fs::path path = scratch_dir() / ("rig_" + std::to_string(getpid()) + ".yaml");
   std::ofstream(path, std::ios::binary | std::ios::trunc)
       .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   try {
@@ -44,5 +44,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     }
   } catch (const ConfigError&) {
   }
+  fs::remove(path);
   return 0;
 }
