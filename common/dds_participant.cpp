@@ -4,8 +4,11 @@
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/rtps/transport/test_UDPv4TransportDescriptor.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <memory>
 #include <fstream>
 #include <mutex>
 #include <set>
@@ -128,6 +131,49 @@ void add_security_files(const DdsOptions& options, dds::DomainParticipantQos& qo
   }
 }
 
+// A lossy profile (config/qos.xml's "lossy": its property vcockpit.drop_percent, overridden by
+// VCOCKPIT_DROP_PERCENT) sends through Fast DDS's test UDP transport, which drops that share of
+// the datagrams it sends: packet loss without the kernel's netem. The transport has no interface
+// whitelist, so the participant listens and announces on 127.0.0.1 only (no multicast locator).
+void add_lossy_transport(const DdsOptions& options, dds::DomainParticipantQos& qos) {
+  const auto& properties = qos.properties().properties();
+  const auto it = std::find_if(properties.begin(), properties.end(),
+                               [](const auto& p) { return p.name() == "vcockpit.drop_percent"; });
+  if (it == properties.end()) return;
+  std::string text = it->value();
+  std::string where = options.qos_file + ": profile '" + options.participant_profile +
+                      "', property vcockpit.drop_percent";
+  if (const char* env = std::getenv("VCOCKPIT_DROP_PERCENT"); env && *env) {
+    text = env;
+    where = "VCOCKPIT_DROP_PERCENT";
+  }
+  int percent = -1;
+  try {
+    std::size_t used = 0;
+    percent = std::stoi(text, &used);
+    if (used != text.size()) percent = -1;
+  } catch (const std::exception&) {
+  }
+  if (percent < 0 || percent > 100) {
+    throw std::invalid_argument(where + ": '" + text + "' is not a whole percentage 0..100");
+  }
+  auto lossy = std::make_shared<eprosima::fastdds::rtps::test_UDPv4TransportDescriptor>();
+  lossy->percentageOfMessagesToDrop = static_cast<uint8_t>(percent);
+  auto& transport = qos.transport();
+  transport.use_builtin_transports = false;
+  transport.user_transports.clear();
+  transport.user_transports.push_back(lossy);
+  eprosima::fastrtps::rtps::Locator_t loopback;
+  eprosima::fastrtps::rtps::IPLocator::setIPv4(loopback, 127, 0, 0, 1);
+  auto& rtps = qos.wire_protocol();
+  rtps.builtin.metatrafficUnicastLocatorList.clear();
+  rtps.builtin.metatrafficUnicastLocatorList.push_back(loopback);
+  rtps.builtin.metatrafficMulticastLocatorList.clear();
+  rtps.default_unicast_locator_list.clear();
+  rtps.default_unicast_locator_list.push_back(loopback);
+  rtps.default_multicast_locator_list.clear();
+}
+
 }  // namespace
 
 DdsParticipant::DdsParticipant(const DdsOptions& options, const std::string& node_name)
@@ -142,6 +188,7 @@ DdsParticipant::DdsParticipant(const DdsOptions& options, const std::string& nod
   }
   qos.name(node_name);
   add_security_files(options, qos);
+  add_lossy_transport(options, qos);
   participant_ = factory->create_participant(options.domain_id, qos);
   if (!participant_) {
     throw std::runtime_error("cannot create a DDS participant on domain " +

@@ -77,6 +77,8 @@ class GloveLogWriter {
   void append(const GloveSample& sample);
   // A dropout row: t_s, then `nan` in every other column (read back as a skipped, counted row).
   void append_dropout(int64_t t_ns);
+  // "# text" where the log stands (e.g. after the samples: what the recording lost)
+  void append_comment(const std::string& text);
   void commit();  // throws GloveLogError on failure
   std::size_t count() const { return count_; }
 

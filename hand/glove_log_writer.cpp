@@ -52,6 +52,10 @@ void GloveLogWriter::append_dropout(int64_t t_ns) {
   ++count_;
 }
 
+void GloveLogWriter::append_comment(const std::string& text) {
+  std::fprintf(file_.get(), "# %s\n", text.c_str());
+}
+
 void GloveLogWriter::commit() {
   try {
     file_.commit();

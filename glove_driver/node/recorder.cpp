@@ -2,14 +2,24 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cstring>
+#include <optional>
+#include <set>
+#include <vector>
+
 #include "common/clock.hpp"
 #include "common/signals.hpp"
+#include "glove_driver/node/sequence_gaps.hpp"
 #include "hand/glove_log.hpp"
-#include "idl/topics/hand_sample_convert.hpp"
 #include "hand/sample_validator.hpp"
+#include "idl/topics/hand_sample_convert.hpp"
 
 namespace vcockpit::glove {
 namespace {
+
+constexpr int64_t kPollNs = 5'000'000;  // well inside the readers' 4,096-sample histories at 1 kHz
+constexpr int64_t kRematchNs = 100'000'000;
 
 bool should_stop(const RecorderOptions& o, uint64_t written, int64_t start_ns, int64_t last_ns,
                  int64_t now_ns) {
@@ -19,46 +29,129 @@ bool should_stop(const RecorderOptions& o, uint64_t written, int64_t start_ns, i
   return o.idle_timeout_s > 0 && written > 0 && now_ns - last_ns >= seconds_to_ns(o.idle_timeout_s);
 }
 
+WriterId writer_of(const dds::SampleInfo& info) {
+  WriterId id{};
+  std::memcpy(id.data(), info.publication_handle.value, id.size());
+  return id;
+}
+
+// Which writers the reliable reader has matched: their samples come through it (with repairs),
+// and the best-effort reader's copies of them are not used.
+class ReliableWriters {
+ public:
+  explicit ReliableWriters(dds::DataReader* reliable_reader) : reader_(reliable_reader) {}
+
+  void saw(const WriterId& writer) { reliable_.insert(writer); }
+
+  bool contains(const WriterId& writer, int64_t now_ns) {
+    if (reliable_.count(writer) > 0) return true;
+    if (reader_ == nullptr || now_ns - last_query_ns_ < kRematchNs) return false;
+    last_query_ns_ = now_ns;  // a best-effort writer is asked about again only now and then
+    std::vector<dds::InstanceHandle_t> handles;
+    reader_->get_matched_publications(handles);
+    for (const auto& h : handles) {
+      WriterId id{};
+      std::memcpy(id.data(), h.value, id.size());
+      reliable_.insert(id);
+    }
+    return reliable_.count(writer) > 0;
+  }
+
+ private:
+  dds::DataReader* reader_;
+  std::set<WriterId> reliable_;
+  int64_t last_query_ns_ = -kRematchNs;
+};
+
+struct Recording {
+  Recording(hand::GloveLogWriter& log_in, hand::SampleValidator& validator_in,
+            SequenceGaps& gaps_in, uint32_t hand_id_in)
+      : log(log_in), validator(validator_in), gaps(gaps_in), hand_id(hand_id_in) {}
+
+  hand::GloveLogWriter& log;
+  hand::SampleValidator& validator;
+  SequenceGaps& gaps;
+  uint32_t hand_id;
+  uint64_t other_hands = 0;
+  std::set<WriterId> hand_writers;  // writers that sent this hand (whose gaps are reported)
+  int64_t last_sample_ns = 0;
+
+  void take(const cockpit::HandSample& message, const dds::SampleInfo& info) {
+    const WriterId writer = writer_of(info);
+    if (!gaps.add(writer, static_cast<uint64_t>(info.sample_identity.sequence_number().to64long()))) {
+      return;  // the other reader's copy was written already
+    }
+    if (message.hand_id() != hand_id) {
+      ++other_hands;
+      return;
+    }
+    hand_writers.insert(writer);
+    hand::GloveSample sample = from_hand_sample(message);
+    const hand::GloveSample as_received = sample;
+    if (!validator.accept(sample)) return;
+    log.append(as_received);  // the log keeps what was sent; limits apply on replay
+    last_sample_ns = monotonic_now_ns();
+  }
+
+  uint64_t lost() const {
+    uint64_t n = 0;
+    for (const auto& w : hand_writers) n += gaps.missing_of(w);
+    return n;
+  }
+};
+
 }  // namespace
 
 int run_recorder(DdsParticipant& participant, const hand::HandModel& hand,
                  const RecorderOptions& options) {
-  auto reader = participant.make_reader<cockpit::HandSample>(options.lockstep ? "reliable"
-                                                                             : "stream");
-  hand::GloveLogWriter log(options.path, hand.left,
-                     {"source: recorded from " + std::string(TopicTraits<cockpit::HandSample>::kName)});
+  // lockstep: one reliable keep-all reader; else a reliable and a best-effort one (see the header)
+  auto reliable_reader =
+      participant.make_reader<cockpit::HandSample>(options.lockstep ? "reliable" : "record");
+  std::optional<Reader<cockpit::HandSample>> any_reader;
+  if (!options.lockstep) any_reader = participant.make_reader<cockpit::HandSample>("record_any");
+  ReliableWriters reliable_writers(reliable_reader.raw());
+
+  hand::GloveLogWriter log(
+      options.path, hand.left,
+      {"source: recorded from " + std::string(TopicTraits<cockpit::HandSample>::kName)});
   hand::SampleValidator validator(hand);
+  SequenceGaps gaps;
   spdlog::info("recording {} to {}", TopicTraits<cockpit::HandSample>::kName, options.path);
 
   const int64_t start_ns = monotonic_now_ns();
-  int64_t last_sample_ns = start_ns;
-  uint64_t other_hands = 0;
+  Recording rec(log, validator, gaps, options.hand_id);
+  rec.last_sample_ns = start_ns;
+  const auto room = [&] { return options.count == 0 || log.count() < options.count; };
   cockpit::HandSample message;
-  while (!should_stop(options, log.count(), start_ns, last_sample_ns, monotonic_now_ns())) {
-    reader.wait_for_data(50'000'000);
-    while (log.count() < options.count || options.count == 0) {
-      if (!reader.take(message)) break;
-      if (message.hand_id() != options.hand_id) {
-        ++other_hands;
-        continue;
-      }
-      hand::GloveSample sample = from_hand_sample(message);
-      const hand::GloveSample as_received = sample;
-      if (!validator.accept(sample)) continue;
-      log.append(as_received);  // the log keeps what was sent; limits apply on replay
-      last_sample_ns = monotonic_now_ns();
+  dds::SampleInfo info;
+  while (!should_stop(options, log.count(), start_ns, rec.last_sample_ns, monotonic_now_ns())) {
+    reliable_reader.wait_for_data(kPollNs);
+    while (room() && reliable_reader.take(message, &info)) {
+      reliable_writers.saw(writer_of(info));
+      rec.take(message, info);
+    }
+    if (!any_reader) continue;
+    const int64_t now_ns = monotonic_now_ns();
+    while (room() && any_reader->take(message, &info)) {
+      if (!reliable_writers.contains(writer_of(info), now_ns)) rec.take(message, info);
     }
   }
   const auto& c = validator.counts();
+  const uint64_t lost = rec.lost();
   if (log.count() == 0) {
     spdlog::error("no samples received; {} not written (rejected {})", options.path, c.rejected());
     return 1;  // the partial file goes with `log`
   }
+  log.append_comment("lost: " + std::to_string(lost) + " samples (gaps in the sequence numbers of " +
+                     std::to_string(rec.hand_writers.size()) + " writer(s))");
   log.commit();
-  spdlog::info("wrote {} samples to {} (rejected {}: {} non-finite, {} bad quaternion, {} stale; "
-               "{} of other hands)",
-               log.count(), options.path, c.rejected(), c.rejected_nonfinite,
-               c.rejected_out_of_range, c.rejected_stale, other_hands);
+  spdlog::info("wrote {} samples to {}; lost {} (gaps in the writers' sequence numbers); rejected "
+               "{}: {} non-finite, {} bad quaternion, {} stale; {} of other hands",
+               log.count(), options.path, lost, c.rejected(), c.rejected_nonfinite,
+               c.rejected_out_of_range, c.rejected_stale, rec.other_hands);
+  if (lost > 0) {
+    spdlog::warn("{}: {} samples sent were never received", options.path, lost);
+  }
   return 0;
 }
 

@@ -2,6 +2,11 @@
 // --record: subscribes to cockpit/hand_sample and writes a glove log. The log is written to
 // "<path>.partial" and renamed into place on a clean stop (signal, --count, --duration or
 // --idle-timeout), so an interrupted recording never leaves a corrupt log.
+//
+// It takes what its writers offer: a reliable reader (deep history, repairs requested) gets the
+// samples of reliable writers, a best-effort reader those of the others; a sample both deliver
+// is written once. Each writer's sequence numbers tell what never arrived: the count is logged on
+// exit and written as a "# lost: ..." line at the end of the log.
 
 #include <cstdint>
 #include <string>
@@ -13,7 +18,7 @@ namespace vcockpit::glove {
 
 struct RecorderOptions {
   std::string path;
-  bool lockstep = false;       // reliable keep-all reader (pairs with a lockstep publisher)
+  bool lockstep = false;       // one reliable keep-all reader (pairs with a lockstep publisher)
   uint32_t hand_id = 0;        // records this hand's samples only
   uint64_t count = 0;          // stop after this many samples (0: no limit)
   double duration_s = 0.0;     // stop after this long (0: no limit)

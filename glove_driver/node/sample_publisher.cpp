@@ -13,7 +13,7 @@ SamplePublisher::SamplePublisher(DdsParticipant& participant, const hand::HandMo
     : options_(options),
       validator_(hand),
       writer_(participant.make_writer<cockpit::HandSample>(options.lockstep ? "reliable"
-                                                                            : "stream")),
+                                                                            : "hand_stream")),
       status_writer_(participant.make_writer<cockpit::NodeStatus>("state")) {
   last_status_ns_ = monotonic_now_ns();
 }
@@ -69,6 +69,10 @@ bool SamplePublisher::finish() {
   if (options_.lockstep && published_ > 0) {
     ok = writer_.wait_for_acknowledgments(seconds_to_ns(options_.match_timeout_s));
     if (!ok) spdlog::error("lockstep: subscribers did not acknowledge every sample");
+  } else if (published_ > 0) {
+    // a reliable reader (a recorder) may still be having the last samples repaired: a moment
+    // for that, never long enough to hold up a stop (best-effort readers acknowledge nothing)
+    writer_.wait_for_acknowledgments(500'000'000);
   }
   publish_status(cockpit::STOPPING, monotonic_now_ns());
   status_writer_.wait_for_acknowledgments(1'000'000'000);  // the last report must not be lost
