@@ -148,9 +148,20 @@ void lockstep_under_loss(FaultLossTest& test, int percent, const std::string& di
                        "--lockstep", "--rate", "0"},
                       env, dir + "/driver_" + tag + ".log");
   ASSERT_EQ(driver.wait(240 * kSecond), 0) << read_text(dir + "/driver_" + tag + ".log");
-  // the driver ended when the node had acknowledged every sample; a moment for the node's last
-  // steps and the repairs of its last reliable samples to the monitor
-  std::this_thread::sleep_for(std::chrono::seconds(3));
+  // The driver ends when the node has received every sample, not stepped through them (slow
+  // under the sanitizers): wait for a hand state from the last 100 ms of the log. They are best
+  // effort, published every few ms of sim time: at 30 % loss, all of the last 100 ms lost is
+  // a 1e-5 chance. Then a moment for the last steps and the repairs of the reliable topics.
+  const int64_t last_ns = std::llround(summary.simulated_s * 1e9) - 100'000'000;
+  const int64_t deadline_ns = monotonic_now_ns() + 120 * kSecond;
+  bool at_end = false;
+  while (!at_end && monotonic_now_ns() < deadline_ns) {
+    for (const auto& h : MonitorLog::read(monitor_file).hands) at_end |= h.sample_time_ns >= last_ns;
+    if (!at_end) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  EXPECT_TRUE(at_end) << "the node never reached the log's end: "
+                      << read_text(dir + "/node_" + tag + ".log");
+  std::this_thread::sleep_for(std::chrono::seconds(1));
   EXPECT_EQ(monitor.stop(), 0);
   ASSERT_EQ(node.stop(), 0) << read_text(dir + "/node_" + tag + ".log");
   for (const char* file : {"events.jsonl", "trajectories.csv"}) {
