@@ -35,6 +35,10 @@ void StationLink::poll() {
   while (preview_reader_.take(preview_)) model_.on_preview(preview_, now_ns);
 }
 
+namespace {
+constexpr int64_t kMatchWaitNs = 2'000'000'000;
+}  // namespace
+
 int64_t StationLink::send_sim(cockpit::SimCommandKind kind, const std::string& checkpoint) {
   std::lock_guard<std::mutex> lock(send_mutex_);
   cockpit::SimCommand command;
@@ -42,6 +46,9 @@ int64_t StationLink::send_sim(cockpit::SimCommandKind kind, const std::string& c
   command.kind(kind);
   command.checkpoint(checkpoint.substr(0, 64));
   command.source(source_name_);
+  // the command topic is volatile: written before the physics node's reader has matched (a
+  // click right after start, a slow discovery), a command would be lost without a word
+  sim_writer_.wait_for_matched(1, kMatchWaitNs);
   if (!sim_writer_.write(command)) return -1;
   return static_cast<int64_t>(next_seq_++);
 }
@@ -53,6 +60,7 @@ int64_t StationLink::send_control(uint32_t control_id, uint32_t position) {
   command.control_id(control_id);
   command.position(position);
   command.source(source_name_);
+  control_writer_.wait_for_matched(1, kMatchWaitNs);
   if (!control_writer_.write(command)) return -1;
   return static_cast<int64_t>(next_seq_++);
 }
