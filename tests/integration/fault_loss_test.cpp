@@ -62,7 +62,7 @@ struct Recorded {
   long long missing = 0;  // of those, how many the recording lacks (by their times)
 };
 
-Recorded record_real_time_replay(FaultLossTest& test, const std::string& dir, double seconds,
+Recorded record_real_time_replay(const std::string& dir, double seconds,
                                  const std::map<std::string, std::string>& env,
                                  const hand::HandModel& hand) {
   const std::string source = source_dir() + "/config/glove_logs/panel_knobs.csv";
@@ -94,13 +94,12 @@ Recorded record_real_time_replay(FaultLossTest& test, const std::string& dir, do
   std::printf("recorded %lld of %lld published samples (%lld sent while it was there); lost "
               "line %lld, missing by time %lld\n",
               r.recorded, r.published, r.span, r.lost_line, r.missing);
-  (void)test;
   return r;
 }
 
 TEST_F(FaultLossTest, ARealTimeReplayAt1kHzIsRecordedWhole) {
   const double seconds = sanitized() ? 10.0 : 30.0;
-  const Recorded r = record_real_time_replay(*this, dir_, seconds, env_, hand_);
+  const Recorded r = record_real_time_replay(dir_, seconds, env_, hand_);
   EXPECT_GT(r.published, static_cast<long long>(seconds * 1000 * 0.95));
   EXPECT_EQ(r.recorded, r.published) << "every sample sent, in the log";
   EXPECT_EQ(r.lost_line, 0);
@@ -110,7 +109,7 @@ TEST_F(FaultLossTest, ARealTimeReplayAt1kHzIsRecordedWhole) {
 
 TEST_F(FaultLossTest, UnderThirtyPercentLossTheRecorderKeepsEverythingOrCountsExactly) {
   use_loss(30);
-  const Recorded r = record_real_time_replay(*this, dir_, 10.0, env_, hand_);
+  const Recorded r = record_real_time_replay(dir_, 10.0, env_, hand_);
   EXPECT_GT(r.published, 9000);
   ASSERT_GE(r.lost_line, 0) << "a # lost: line";
   EXPECT_GT(r.span, r.published / 2) << "the recorder matched within half the run";
@@ -122,7 +121,7 @@ TEST_F(FaultLossTest, UnderThirtyPercentLossTheRecorderKeepsEverythingOrCountsEx
 }
 
 // The lockstep replay of the grasp log under loss: the same files as the offline runner.
-void lockstep_under_loss(FaultLossTest& test, int percent, const std::string& dir,
+void lockstep_under_loss(int percent, const std::string& dir,
                          std::map<std::string, std::string> env) {
   SCOPED_TRACE(std::to_string(percent) + " % loss");
   env["VCOCKPIT_PARTICIPANT"] = "lossy";
@@ -194,11 +193,10 @@ void lockstep_under_loss(FaultLossTest& test, int percent, const std::string& di
   std::printf("%d %% loss: hand_state received %zu of %llu (%.1f %% lost)\n", percent,
               seen.hands.size(), static_cast<unsigned long long>(span),
               100.0 * (1.0 - static_cast<double>(seen.hands.size()) / static_cast<double>(span)));
-  (void)test;
 }
 
 TEST_F(FaultLossTest, LockstepUnderTenAndThirtyPercentLossGivesTheOfflineRunnersFiles) {
-  for (int percent : {10, 30}) lockstep_under_loss(*this, percent, dir_, env_);
+  for (int percent : {10, 30}) lockstep_under_loss(percent, dir_, env_);
 }
 
 }  // namespace
