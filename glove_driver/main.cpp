@@ -37,6 +37,7 @@ struct Flags {
   bool loop = false;
   bool hold_at_end = false;
   int64_t start_at_ns = 0;
+  bool join_timeline = false;
   double start_offset_s = 0.0;
   bool lockstep = false;
   int subscribers = 1;
@@ -82,6 +83,10 @@ void add_flags(CLI::App& app, Flags& f) {
                  "drivers started together begin together however long each takes to match its "
                  "reader (rig_launcher's {start_at_ns})")
       ->check(CLI::NonNegativeNumber);
+  app.add_flag("--join-timeline", f.join_timeline,
+               "with --start-at-ns in the past (a driver restarted after a crash): join the "
+               "timeline where it stands now, as a live glove would, skipping the samples due "
+               "before now instead of sending them in a burst (rig_launcher's restart_args)");
   app.add_flag("--hold-at-end", f.hold_at_end,
                "at the end of the samples, wait (until Ctrl-C) for an instructor's restart on "
                "cockpit/sim_command instead of exiting");
@@ -111,7 +116,8 @@ void add_flags(CLI::App& app, Flags& f) {
 }
 
 int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Source& source,
-                  const PublisherOptions& options, bool hold_at_end, int64_t start_at_ns) {
+                  const PublisherOptions& options, bool hold_at_end, int64_t start_at_ns,
+                  bool join_timeline) {
   SamplePublisher publisher(participant, hand, options);
   publisher.add_load_counts(source.load_counts());
   ReplayCommands commands(participant, options.node_name);
@@ -120,6 +126,11 @@ int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Sour
   TerminalProgress progress;
   const int64_t run_start_ns = monotonic_now_ns();
   int64_t start_ns = run_start_ns;  // wall time of the timeline's 0 (moved by a restart)
+  // joining a timeline that began before this process: its 0 is the rig's start, and what was
+  // due before now is skipped
+  bool joining = join_timeline && start_at_ns > 0 && start_at_ns < run_start_ns;
+  if (joining) start_ns = start_at_ns;
+  uint64_t skipped = 0;
   bool restarted = false;
   bool ended = false;
   hand::GloveSample sample;
@@ -142,6 +153,16 @@ int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Sour
     // however long the replay stood at its end
     if (restarted) start_ns = monotonic_now_ns() - due_ns;
     restarted = false;
+    if (joining) {
+      if (start_ns + due_ns < monotonic_now_ns()) {
+        ++skipped;
+        continue;
+      }
+      spdlog::info("joined the timeline {:.3f} s after its start ({} samples due before now "
+                   "skipped)",
+                   ns_to_seconds(monotonic_now_ns() - start_ns), skipped);
+      joining = false;
+    }
     if (due_ns > 0) sleep_until_ns(start_ns + due_ns);
     publisher.publish(sample);
     const int64_t now_ns = monotonic_now_ns();
@@ -206,7 +227,10 @@ int run(const Flags& f) {
   options.subscribers = f.subscribers;
   options.match_timeout_s = f.match_timeout_s;
   options.max_gap_ns = std::llround(f.max_gap_s * 1e9);
-  return run_publisher(participant, hand, *source, options, f.hold_at_end, f.start_at_ns);
+  if (f.join_timeline && f.rate <= 0)
+    throw CLI::ValidationError("--join-timeline needs a timeline: --rate above 0");
+  return run_publisher(participant, hand, *source, options, f.hold_at_end, f.start_at_ns,
+                       f.join_timeline);
 }
 
 }  // namespace

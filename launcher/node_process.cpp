@@ -15,8 +15,10 @@ extern char** environ;
 
 namespace vcockpit::rig {
 
-NodeProcess::NodeProcess(NodeSpec spec, std::vector<std::string> argv, std::string log_path)
-    : spec_(std::move(spec)), argv_(std::move(argv)) {
+NodeProcess::NodeProcess(NodeSpec spec, std::vector<std::string> argv, std::string log_path,
+                         std::vector<std::string> restart_argv)
+    : spec_(std::move(spec)), argv_(std::move(argv)), restart_argv_(std::move(restart_argv)) {
+  if (restart_argv_.empty()) restart_argv_ = argv_;
   log_ = std::fopen(log_path.c_str(), "w");
   if (!log_) throw std::runtime_error(log_path + ": cannot create: " + std::strerror(errno));
 }
@@ -33,8 +35,9 @@ void NodeProcess::start(const std::map<std::string, std::string>& env) {
     if (!env.count(entry.substr(0, entry.find('=')))) env_strings.push_back(entry);
   }
   for (const auto& [key, value] : env) env_strings.push_back(key + "=" + value);
+  std::vector<std::string>& argv = starts_ > 0 ? restart_argv_ : argv_;
   std::vector<char*> c_argv, c_env;
-  for (auto& a : argv_) c_argv.push_back(a.data());
+  for (auto& a : argv) c_argv.push_back(a.data());
   c_argv.push_back(nullptr);
   for (auto& e : env_strings) c_env.push_back(e.data());
   c_env.push_back(nullptr);
@@ -58,7 +61,7 @@ void NodeProcess::start(const std::map<std::string, std::string>& env) {
   fcntl(fd_, F_SETFL, O_NONBLOCK);
   if (starts_++ > 0) ++restarts_;
   std::fprintf(log_, "---- started pid %d:", static_cast<int>(pid_));
-  for (const auto& a : argv_) std::fprintf(log_, " %s", a.c_str());
+  for (const auto& a : argv) std::fprintf(log_, " %s", a.c_str());
   std::fprintf(log_, "\n");
   std::fflush(log_);
 }

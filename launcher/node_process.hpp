@@ -17,7 +17,9 @@ namespace vcockpit::rig {
 
 class NodeProcess {
  public:
-  NodeProcess(NodeSpec spec, std::vector<std::string> argv, std::string log_path);
+  // `restart_argv`: the command when it is started again (empty: `argv` again)
+  NodeProcess(NodeSpec spec, std::vector<std::string> argv, std::string log_path,
+              std::vector<std::string> restart_argv = {});
   ~NodeProcess();
   NodeProcess(const NodeProcess&) = delete;
   NodeProcess& operator=(const NodeProcess&) = delete;
@@ -43,6 +45,7 @@ class NodeProcess {
 
   NodeSpec spec_;
   std::vector<std::string> argv_;
+  std::vector<std::string> restart_argv_;
   std::FILE* log_ = nullptr;
   pid_t pid_ = -1;
   int fd_ = -1;

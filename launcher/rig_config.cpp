@@ -15,7 +15,7 @@ std::string relative_to(const std::string& dir, const std::string& path) {
 
 NodeSpec parse_node(const ConfigNode& node) {
   node.expect_keys({"name", "command", "required", "restart_delay_s", "ends_run", "start_delay_s",
-                    "with_left_log", "with_ui", "ui_args"});
+                    "with_left_log", "with_ui", "ui_args", "restart_args"});
   NodeSpec spec;
   spec.name = node.get_string("name");
   if (spec.name.empty() || spec.name.find_first_of("/ ") != std::string::npos) {
@@ -35,6 +35,10 @@ NodeSpec parse_node(const ConfigNode& node) {
   spec.with_ui = node.get_bool("with_ui", false);
   if (auto args = node.find("ui_args"))
     for (const ConfigNode& arg : args->elements()) spec.ui_args.push_back(arg.as_string());
+  if (auto args = node.find("restart_args")) {
+    for (const ConfigNode& arg : args->elements()) spec.restart_args.push_back(arg.as_string());
+    if (!spec.restart_delay_s) args->fail("a node that is never restarted (no restart_delay_s)");
+  }
   return spec;
 }
 
@@ -71,10 +75,11 @@ RigConfig load_rig_config(const std::string& path) {
 }
 
 std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& rig,
-                                        const std::string& out_dir) {
+                                        const std::string& out_dir, bool restart) {
   std::vector<std::string> out;
   std::vector<std::string> args = node.command;
   if (rig.ui_port > 0) args.insert(args.end(), node.ui_args.begin(), node.ui_args.end());
+  if (restart) args.insert(args.end(), node.restart_args.begin(), node.restart_args.end());
   for (std::string arg : args) {
     for (const auto& [key, value] : {std::pair<std::string, std::string>{"{log}", rig.log_path},
                                      {"{left_log}", rig.left_log_path},

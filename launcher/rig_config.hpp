@@ -19,6 +19,8 @@ struct NodeSpec {
   bool with_left_log = false;  // started only when the rig has a left hand's log ({left_log})
   bool with_ui = false;        // started only with the instructor station (rig_launcher --ui)
   std::vector<std::string> ui_args;  // added to the command with the instructor station
+  // added when the launcher starts it again after it died (physics_node: --resume)
+  std::vector<std::string> restart_args;
 };
 
 struct RigConfig {
@@ -44,8 +46,9 @@ RigConfig load_rig_config(const std::string& path);
 bool node_starts(const NodeSpec& node, const RigConfig& rig);
 
 // {log}, {left_log}, {hands} ("right", or "right,left" with a left log), {out}, {config} and
-// {ui_port} replaced in every argument; with the instructor station, the node's ui_args added.
+// {ui_port} replaced in every argument; with the instructor station, the node's ui_args added;
+// for a restart, its restart_args too.
 std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& rig,
-                                        const std::string& out_dir);
+                                        const std::string& out_dir, bool restart = false);
 
 }  // namespace vcockpit::rig

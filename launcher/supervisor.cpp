@@ -33,12 +33,15 @@ void Supervisor::start_nodes() {
   for (const NodeSpec& spec : rig_.nodes) {
     if (!node_starts(spec, rig_)) continue;
     std::vector<std::string> argv = expand_command(spec, rig_, out_dir_);
+    std::vector<std::string> restart_argv = expand_command(spec, rig_, out_dir_, true);
     argv[0] = bin_dir_ + "/" + argv[0];
+    restart_argv[0] = argv[0];
     if (access(argv[0].c_str(), X_OK) != 0) {
       throw std::runtime_error(rig_.path + ": node " + spec.name + ": no executable " + argv[0] +
                                " (build first: scripts/rig builds it)");
     }
-    auto node = std::make_unique<NodeProcess>(spec, argv, out_dir_ + "/logs/" + spec.name + ".log");
+    auto node = std::make_unique<NodeProcess>(spec, argv, out_dir_ + "/logs/" + spec.name + ".log",
+                                              restart_argv);
     node->start(env_);
     spdlog::info("started {} (pid {})", spec.name, node->pid());
     nodes_.push_back(std::move(node));

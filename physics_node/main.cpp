@@ -129,6 +129,16 @@ int main(int argc, char** argv) {
   app.add_option("--stats-out", stats_out,
                  "DDS: at stop, write loop statistics to this JSON file (mode, duration, steps, "
                  "rate, late steps, samples, DDS transit, sample age at step, step compute time)");
+  app.add_option("--checkpoint", node_options.checkpoint_path,
+                 "DDS: save the world (bodies, controls, grasps, time) to this file as it runs, "
+                 "atomically, so a node restarted with --resume goes on from it");
+  app.add_option("--checkpoint-every", node_options.checkpoint_every_s,
+                 "DDS: seconds of simulated time between checkpoints")
+      ->check(CLI::Range(0.01, 3600.0) & kFinite)
+      ->capture_default_str();
+  app.add_flag("--resume", node_options.resume,
+               "DDS: start from --checkpoint's world if the file is there (the rig launcher's "
+               "restart of a killed node), else from the scene");
   add_dds_flags(app, dds_flags);
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
@@ -147,6 +157,8 @@ int main(int argc, char** argv) {
     offline_options.timing = timing;
     node_options.timing = timing;
     if (offline) {
+      if (!node_options.checkpoint_path.empty() || node_options.resume)
+        throw CLI::ValidationError("--checkpoint and --resume belong to the DDS modes");
       if (stats_out) {
         throw CLI::ValidationError("--stats-out belongs to the DDS modes (--offline writes "
                                    "DIR/summary.json)");
@@ -156,6 +168,8 @@ int main(int argc, char** argv) {
       return run_offline_mode(offline_options);
     }
     if (!offline_options.log_paths.empty()) throw CLI::ValidationError("--log belongs to --offline");
+    if (node_options.resume && node_options.checkpoint_path.empty())
+      throw CLI::ValidationError("--resume needs --checkpoint FILE (where to resume from)");
     if (!offline_options.out_dir.empty() && !node_options.lockstep) {
       throw CLI::ValidationError("--out belongs to --offline and --lockstep");
     }

@@ -314,6 +314,7 @@ void ImageGenerator::publish_status(int64_t now_ns) {
 }
 
 int ImageGenerator::run() {
+  const int64_t run_start_ns = monotonic_now_ns();
   spdlog::info("waiting for the scene on {} (domain {})",
                TopicTraits<cockpit::ObjectInfo>::kName, domain_id_);
   if (!wait_for_scene()) {
@@ -402,7 +403,12 @@ int ImageGenerator::run() {
     }
     if (frame_log_) log_frame(end_ns, display_ns);
     render_ns_in_period_ += end_ns - start_ns;
-    if (frames_ == 0) first_frame_start_ns_ = start_ns;
+    if (frames_ == 0) {
+      first_frame_start_ns_ = start_ns;
+      // how long a (re)started image generator leaves the display dark
+      spdlog::info("first frame rendered {:.2f} s after start ({:.2f} s of it this frame)",
+                   ns_to_seconds(end_ns - run_start_ns), ns_to_seconds(end_ns - start_ns));
+    }
     last_frame_end_ns_ = end_ns;
     render_ns_.record_ns(end_ns - start_ns);
     frame_.frame_seq(frames_);

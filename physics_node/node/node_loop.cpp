@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <array>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -16,8 +17,10 @@
 #include "physics_node/io/hand_input.hpp"
 #include "physics_node/io/hand_motion_peak.hpp"
 #include "physics_node/io/input_follower.hpp"
+#include "physics_node/io/world_checkpoint.hpp"
 #include "physics_node/io/replay_driver.hpp"
 #include "physics_node/io/run_recorder.hpp"
+#include "physics_node/node/checkpoint_writer.hpp"
 #include "physics_node/node/loop_stats.hpp"
 #include "physics_node/node/sample_gate.hpp"
 #include "physics_node/node/sim_commands.hpp"
@@ -88,9 +91,11 @@ class Node {
       if (h < 0) throw std::invalid_argument("--lockstep-hands: the scene has no such hand");
       hands_[static_cast<std::size_t>(h)].expected = true;
     }
+    if (!options.checkpoint_path.empty()) start_checkpoints();
     publisher_.publish_object_info(world_);
     publisher_.publish_hand_info(world_);
     publisher_.publish_control_info(world_);
+    if (world_.time_ns() > 0) publish_state();  // resumed: the world as it was, at once
     if (!options.out_dir.empty()) {
       recorder_ = std::make_unique<physics_io::RunRecorder>(
           options.out_dir, physics_io::output_interval_ns(options.output_hz, world_.scene()));
@@ -181,6 +186,63 @@ class Node {
     log_events();
     ++steps_in_period_;
     for (int s = 0; s < physics::kStageCount; ++s) stage_ns_[s] += world_.stage_times().ns[s];
+    maybe_checkpoint();
+  }
+
+  // --checkpoint: the fingerprint of the scene as it starts, then (--resume) the newest save.
+  void start_checkpoints() {
+    const std::filesystem::path dir = std::filesystem::path(options_.checkpoint_path).parent_path();
+    std::error_code error;
+    if (!dir.empty()) std::filesystem::create_directories(dir, error);
+    if (error)
+      throw std::runtime_error("--checkpoint: cannot create " + dir.string() + ": " + error.message());
+    fingerprint_ = physics_io::scene_fingerprint(world_);
+    if (options_.resume) resume_from_checkpoint();
+    checkpointer_ = std::make_unique<CheckpointWriter>(options_.checkpoint_path);
+    next_checkpoint_ns_ = world_.time_ns() + seconds_to_ns(options_.checkpoint_every_s);
+  }
+  void resume_from_checkpoint() {
+    const std::string& path = options_.checkpoint_path;
+    std::optional<physics_io::Checkpoint> saved;
+    try {
+      saved = physics_io::read_checkpoint_file(path, world_);
+    } catch (const physics_io::CheckpointError& e) {
+      std::error_code ignored;
+      std::filesystem::rename(path, path + ".bad", ignored);
+      spdlog::error("not resumed: {} (kept as {}.bad); starting from the scene", e.what(), path);
+      return;
+    }
+    if (!saved) {
+      spdlog::warn("not resumed: no checkpoint {} yet; starting from the scene", path);
+      return;
+    }
+    world_.restore(saved->world);
+    sim_.restore_frozen(saved->frozen);
+    int held = 0;
+    for (const physics::BodyState& b : world_.state().bodies) held += b.held() ? 1 : 0;
+    spdlog::info("resumed from {}: {:.3f} s simulated, {} steps, {} object(s) held{}; the hands "
+                 "take up their gloves from their next samples",
+                 path, ns_to_seconds(world_.time_ns()), world_.step_count(), held,
+                 saved->frozen ? ", frozen" : "");
+  }
+  // Every checkpoint_every_s of simulated time (or now, `force`): the world to the writer thread.
+  void maybe_checkpoint(bool force = false) {
+    if (!checkpointer_ || (!force && world_.time_ns() < next_checkpoint_ns_)) return;
+    checkpoint_.world = world_.state();
+    checkpoint_.frozen = sim_.frozen();
+    checkpoint_bytes_ = physics_io::encode_checkpoint(checkpoint_, fingerprint_);
+    checkpointer_->offer(checkpoint_bytes_);
+    next_checkpoint_ns_ = world_.time_ns() + seconds_to_ns(options_.checkpoint_every_s);
+  }
+  // At stop: the last world saved, and how saving went.
+  void finish_checkpoints() {
+    if (!checkpointer_) return;
+    maybe_checkpoint(true);
+    checkpointer_->flush();
+    spdlog::info("checkpoints: {} written to {}, {} replaced by a newer one before written, {} "
+                 "failed",
+                 checkpointer_->written(), checkpointer_->path(), checkpointer_->superseded(),
+                 checkpointer_->failed());
   }
 
   // The last step's (or reset's) faults, grasp and control events, in the log.
@@ -215,7 +277,9 @@ class Node {
   // changes are published and the world shown at once; after a freeze in lockstep, the hands
   // take up their gloves from now.
   void take_sim_commands() {
+    const bool was_frozen = sim_.frozen();
     const SimCommands::Taken taken = sim_.take(world_);
+    if (taken.reset || sim_.frozen() != was_frozen) maybe_checkpoint(true);
     if (taken.reset) {
       publisher_.publish_events(world_);
       log_events();
@@ -331,6 +395,11 @@ class Node {
   LoopStats stats_;
   std::unique_ptr<physics_io::RunRecorder> recorder_;  // lockstep --out
   bool recording_started_ = false;
+  std::unique_ptr<CheckpointWriter> checkpointer_;  // --checkpoint
+  uint64_t fingerprint_ = 0;
+  int64_t next_checkpoint_ns_ = 0;
+  physics_io::Checkpoint checkpoint_;  // reused: a copy of the world's state
+  std::string checkpoint_bytes_;
 };
 
 void Node::report_stop(StatsReport report) {
@@ -508,6 +577,7 @@ int Node::run_realtime() {
   // the loop's own figures end here: the flush below is shutdown, not stepping
   const int64_t loop_end_ns = monotonic_now_ns();
   publisher_.flush(500'000'000);
+  finish_checkpoints();
   const double loop_s = ns_to_seconds(loop_end_ns - run_start_ns_);
   const double rate_hz = loop_s > 0 ? static_cast<double>(world_.step_count()) / loop_s : 0.0;
   spdlog::info("stopped after {} steps in {:.3f} s ({:.1f} Hz); {} samples accepted, {} rejected, "
@@ -525,7 +595,7 @@ int Node::run_realtime() {
 
 int Node::run_lockstep() {
   const int64_t publish_every_ns = std::llround(1e9 / options_.publish_hz);
-  int64_t next_publish_sim_ns = 0;
+  int64_t next_publish_sim_ns = world_.time_ns();  // a resumed world goes on from its time
   bool dirty = false;
   spdlog::info("lockstep: stepping to each sample's stamp ({} substeps per step)",
                world_.substeps());
@@ -614,6 +684,7 @@ int Node::run_lockstep() {
   }
   const int64_t loop_end_ns = monotonic_now_ns();
   publisher_.flush(500'000'000);
+  finish_checkpoints();
   if (recorder_) {
     if (!recording_started_) recorder_->start(world_);
     recorder_->commit();

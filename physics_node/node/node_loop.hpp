@@ -28,6 +28,9 @@
 // where it was, held objects are released ("glove lost"), the status says so; samples resume ->
 // tracking resumes. Input counts (hand::InputCounts) go to node_status and the stop log.
 //
+// With --checkpoint the world is saved as it runs, and --resume starts from the newest save
+// (physics_io::world_checkpoint, checkpoint_writer.hpp).
+//
 // Both modes measure their input latency and step cost (loop_stats.hpp), print them when they
 // stop and, with `stats_out`, write them to a JSON file.
 
@@ -57,6 +60,16 @@ struct NodeOptions {
   // lockstep: the hands (ids: 0 right, 1 left) whose samples every step waits for, one glove
   // driver each; empty: whichever hands have sent samples
   std::vector<int> lockstep_hands;
+  // Surviving kill -9: the world (bodies, controls, grasps, time) is saved to checkpoint_path
+  // every checkpoint_every_s of simulated time, on a freeze or unfreeze and at stop, written
+  // whole or not at all (empty: never saved).
+  std::string checkpoint_path;
+  double checkpoint_every_s = 0.5;
+  // Start from checkpoint_path's world when there is one (the rig's restart of a killed node):
+  // objects, controls and grasps as they were, time going on from the checkpoint's; the hands
+  // take up their gloves from the first sample. No file: the scene's start; a damaged file or
+  // another scene's: an error in the log, the file kept as <path>.bad, the scene's start.
+  bool resume = false;
 };
 
 constexpr int kMaxCatchUpSteps = 100;

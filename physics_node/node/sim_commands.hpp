@@ -31,6 +31,8 @@ class SimCommands {
   Taken take(physics::World& world);
 
   bool frozen() const { return frozen_; }
+  // a resumed node: frozen as its checkpoint was
+  void restore_frozen(bool frozen) { frozen_ = frozen; }
   uint64_t refused() const { return refused_; }
 
  private:

@@ -5,7 +5,9 @@
 //          stale=.. clamped=.. late=.. alive=0|1 missing=.. intervals=.. interpolated=..
 //          bridged=.. unbridged=.. intervals_late=.. longest_s=.. lost=.. delay_ms=..
 //   hand id=.. seq=.. sample_time_ns=.. source_stamp_ns=.. sim_time_ns=.. tracking=0|1 held=..
-//        x=.. y=.. z=.. qw=.. qx=.. qy=.. qz=..
+//        received_ns=.. x=.. y=.. z=.. qw=.. qx=.. qy=.. qz=..
+//   watched id=.. sim_time_ns=.. held=.. received_ns=.. x=.. y=.. z=.. qw=.. qx=.. qy=.. qz=..
+//        (every state of the object --watch-object names, as it comes)
 //   frame seq=.. width=.. height=.. source_stamp_ns=.. start_ns=.. end_ns=.. received_ns=..
 // and on exit (SIGINT/SIGTERM or --duration) the last state of every object:
 //   object id=.. sim_time_ns=.. held=.. x=.. y=.. z=.. qw=.. qx=.. qy=.. qz=..
@@ -43,6 +45,8 @@ int main(int argc, char** argv) {
   double duration_s = 0;
   app.add_option("--out", out_path)->required();
   app.add_option("--duration", duration_s, "stop after this many seconds (0: on a signal)");
+  int64_t watched_id = -1;
+  app.add_option("--watch-object", watched_id, "object id whose every state is written");
   CLI11_PARSE(app, argc, argv);
   setup_logging("cockpit_monitor");
   install_shutdown_handlers();
@@ -99,16 +103,24 @@ int main(int argc, char** argv) {
       while (hands.take(h)) {
         std::fprintf(f,
                      "hand id=%u seq=%llu sample_time_ns=%lld source_stamp_ns=%lld sim_time_ns=%lld "
-                     "tracking=%d held=%d",
+                     "tracking=%d held=%d received_ns=%lld",
                      h.hand_id(), static_cast<unsigned long long>(h.seq()),
                      static_cast<long long>(h.sample_time_ns()),
                      static_cast<long long>(h.source_stamp_ns()),
                      static_cast<long long>(h.sim_time_ns()), h.tracking() ? 1 : 0,
-                     h.grasped_object_id());
+                     h.grasped_object_id(), static_cast<long long>(monotonic_now_ns()));
         print_pose(f, h.X_GH());
         std::fputc('\n', f);
       }
-      while (objects.take(o)) last_objects[o.object_id()] = o;
+      while (objects.take(o)) {
+        last_objects[o.object_id()] = o;
+        if (static_cast<int64_t>(o.object_id()) != watched_id) continue;
+        std::fprintf(f, "watched id=%u sim_time_ns=%lld held=%d received_ns=%lld", o.object_id(),
+                     static_cast<long long>(o.sim_time_ns()), o.held_by_hand_id(),
+                     static_cast<long long>(monotonic_now_ns()));
+        print_pose(f, o.X_GO());
+        std::fputc('\n', f);
+      }
       while (frames.take(fr)) {
         std::fprintf(f,
                      "frame seq=%llu width=%u height=%u source_stamp_ns=%lld start_ns=%lld "

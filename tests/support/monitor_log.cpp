@@ -82,10 +82,20 @@ MonitorLog MonitorLog::read(const std::string& path) {
       h.seq = static_cast<uint64_t>(integer(f, "seq"));
       h.sample_time_ns = integer(f, "sample_time_ns");
       h.source_stamp_ns = integer(f, "source_stamp_ns");
+      h.sim_time_ns = integer(f, "sim_time_ns");
+      if (f.count("received_ns")) h.received_ns = integer(f, "received_ns");
       h.tracking = integer(f, "tracking") != 0;
       h.held = static_cast<int>(integer(f, "held"));
       h.position = position(f);
       log.hands.push_back(h);
+    } else if (kind == "watched") {
+      SeenObject o;
+      o.sim_time_ns = integer(f, "sim_time_ns");
+      o.received_ns = integer(f, "received_ns");
+      o.held = static_cast<int>(integer(f, "held"));
+      o.position = position(f);
+      o.quaternion_wxyz = {num(f, "qw"), num(f, "qx"), num(f, "qy"), num(f, "qz")};
+      log.watched.push_back(o);
     } else if (kind == "object") {
       SeenObject o;
       o.sim_time_ns = integer(f, "sim_time_ns");

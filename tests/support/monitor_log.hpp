@@ -36,6 +36,8 @@ struct SeenStatus {
 struct SeenHand {
   uint64_t seq = 0;
   int64_t sample_time_ns = 0;
+  int64_t sim_time_ns = 0;
+  int64_t received_ns = 0;  // monotonic, when the monitor took it
   int64_t source_stamp_ns = 0;
   bool tracking = false;
   int held = -1;
@@ -44,6 +46,7 @@ struct SeenHand {
 
 struct SeenObject {
   int64_t sim_time_ns = 0;
+  int64_t received_ns = 0;  // watched states: monotonic, when the monitor took it
   int held = -1;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Vector4d quaternion_wxyz = Eigen::Vector4d::Zero();
@@ -60,6 +63,7 @@ struct MonitorLog {
   std::vector<SeenStatus> statuses;
   std::vector<SeenHand> hands;
   std::map<int, SeenObject> objects;
+  std::vector<SeenObject> watched;  // every state of --watch-object's object
   std::vector<SeenFrame> frames;
 
   static MonitorLog read(const std::string& path);

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -18,6 +20,7 @@
 #include "hand/glove_log.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/hand_input.hpp"
+#include "physics_node/io/world_checkpoint.hpp"
 #include "physics_node/physics/world_state_hash.hpp"
 #include "tests/support/allocation_counter.hpp"
 #include "tests/support/scene_builder.hpp"
@@ -395,6 +398,121 @@ TEST(WorldStep, AllocatesNothingOnceWarm) {
   EXPECT_EQ(test::g_allocations.load(), 0);
   EXPECT_TRUE(world.body_faults().empty());
 }
+
+// Checkpoints (physics_io::world_checkpoint): a world saved to bytes and restored from them goes
+// on bit-identically; a damaged file, another scene's, or one whose checksum holds but whose
+// contents point outside the scene is refused with what is wrong, never half-restored.
+namespace checkpoint {
+
+using physics_io::Checkpoint;
+using physics_io::CheckpointError;
+
+std::string refusal(std::string_view bytes, const World& fresh) {
+  try {
+    physics_io::decode_checkpoint(bytes, fresh);
+  } catch (const CheckpointError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(WorldCheckpoint, AWorldSavedHeldAndRestoredFromTheBytesGoesOnBitIdentically) {
+  const Cockpit cockpit;
+  World original(cockpit.scene);
+  GloveFeed feed{&cockpit.samples};
+  feed.feed(original);
+  feed.run_until(original, 4.0);  // the cup held, lifted
+  World fresh(cockpit.scene);
+  const uint64_t fingerprint = physics_io::scene_fingerprint(fresh);
+  const std::string bytes = physics_io::encode_checkpoint({original.state(), true}, fingerprint);
+  const Checkpoint read = physics_io::decode_checkpoint(bytes, fresh);
+  EXPECT_TRUE(read.frozen);
+  World restored(cockpit.scene);
+  restored.restore(read.world);
+  EXPECT_EQ(hash_world_state(restored.state()), hash_world_state(original.state()));
+  GloveFeed restored_feed = feed;
+  while (original.time_ns() < 7'000'000'000) {  // through the release at 6.48 s
+    original.step();
+    restored.step();
+    feed.feed(original);
+    restored_feed.feed(restored);
+  }
+  EXPECT_EQ(hash_world_state(restored.state()), hash_world_state(original.state()));
+  EXPECT_EQ(restored.bodies()[cockpit.cup].held_by, kNotHeld);
+}
+
+TEST(WorldCheckpoint, DamagedForeignOrOutOfSceneCheckpointsAreRefusedWithWhy) {
+  const Cockpit cockpit;
+  World world(cockpit.scene);
+  GloveFeed feed{&cockpit.samples};
+  feed.feed(world);
+  feed.run_until(world, 2.5);  // fingers on the cup: stick anchors
+  const World fresh(cockpit.scene);
+  const uint64_t fingerprint = physics_io::scene_fingerprint(fresh);
+  const std::string good = physics_io::encode_checkpoint({world.state(), false}, fingerprint);
+  EXPECT_EQ(refusal(good, fresh), "accepted");
+
+  std::string flipped = good;
+  flipped[good.size() / 2] ^= 0x10;
+  EXPECT_NE(refusal(flipped, fresh).find("checksum"), std::string::npos);
+  EXPECT_NE(refusal(good.substr(0, good.size() - 9), fresh).find("checksum"), std::string::npos);
+  EXPECT_NE(refusal(good.substr(0, 20), fresh).find("too short"), std::string::npos);
+  std::string magic = good;
+  magic[0] = 'X';
+  EXPECT_NE(refusal(magic, fresh).find("not a checkpoint"), std::string::npos);
+
+  Scene moved = cockpit.scene;
+  moved.objects[static_cast<std::size_t>(cockpit.cup)].X_GO.translation().x() += 0.01;
+  const World other(moved);
+  EXPECT_NE(refusal(good, other).find("another scene"), std::string::npos);
+
+  // well-formed files (checksums good) whose contents a world must not follow
+  auto with = [&](auto change) {
+    WorldState state = world.state();
+    change(state);
+    return physics_io::encode_checkpoint({state, false}, fingerprint);
+  };
+  EXPECT_NE(refusal(with([](WorldState& s) { s.bodies[0].v_G.x() = std::nan(""); }), fresh)
+                .find("not finite"),
+            std::string::npos);
+  ASSERT_FALSE(world.state().controls.empty());
+  EXPECT_NE(refusal(with([](WorldState& s) { s.controls[0].position = 99; }), fresh).find("position"),
+            std::string::npos);
+  EXPECT_NE(refusal(with([](WorldState& s) { s.bodies[0].holders = 0x80; }), fresh).find("held"),
+            std::string::npos);
+  ASSERT_FALSE(world.state().anchors.empty());
+  EXPECT_NE(refusal(with([](WorldState& s) { s.anchors[0].body_b = 100000; }), fresh).find("anchor"),
+            std::string::npos);
+  EXPECT_NE(refusal(with([](WorldState& s) { s.hands[0].grasp[0].history_next = 1u << 20; }), fresh)
+                .find("ring"),
+            std::string::npos);
+  EXPECT_NE(refusal(with([](WorldState& s) { s.bodies.pop_back(); }), fresh).find("another scene"),
+            std::string::npos);
+}
+
+TEST(WorldCheckpoint, AFileIsWrittenWholeAndItsErrorsNameIt) {
+  const Cockpit cockpit;
+  const World fresh(cockpit.scene);
+  const std::string dir = ::testing::TempDir() + "world_checkpoint_test";
+  std::filesystem::create_directories(dir);
+  const std::string path = dir + "/physics.ckpt";
+  std::filesystem::remove(path);
+  EXPECT_FALSE(physics_io::read_checkpoint_file(path, fresh).has_value()) << "no file: nothing";
+  const std::string bytes =
+      physics_io::encode_checkpoint({fresh.state(), false}, physics_io::scene_fingerprint(fresh));
+  physics_io::write_checkpoint_file(path, bytes);
+  EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+  ASSERT_TRUE(physics_io::read_checkpoint_file(path, fresh).has_value());
+  std::ofstream(path, std::ios::binary | std::ios::app) << "x";
+  try {
+    physics_io::read_checkpoint_file(path, fresh);
+    ADD_FAILURE() << "a file with a byte too many was read";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": "), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace checkpoint
 
 }  // namespace
 }  // namespace vcockpit::physics
