@@ -31,8 +31,10 @@ uint64_t fnv1a64(std::string_view bytes) {
 }
 
 void put_u64(std::string& out, uint64_t v) {
+  char bytes[8];
   for (int byte = 0; byte < 8; ++byte)
-    out.push_back(static_cast<char>((v >> (8 * byte)) & 0xffu));
+    bytes[byte] = static_cast<char>((v >> (8 * byte)) & 0xffu);
+  out.append(bytes, sizeof bytes);
 }
 
 uint64_t get_u64(std::string_view bytes, std::size_t at) {
@@ -188,14 +190,19 @@ uint64_t scene_fingerprint(const physics::World& fresh_world) {
 }
 
 std::string encode_checkpoint(const Checkpoint& checkpoint, uint64_t fingerprint) {
-  std::string out(kMagic, sizeof kMagic);
+  std::string out;
+  encode_checkpoint(checkpoint, fingerprint, out);
+  return out;
+}
+
+void encode_checkpoint(const Checkpoint& checkpoint, uint64_t fingerprint, std::string& out) {
+  out.assign(kMagic, sizeof kMagic);
   put_u64(out, kVersion);
   put_u64(out, fingerprint);
   put_u64(out, checkpoint.frozen ? kFrozenFlag : 0u);
   Writer writer(out);
   physics::visit_world_state(writer, checkpoint.world);
   put_u64(out, fnv1a64(out));
-  return out;
 }
 
 Checkpoint decode_checkpoint(std::string_view bytes, const physics::World& fresh_world) {

@@ -36,6 +36,8 @@ struct Checkpoint {
 uint64_t scene_fingerprint(const physics::World& fresh_world);
 
 std::string encode_checkpoint(const Checkpoint& checkpoint, uint64_t fingerprint);
+// The same into `out` (its capacity reused).
+void encode_checkpoint(const Checkpoint& checkpoint, uint64_t fingerprint, std::string& out);
 
 // `fresh_world`: a world of this scene as it starts (its fingerprint and lengths are what a
 // checkpoint must have). Throws CheckpointError saying what is wrong.

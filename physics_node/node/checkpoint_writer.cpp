@@ -3,12 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include "common/atomic_file.hpp"
-#include "physics_node/io/world_checkpoint.hpp"
 
 namespace vcockpit::physics_node {
 
-CheckpointWriter::CheckpointWriter(std::string path)
-    : path_(std::move(path)), thread_([this] { run(); }) {}
+CheckpointWriter::CheckpointWriter(std::string path, uint64_t scene_fingerprint)
+    : path_(std::move(path)), fingerprint_(scene_fingerprint), thread_([this] { run(); }) {}
 
 CheckpointWriter::~CheckpointWriter() {
   {
@@ -19,11 +18,11 @@ CheckpointWriter::~CheckpointWriter() {
   thread_.join();
 }
 
-void CheckpointWriter::offer(std::string& bytes) {
+void CheckpointWriter::offer(physics_io::Checkpoint& checkpoint) {
   {
     std::lock_guard lock(mutex_);
     if (have_pending_) ++superseded_;
-    pending_.swap(bytes);
+    std::swap(pending_, checkpoint);
     have_pending_ = true;
   }
   wake_.notify_one();
@@ -48,17 +47,19 @@ uint64_t CheckpointWriter::superseded() const {
 }
 
 void CheckpointWriter::run() {
+  physics_io::Checkpoint checkpoint;
   std::string bytes;
   std::unique_lock lock(mutex_);
   while (true) {
     wake_.wait(lock, [this] { return have_pending_ || stop_; });
     if (!have_pending_) break;  // stopping with nothing left to write
-    bytes.swap(pending_);
+    std::swap(checkpoint, pending_);
     have_pending_ = false;
     writing_ = true;
     lock.unlock();
     std::string error;
     try {
+      physics_io::encode_checkpoint(checkpoint, fingerprint_, bytes);
       physics_io::write_checkpoint_file(path_, bytes);
     } catch (const std::exception& e) {
       error = e.what();

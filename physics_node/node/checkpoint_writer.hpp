@@ -1,8 +1,8 @@
 #pragma once
-// Writes the world's checkpoints (physics_io::world_checkpoint) on a thread of its own, so the
-// step loop never waits on the disk (an fsync takes milliseconds; a 1 kHz step has one). The loop
-// hands over the newest encoded checkpoint; one still waiting when a newer comes is replaced
-// (only the newest matters) and counted. A write that fails is logged once per kind of failure
+// Encodes and writes the world's checkpoints (physics_io::world_checkpoint) on a thread of its
+// own, so the step loop never waits on the disk (an fsync takes milliseconds; a 1 kHz step has
+// one) nor on encoding a third of a megabyte. The loop hands over a copy of the state; one still
+// waiting when a newer comes is replaced (only the newest matters) and counted. A write that fails is logged once per kind of failure
 // and counted; the node goes on simulating.
 
 #include <condition_variable>
@@ -11,17 +11,20 @@
 #include <string>
 #include <thread>
 
+#include "physics_node/io/world_checkpoint.hpp"
+
 namespace vcockpit::physics_node {
 
 class CheckpointWriter {
  public:
-  explicit CheckpointWriter(std::string path);
+  CheckpointWriter(std::string path, uint64_t scene_fingerprint);
   ~CheckpointWriter();  // writes what is still waiting, then stops
   CheckpointWriter(const CheckpointWriter&) = delete;
   CheckpointWriter& operator=(const CheckpointWriter&) = delete;
 
-  // Takes `bytes` (swapped out: the caller gets back a buffer to reuse).
-  void offer(std::string& bytes);
+  // Takes `checkpoint` (swapped: the caller gets back an older one whose buffers it can reuse,
+  // so a steady loop allocates nothing).
+  void offer(physics_io::Checkpoint& checkpoint);
   // Blocks until everything offered so far is written (or failed).
   void flush();
 
@@ -34,10 +37,11 @@ class CheckpointWriter {
   void run();
 
   std::string path_;
+  uint64_t fingerprint_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::condition_variable done_;
-  std::string pending_;
+  physics_io::Checkpoint pending_;
   bool have_pending_ = false;
   bool writing_ = false;
   bool stop_ = false;

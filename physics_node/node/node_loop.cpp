@@ -198,7 +198,7 @@ class Node {
       throw std::runtime_error("--checkpoint: cannot create " + dir.string() + ": " + error.message());
     fingerprint_ = physics_io::scene_fingerprint(world_);
     if (options_.resume) resume_from_checkpoint();
-    checkpointer_ = std::make_unique<CheckpointWriter>(options_.checkpoint_path);
+    checkpointer_ = std::make_unique<CheckpointWriter>(options_.checkpoint_path, fingerprint_);
     next_checkpoint_ns_ = world_.time_ns() + seconds_to_ns(options_.checkpoint_every_s);
   }
   void resume_from_checkpoint() {
@@ -228,10 +228,9 @@ class Node {
   // Every checkpoint_every_s of simulated time (or now, `force`): the world to the writer thread.
   void maybe_checkpoint(bool force = false) {
     if (!checkpointer_ || (!force && world_.time_ns() < next_checkpoint_ns_)) return;
-    checkpoint_.world = world_.state();
+    checkpoint_.world = world_.state();  // into the buffers of an older one: no allocation
     checkpoint_.frozen = sim_.frozen();
-    checkpoint_bytes_ = physics_io::encode_checkpoint(checkpoint_, fingerprint_);
-    checkpointer_->offer(checkpoint_bytes_);
+    checkpointer_->offer(checkpoint_);
     next_checkpoint_ns_ = world_.time_ns() + seconds_to_ns(options_.checkpoint_every_s);
   }
   // At stop: the last world saved, and how saving went.
@@ -360,6 +359,7 @@ class Node {
   // --duration: the loops stop by themselves at this monotonic time (0: never).
   void start_clock() {
     run_start_ns_ = monotonic_now_ns();
+    steps_at_start_ = world_.step_count();
     stop_at_ns_ = options_.duration_s > 0 ? run_start_ns_ + seconds_to_ns(options_.duration_s) : 0;
   }
   bool should_stop(int64_t now_ns) const {
@@ -391,6 +391,7 @@ class Node {
   int64_t publish_ns_ = 0;
   int64_t last_status_ns_ = 0;
   int64_t run_start_ns_ = 0;
+  uint64_t steps_at_start_ = 0;  // a resumed world's steps before this run
   int64_t stop_at_ns_ = 0;
   LoopStats stats_;
   std::unique_ptr<physics_io::RunRecorder> recorder_;  // lockstep --out
@@ -399,11 +400,10 @@ class Node {
   uint64_t fingerprint_ = 0;
   int64_t next_checkpoint_ns_ = 0;
   physics_io::Checkpoint checkpoint_;  // reused: a copy of the world's state
-  std::string checkpoint_bytes_;
 };
 
 void Node::report_stop(StatsReport report) {
-  report.steps = world_.step_count();
+  report.steps = world_.step_count() - steps_at_start_;
   report.samples = received_;
   report.rejected = rejected();
   report.input = input_counts();
@@ -579,10 +579,11 @@ int Node::run_realtime() {
   publisher_.flush(500'000'000);
   finish_checkpoints();
   const double loop_s = ns_to_seconds(loop_end_ns - run_start_ns_);
-  const double rate_hz = loop_s > 0 ? static_cast<double>(world_.step_count()) / loop_s : 0.0;
+  const uint64_t steps = world_.step_count() - steps_at_start_;  // this run's (not a resumed world's)
+  const double rate_hz = loop_s > 0 ? static_cast<double>(steps) / loop_s : 0.0;
   spdlog::info("stopped after {} steps in {:.3f} s ({:.1f} Hz); {} samples accepted, {} rejected, "
                "{} late steps",
-               world_.step_count(), loop_s, rate_hz, received_, rejected(), late_steps_);
+               steps, loop_s, rate_hz, received_, rejected(), late_steps_);
   StatsReport report;
   report.mode = "realtime";
   report.rate_hz = rate_hz;

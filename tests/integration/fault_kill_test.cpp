@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
@@ -241,6 +242,52 @@ TEST_F(FaultKillTest, EachNodeKilledTwiceAtSeededMomentsIsRestartedAndTheRigCarr
   EXPECT_EQ(count_of(physics_log, "resumed from "), 2) << physics_log;
   EXPECT_EQ(count_of(physics_log, "not resumed"), 0) << physics_log;
   EXPECT_EQ(count_of(read_text(dir_ + "/out/logs/glove_driver.log"), "joined the timeline"), 2);
+}
+
+// Real time: a node stopped after 1.5 s left its world in the checkpoint, and one started with
+// --resume goes on from there; a damaged checkpoint is refused with why, kept aside as .bad, and
+// the node starts from the scene; flags that cannot work are refused at start.
+TEST_F(FaultKillTest, ARealTimeNodeResumesFromItsCheckpointAndRefusesADamagedOne) {
+  const std::string checkpoint = dir_ + "/state/physics.ckpt";
+  ChildProcess first = start("physics_node", {"--checkpoint", checkpoint, "--duration", "1.5"},
+                             "first.log");
+  ASSERT_EQ(first.wait(30 * kSecond), 0) << text("first.log");
+  EXPECT_NE(text("first.log").find("checkpoints: "), std::string::npos) << text("first.log");
+  ChildProcess second = start("physics_node", {"--checkpoint", checkpoint, "--resume", "--duration",
+                                               "0.5"},
+                              "second.log");
+  ASSERT_EQ(second.wait(30 * kSecond), 0) << text("second.log");
+  const std::string resumed = text("second.log");
+  const auto at = resumed.find("resumed from " + checkpoint + ": ");
+  ASSERT_NE(at, std::string::npos) << resumed;
+  const double resumed_s = std::stod(resumed.substr(at + checkpoint.size() + 15));
+  EXPECT_GT(resumed_s, 1.0) << resumed;  // the first run's time, not 0
+  EXPECT_LT(resumed_s, 2.0) << resumed;
+  // its own rate counts its own steps, not the resumed world's
+  const auto stopped = resumed.find("stopped after ");
+  ASSERT_NE(stopped, std::string::npos) << resumed;
+  EXPECT_LT(std::stoi(resumed.substr(stopped + 14)), 1000) << resumed;
+
+  // one byte changed in the middle: the checksum catches it
+  std::string bytes = read_text(checkpoint);
+  bytes[bytes.size() / 2] ^= 0x01;
+  std::ofstream(checkpoint, std::ios::binary | std::ios::trunc) << bytes;
+  ChildProcess third = start("physics_node", {"--checkpoint", checkpoint, "--resume", "--duration",
+                                              "0.3"},
+                             "third.log");
+  ASSERT_EQ(third.wait(30 * kSecond), 0) << text("third.log");
+  EXPECT_NE(text("third.log").find("not resumed: " + checkpoint + ": its checksum does not match"),
+            std::string::npos)
+      << text("third.log");
+  EXPECT_TRUE(std::filesystem::exists(checkpoint + ".bad"));
+  EXPECT_TRUE(std::filesystem::exists(checkpoint)) << "the new run saves its own";
+
+  expect_each_refused("physics_node", {
+      {{"--resume"}, "--resume needs --checkpoint"},
+      {{"--offline", "--checkpoint", checkpoint}, "belong to the DDS modes"},
+      {{"--checkpoint", checkpoint, "--checkpoint-every", "0"}, "--checkpoint-every"},
+      {{"--checkpoint", "/proc/no/such/dir/p.ckpt"}, "--checkpoint: cannot create"},
+  });
 }
 
 }  // namespace
