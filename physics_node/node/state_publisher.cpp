@@ -46,6 +46,10 @@ StatePublisher::StatePublisher(DdsParticipant& participant, const physics::World
       control_writer_(participant.make_writer<cockpit::ControlState>("state")),
       control_event_writer_(participant.make_writer<cockpit::ControlEvent>("event")),
       control_sent_(world.scene().controls.size()),
+      object_last_(world.scene().objects.size()),
+      control_last_(world.scene().controls.size()),
+      object_span_(world.scene().objects.size()),
+      control_span_(world.scene().controls.size()),
       hand_seq_(static_cast<std::size_t>(world.hand_count()), 0) {}
 
 static_assert(static_cast<int>(physics::ControlKind::kGuard) == cockpit::GUARD &&
@@ -102,9 +106,10 @@ void StatePublisher::publish_controls(const physics::World& world) {
     control_msg_.position(static_cast<uint32_t>(s.position));
     control_msg_.lit(controls[i].lit_when >= 0 && s.position == controls[i].lit_when);
     control_msg_.held_by_hand_id(held_by);
-    control_writer_.write(control_msg_);
+    write_control(control_msg_);
     control_sent_[i] = {true, s.q, s.qd, s.position, held_by};
   }
+  rewrite_due_controls();
 }
 
 void StatePublisher::publish_object_info(const physics::World& world) {
@@ -139,7 +144,7 @@ void StatePublisher::publish_object_info(const physics::World& world) {
       object_msg_.linear_velocity_mps(to_idl(Eigen::Vector3d::Zero()));
       object_msg_.angular_velocity_radps(to_idl(Eigen::Vector3d::Zero()));
       object_msg_.held_by_hand_id(cockpit::kNoObject);
-      object_writer_.write(object_msg_);
+      write_object(object_msg_);
     }
   }
 }
@@ -170,11 +175,42 @@ void StatePublisher::publish_state(const physics::World& world,
     object_msg_.linear_velocity_mps(to_idl(b.v_G));
     object_msg_.angular_velocity_radps(to_idl(b.w_G));
     object_msg_.held_by_hand_id(b.held_by);
-    object_writer_.write(object_msg_);
+    write_object(object_msg_);
   }
+  rewrite_due_objects();
   for (int h = 0; h < world.hand_count(); ++h) publish_hand(world, h, h < static_cast<int>(hands.size())
                                                                        ? hands[static_cast<std::size_t>(h)]
                                                                        : HandInputState{});
+}
+
+void StatePublisher::write_object(const cockpit::ObjectState& msg) {
+  object_writer_.write(msg);
+  object_last_[msg.object_id()] = msg;
+  object_span_.wrote(msg.object_id());
+}
+
+void StatePublisher::write_control(const cockpit::ControlState& msg) {
+  control_writer_.write(msg);
+  control_last_[msg.control_id()] = msg;
+  control_span_.wrote(msg.control_id());
+}
+
+// static objects, and a dynamic one whose state is not finite (its last good sample)
+void StatePublisher::rewrite_due_objects() {
+  for (std::size_t i = 0; i < object_last_.size(); ++i)
+    if (object_span_.due(i)) {
+      object_writer_.write(object_last_[i]);
+      object_span_.wrote(i);
+    }
+}
+
+// controls at rest, while others move
+void StatePublisher::rewrite_due_controls() {
+  for (std::size_t i = 0; i < control_last_.size(); ++i)
+    if (control_span_.due(i)) {
+      control_writer_.write(control_last_[i]);
+      control_span_.wrote(i);
+    }
 }
 
 void StatePublisher::publish_hand(const physics::World& world, int hand, const HandInputState& input) {

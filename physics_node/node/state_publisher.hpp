@@ -8,9 +8,18 @@
 //   cockpit/object_state  every dynamic object's pose and velocities (state)
 //   cockpit/grasp_event   every GRASP and RELEASE with its reason (event)
 //   cockpit/control_info  every control's kind, joint and named positions, once (state)
-//   cockpit/control_state a control's coordinate, position and light when they change (state)
+//   cockpit/control_state a control's coordinate, position and light when they change (state;
+//                         at rest, again now and then: History span below)
 //   cockpit/control_event every change of a control's position with its cause (event)
 //   cockpit/node_status   rates, stage timings, counters, glove liveliness (state)
+//
+// History span: on every periodic heartbeat Fast DDS 2.9 walks each hole in a reliable writer's
+// history one sequence number at a time, in the writer (GAPs) and in every reader
+// (StatefulReader::processGapMsg). With keep last 1 per instance, an instance written once (a
+// static object, a control at rest) keeps its old sequence number while the others go on, so
+// the hole, and the readers' CPU, grew with run time. On object_state and control_state an
+// instance whose last sample is history_span_samples writes behind the newest is written again,
+// unchanged (HistorySpan).
 //
 // No NaN or infinity is published (physics_io::NonFiniteGuard: counted, named once in the log):
 // an object or hand sample with one is not sent (the last good one stands); an object_info with
@@ -18,6 +27,8 @@
 // residuals are magnitudes: negative means "not available"); a node_status with a rate or stage
 // time that is not finite is sent with -1 in its place.
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +48,31 @@ struct InputStamps {
 struct HandInputState {
   InputStamps stamps;
   bool tracking = false;
+};
+
+// The most writes an instance's kept sample may lag behind its keep-last-1 writer's newest
+// (see "History span" above): at least 1024, and 8 per instance so that the rewrites stay
+// within an eighth of the writes.
+constexpr uint64_t history_span_samples(std::size_t instances) {
+  return std::max<uint64_t>(1024, 8 * static_cast<uint64_t>(instances));
+}
+
+// Counts one keyed writer's samples and which of them each instance's last one was: an
+// instance is due when its last sample lies history_span_samples behind the newest.
+class HistorySpan {
+ public:
+  explicit HistorySpan(std::size_t instances)
+      : last_(instances, 0), span_samples_(history_span_samples(instances)) {}
+  void wrote(std::size_t instance) { last_[instance] = ++written_; }
+  // written at least once, and that long ago
+  bool due(std::size_t instance) const {
+    return last_[instance] != 0 && written_ - last_[instance] >= span_samples_;
+  }
+
+ private:
+  uint64_t written_ = 0;
+  std::vector<uint64_t> last_;  // per instance: written_ just after its last sample, 0 never
+  uint64_t span_samples_;
 };
 
 class StatePublisher {
@@ -66,6 +102,11 @@ class StatePublisher {
 
  private:
   void publish_hand(const physics::World& world, int hand, const HandInputState& input);
+  void write_object(const cockpit::ObjectState& msg);
+  void write_control(const cockpit::ControlState& msg);
+  // Writes again, unchanged, each instance whose last sample is due (HistorySpan).
+  void rewrite_due_objects();
+  void rewrite_due_controls();
 
   Writer<cockpit::ObjectInfo> info_writer_;
   Writer<cockpit::HandInfo> hand_info_writer_;
@@ -88,6 +129,11 @@ class StatePublisher {
     int held_by = physics::kNotHeld;
   };
   std::vector<SentControl> control_sent_;
+  // per object and per control, the last sample written, and when (History span)
+  std::vector<cockpit::ObjectState> object_last_;
+  std::vector<cockpit::ControlState> control_last_;
+  HistorySpan object_span_;
+  HistorySpan control_span_;
   cockpit::HandState hand_msg_;
   cockpit::ObjectState object_msg_;
   cockpit::GraspEvent event_msg_;

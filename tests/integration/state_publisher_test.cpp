@@ -1,12 +1,17 @@
 // The physics node's publisher sends no NaN or infinity (state_publisher.hpp): a world restored
 // into a state with a non-finite body publishes every other object and not that one, and a node
-// status with a non-finite rate goes out with -1 in its place; each refusal is counted. In one
+// status with a non-finite rate goes out with -1 in its place; each refusal is counted. Its
+// keep-last-1 state topics keep every instance's sample within the history span of the newest
+// however long it runs (static objects and controls at rest are written again). In one
 // process, over loopback DDS on the test's own domain.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <map>
 #include <set>
 
 #include "common/dds_options.hpp"
@@ -67,6 +72,66 @@ TEST(StatePublisher, PublishesNoNonFiniteValue) {
   EXPECT_EQ(got.loop_rate_hz(), -1.0) << "the documented sentinel";
   EXPECT_EQ(got.input_rate_hz(), 250.0);
   EXPECT_EQ(publisher.non_finite_refused(), 2u);
+}
+
+// Each instance's kept sample, as a late-joining (transient local) reader gets it: its writer's
+// sequence number by instance.
+template <class T, class Id>
+std::map<uint32_t, int64_t> kept_sequence_numbers(Reader<T>& reader, std::size_t instances, Id id) {
+  std::map<uint32_t, int64_t> seq;
+  T sample;
+  dds::SampleInfo info;
+  for (int tries = 0; tries < 50 && seq.size() < instances; ++tries) {
+    reader.wait_for_data(100'000'000);
+    while (reader.take(sample, &info)) seq[id(sample)] = info.sample_identity.sequence_number().to64long();
+  }
+  return seq;
+}
+
+int64_t span(const std::map<uint32_t, int64_t>& seq) {
+  const auto [oldest, newest] = std::minmax_element(
+      seq.begin(), seq.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  return newest->second - oldest->second;
+}
+
+// The cause of the soak's growing reader CPU (state_publisher.hpp, "History span"): on a
+// keep-last-1 topic, static objects written once and controls at rest kept their first
+// sequence numbers while the moving instances went on, and Fast DDS walks the hole between them
+// on every heartbeat. After many cycles with one control moving, no kept sample of object_state
+// or control_state may lie history_span_samples or more behind its writer's newest.
+TEST(StatePublisher, KeepsEveryInstanceWithinTheHistorySpan) {
+  dds_test_env();
+  physics::World world(load_scene(source_dir() + "/config/cockpit.yaml"));
+  const std::size_t objects = world.scene().objects.size();
+  const std::size_t controls = world.scene().controls.size();
+  const int knob = world.scene().find_control("heading_bug");
+  ASSERT_GE(knob, 0);
+  const uint64_t object_span = physics_node::history_span_samples(objects);
+  const uint64_t control_span = physics_node::history_span_samples(controls);
+
+  DdsParticipant participant(resolve_dds_options(DdsFlags{}), "state_publisher_test");
+  physics_node::StatePublisher publisher(participant, world);
+  publisher.publish_object_info(world);  // the static objects' one state sample
+  // the knob turns every cycle (one control_state each), the others rest; each dynamic object
+  // is written every cycle
+  physics::WorldState state = world.state();
+  const uint64_t cycles = 4 * std::max(object_span, control_span);
+  for (uint64_t c = 0; c < cycles; ++c) {
+    state.controls[static_cast<std::size_t>(knob)].q = 1e-4 * static_cast<double>(c % 1000);
+    world.restore(state);
+    publisher.publish_state(world, {});
+  }
+
+  auto object_reader = participant.make_reader<cockpit::ObjectState>("state");
+  auto control_reader = participant.make_reader<cockpit::ControlState>("state");
+  const auto object_seq = kept_sequence_numbers(object_reader, objects,
+                                                [](const cockpit::ObjectState& s) { return s.object_id(); });
+  const auto control_seq = kept_sequence_numbers(
+      control_reader, controls, [](const cockpit::ControlState& s) { return s.control_id(); });
+  ASSERT_EQ(object_seq.size(), objects) << "every object's kept sample";
+  ASSERT_EQ(control_seq.size(), controls) << "every control's kept sample";
+  EXPECT_LT(span(object_seq), static_cast<int64_t>(object_span)) << "object_state";
+  EXPECT_LT(span(control_seq), static_cast<int64_t>(control_span)) << "control_state";
 }
 
 }  // namespace
