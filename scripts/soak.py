@@ -22,6 +22,10 @@ Pass, all of:
     steps). A leak or a loop that slows over time makes late steps accelerate; a busy or small
     machine makes them at a steady rate, which the ratio and the allowance absorb (the count
     itself is not bounded: it depends on the machine, not on the run's length);
+  - CPU: per process, the mean over the last quarter of the run may be at most 1.25x the mean
+    over the first quarter after warm-up plus 5 points (of one core): a reader whose work grows
+    with the run's length (it once did: Fast DDS walking an ever wider hole in a keep-last
+    history) uses more CPU long before late steps or frame rates show it;
   - no node restarted (a pid change), none missing, the rig stopped by SIGINT with exit 0, and no
     /dev/shm file left that was not there before.
 """
@@ -40,6 +44,7 @@ QOS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "config", "
 WARMUP_FRACTION, WARMUP_MIN_S = 0.2, 30.0
 RSS_GROWTH_MAX = 0.05
 LATE_RATIO, LATE_ALLOWANCE_PER_S = 1.25, 1.0
+CPU_RATIO, CPU_ALLOWANCE_PCT = 1.25, 5.0
 
 
 def shm_entries():
@@ -316,6 +321,14 @@ def evaluate(rows, names, run_s):
         peak = max((num(r, f"{n}_rss_kib") or 0) for r in tail)
         if r0 and (peak - r0) / r0 >= RSS_GROWTH_MAX:
             failures.append(f"{n} RSS grew {100 * (peak - r0) / r0:.1f} % ({r0:.0f} -> {peak:.0f} KiB)")
+        quarter = max(2, len(post) // 4)
+        cpu_first = [c for c in (num(r, f"{n}_cpu_pct") for r in post[:quarter]) if c is not None]
+        cpu_last = [c for c in (num(r, f"{n}_cpu_pct") for r in post[-quarter:]) if c is not None]
+        if cpu_first and cpu_last:
+            c0, c1 = statistics.mean(cpu_first), statistics.mean(cpu_last)
+            if c1 > CPU_RATIO * c0 + CPU_ALLOWANCE_PCT:
+                failures.append(f"{n} CPU grew {c0:.1f} -> {c1:.1f} % of a core (allowed "
+                                f"{CPU_RATIO * c0 + CPU_ALLOWANCE_PCT:.1f} %)")
         f0, f1 = num(ref, f"{n}_fds"), num(end, f"{n}_fds")
         if f0 is not None and f1 is not None and f1 > f0:
             failures.append(f"{n} open files grew {f0:.0f} -> {f1:.0f}")

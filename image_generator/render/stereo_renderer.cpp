@@ -67,8 +67,16 @@ void delete_framebuffer(unsigned framebuffer, unsigned colour, unsigned depth) {
 
 }  // namespace
 
-StereoRenderer::StereoRenderer(const HmdConfig& config) : config_(config) {
-  config_.validate();
+namespace {
+HmdConfig validated(HmdConfig config) {
+  config.validate();
+  return config;
+}
+}  // namespace
+
+StereoRenderer::StereoRenderer(const HmdConfig& config)
+    : config_(validated(config)),
+      frames_(static_cast<std::size_t>(2 * config_.width_px) * config_.height_px * 4) {
   // Frames are drawn upside down (y flipped in the projection), so that glReadPixels, which
   // returns the bottom row first, gives the image top row first with no flip afterwards.
   const Eigen::Matrix4f flip_y = Eigen::Vector4f(1, -1, 1, 1).asDiagonal();
@@ -83,8 +91,6 @@ StereoRenderer::StereoRenderer(const HmdConfig& config) : config_(config) {
   program_ = std::make_unique<LitProgram>();
   meshes_ = std::make_unique<MeshBuffers>();
   background_meshes_ = std::make_unique<MeshBuffers>();
-  frames_.push_back(std::make_shared<std::vector<uint8_t>>(
-      static_cast<std::size_t>(2 * config_.width_px) * config_.height_px * 4, 0));
   // the frame and the background layer, both eyes side by side; the same formats, so the
   // background is restored by copying images (a memcpy in llvmpipe; a blit of the depth was
   // a shader pass costing 9 ms a frame here)
@@ -184,14 +190,8 @@ void StereoRenderer::end_frame() {
   // llvmpipe renders lazily: reading the pixels flushes, then copies them (top row first, as
   // drawn upside down)
   // into a buffer nobody else holds (a frame kept by the video encoder stays whole)
-  std::size_t free = frames_.size();
-  for (std::size_t i = 0; i < frames_.size() && free == frames_.size(); ++i)
-    if (frames_[i].use_count() == 1) free = i;
-  if (free == frames_.size())
-    frames_.push_back(std::make_shared<std::vector<uint8_t>>(frames_.front()->size(), 0));
-  current_ = free;
   glReadPixels(0, 0, 2 * config_.width_px, config_.height_px, GL_RGBA, GL_UNSIGNED_BYTE,
-               frames_[current_]->data());
+               frames_.next().data());
   while (glGetError() != GL_NO_ERROR)
     ++gl_error_count_;
   cost_.finish_ns = now_ns() - start_ns;
@@ -211,7 +211,7 @@ void StereoRenderer::draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead, const M
   }
 }
 
-const uint8_t* StereoRenderer::pixels() const { return frames_[current_]->data(); }
+const uint8_t* StereoRenderer::pixels() const { return frames_.current().data(); }
 
 std::string StereoRenderer::gl_renderer() const {
   return context_->renderer();

@@ -20,6 +20,8 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+
+#include "image_generator/render/frame_buffer_pool.hpp"
 #include <span>
 #include <string>
 #include <vector>
@@ -76,7 +78,7 @@ class StereoRenderer {
   // The same frame as a buffer a consumer may keep (a video encoder's queue): the renderer reads
   // later frames into other buffers while one is held (a small pool, grown only when every
   // buffer is held).
-  std::shared_ptr<const std::vector<uint8_t>> shared_pixels() const { return frames_[current_]; }
+  std::shared_ptr<const std::vector<uint8_t>> shared_pixels() { return frames_.share_current(); }
   int width_px() const { return config_.width_px; }  // per eye
   int height_px() const { return config_.height_px; }
   const HmdConfig& config() const { return config_; }
@@ -103,8 +105,7 @@ class StereoRenderer {
   PackedInstances background_packed_;
   std::vector<Instance> split_;  // render(): the moving instances
   std::vector<Instance> split_fixed_;
-  std::vector<std::shared_ptr<std::vector<uint8_t>>> frames_;  // read-back buffers
-  std::size_t current_ = 0;                                   // the last frame's
+  FrameBufferPool frames_;  // read-back buffers
   unsigned frame_framebuffer_ = 0;  // the frame being drawn: colour and depth of both eyes
   unsigned frame_colour_ = 0;
   unsigned frame_depth_ = 0;
