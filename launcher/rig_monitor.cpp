@@ -34,15 +34,6 @@ std::vector<std::string> split_position_names(const std::string& text) {
 
 }  // namespace
 
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const double rank = p * static_cast<double>(values.size() - 1);
-  const auto lo = static_cast<std::size_t>(std::floor(rank));
-  const auto hi = std::min(lo + 1, values.size() - 1);
-  return values[lo] + (rank - static_cast<double>(lo)) * (values[hi] - values[lo]);
-}
-
 RigMonitor::RigMonitor(DdsParticipant& participant)
     : status_reader_(participant.make_reader<cockpit::NodeStatus>("state")),
       event_reader_(participant.make_reader<cockpit::GraspEvent>("event")),
@@ -51,9 +42,7 @@ RigMonitor::RigMonitor(DdsParticipant& participant)
       state_reader_(participant.make_reader<cockpit::ObjectState>("state")),
       control_info_reader_(participant.make_reader<cockpit::ControlInfo>("state")),
       control_state_reader_(participant.make_reader<cockpit::ControlState>("state")),
-      control_event_reader_(participant.make_reader<cockpit::ControlEvent>("event")) {
-  latencies_ms_.reserve(1 << 16);
-}
+      control_event_reader_(participant.make_reader<cockpit::ControlEvent>("event")) {}
 
 std::string RigMonitor::object_name(uint32_t id) const {
   auto it = names_.find(id);
@@ -73,7 +62,13 @@ void RigMonitor::poll() {
   cockpit::NodeStatus status;
   while (status_reader_.take(status)) {
     const std::string name = status.node_name().to_string();
-    if (name == "physics_node" && status.input_alive()) step_rates_hz_.push_back(status.loop_rate_hz());
+    if (name == "physics_node" && status.input_alive()) {
+      if (step_rates_++ == 0) {
+        first_step_rate_hz_ = status.loop_rate_hz();
+      } else {
+        step_rates_sum_hz_ += status.loop_rate_hz();
+      }
+    }
     statuses_[name] = status;
   }
   cockpit::GraspEvent e;
@@ -125,18 +120,16 @@ void RigMonitor::poll() {
     // each hand sample counts once, at the first frame that drew it
     if (frame.source_stamp_ns() <= 0 || frame.source_stamp_ns() == last_source_stamp_ns_) continue;
     last_source_stamp_ns_ = frame.source_stamp_ns();
-    latencies_ms_.push_back(static_cast<double>(frame.render_end_ns() - frame.source_stamp_ns()) * 1e-6);
+    latency_.record_ns(frame.render_end_ns() - frame.source_stamp_ns());
     // where the latency goes: the sample's age when the frame began, and the render itself
-    age_at_render_ms_.push_back(static_cast<double>(frame.render_start_ns() - frame.source_stamp_ns()) * 1e-6);
-    render_ms_.push_back(static_cast<double>(frame.render_end_ns() - frame.render_start_ns()) * 1e-6);
+    age_at_render_.record_ns(frame.render_start_ns() - frame.source_stamp_ns());
+    render_.record_ns(frame.render_end_ns() - frame.render_start_ns());
   }
 }
 
 double RigMonitor::mean_step_rate_hz() const {
-  if (step_rates_hz_.size() < 2) return step_rates_hz_.empty() ? 0.0 : step_rates_hz_.front();
-  double sum = 0;  // the first report covers a partial second
-  for (std::size_t i = 1; i < step_rates_hz_.size(); ++i) sum += step_rates_hz_[i];
-  return sum / static_cast<double>(step_rates_hz_.size() - 1);
+  if (step_rates_ < 2) return first_step_rate_hz_;  // 0 with none
+  return step_rates_sum_hz_ / static_cast<double>(step_rates_ - 1);
 }
 
 uint64_t RigMonitor::late_steps() const {
@@ -157,7 +150,7 @@ std::string RigMonitor::status_line(double elapsed_s) const {
                 "latency p50 %5.1f ms",
                 elapsed_s, rate("physics_node"), rate("glove_driver"), alive ? "   " : "LOST",
                 rate("image_generator"), held_.empty() ? "nothing held" : ("holding " + held_).c_str(),
-                percentile(latencies_ms_, 0.5));
+                static_cast<double>(latency_.percentile_ns(0.5)) * 1e-6);
   return line;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/dds_participant.hpp"
+#include "common/latency_histogram.hpp"
 
 namespace vcockpit::rig {
 
@@ -43,10 +44,12 @@ class RigMonitor {
   const std::vector<SeenControlEvent>& control_events() const { return control_events_; }
   // each control's last position name (cockpit/control_state), by control name
   const std::map<std::string, std::string>& control_positions() const { return control_positions_; }
-  const std::vector<double>& latencies_ms() const { return latencies_ms_; }
+  // Histograms (fixed memory, however long the rig runs: an hour at 90 frames a second kept as a
+  // list grew the launcher by megabytes and sorted it four times a second for the status line)
+  const LatencyHistogram& latency() const { return latency_; }
   // for the same frames: the sample's age at render start, and the render time
-  const std::vector<double>& age_at_render_ms() const { return age_at_render_ms_; }
-  const std::vector<double>& render_ms() const { return render_ms_; }
+  const LatencyHistogram& age_at_render() const { return age_at_render_; }
+  const LatencyHistogram& render() const { return render_; }
   uint64_t frames_seen() const { return frames_seen_; }
   // mean physics step rate over the statuses while the glove was alive, and the last late count
   double mean_step_rate_hz() const;
@@ -74,18 +77,21 @@ class RigMonitor {
   std::map<uint32_t, bool> dynamic_;
   std::map<std::string, cockpit::ObjectState> final_;
   std::map<std::string, cockpit::NodeStatus> statuses_;
-  std::vector<double> step_rates_hz_;
+  uint64_t step_rates_ = 0;       // physics statuses while the glove was alive
+  double step_rates_sum_hz_ = 0;  // of them but the first (a partial second)
+  double first_step_rate_hz_ = 0;
   std::map<uint32_t, std::string> names_;
   std::vector<SeenEvent> events_;
-  std::vector<double> latencies_ms_;
-  std::vector<double> age_at_render_ms_;
-  std::vector<double> render_ms_;
+  // 50 us bins up to 20 s (800 KB each): a sanitized rig's seconds of latency still fit
+  static constexpr int64_t kBin_ns = 50'000;
+  static constexpr int64_t kRange_ns = 20'000'000'000;
+  LatencyHistogram latency_{kBin_ns, kRange_ns};
+  LatencyHistogram age_at_render_{kBin_ns, kRange_ns};
+  LatencyHistogram render_{kBin_ns, kRange_ns};
   int64_t last_source_stamp_ns_ = 0;
   uint64_t frames_seen_ = 0;
   std::string held_;
 };
 
-// p in [0, 1]; 0 for an empty set.
-double percentile(std::vector<double> values, double p);
 
 }  // namespace vcockpit::rig

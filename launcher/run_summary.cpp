@@ -46,15 +46,16 @@ RunSummary collect_run_summary(const RigConfig& rig, const std::string& out_dir,
   s.physics_step_rate_hz = monitor.mean_step_rate_hz();
   s.late_steps = monitor.late_steps();
 
-  const auto& lat = monitor.latencies_ms();
-  s.latency_p50_ms = percentile(lat, 0.5);
-  s.latency_p99_ms = percentile(lat, 0.99);
-  s.latency_max_ms = lat.empty() ? 0.0 : *std::max_element(lat.begin(), lat.end());
-  s.latency_samples = lat.size();
-  s.age_at_render_start_p50_ms = percentile(monitor.age_at_render_ms(), 0.5);
-  s.age_at_render_start_p99_ms = percentile(monitor.age_at_render_ms(), 0.99);
-  s.render_p50_ms = percentile(monitor.render_ms(), 0.5);
-  s.render_p99_ms = percentile(monitor.render_ms(), 0.99);
+  auto ms = [](int64_t ns) { return static_cast<double>(ns) * 1e-6; };
+  const LatencyHistogram& lat = monitor.latency();
+  s.latency_p50_ms = ms(lat.percentile_ns(0.5));
+  s.latency_p99_ms = ms(lat.percentile_ns(0.99));
+  s.latency_max_ms = ms(lat.max_ns());
+  s.latency_samples = lat.count();
+  s.age_at_render_start_p50_ms = ms(monitor.age_at_render().percentile_ns(0.5));
+  s.age_at_render_start_p99_ms = ms(monitor.age_at_render().percentile_ns(0.99));
+  s.render_p50_ms = ms(monitor.render().percentile_ns(0.5));
+  s.render_p99_ms = ms(monitor.render().percentile_ns(0.99));
 
   for (const auto& [name, st] : monitor.final_states()) {
     const auto& p = st.X_GO().position_m();
