@@ -141,9 +141,14 @@ void check_indices(const physics::WorldState& s, const physics::Scene& scene) {
   const uint64_t holders_limit = 1u << hand_count;
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     const physics::BodyState& b = s.bodies[i];
-    if (b.holders >= holders_limit) bad("object " + std::to_string(i) + " held by a hand the scene has not");
+    const std::string object = "object " + std::to_string(i);
+    if (b.holders >= holders_limit) bad(object + " held by a hand the scene has not");
     if (b.held_by != physics::kNotHeld && (b.held_by < 0 || b.held_by > 1))
-      bad("object " + std::to_string(i) + " held by hand id " + std::to_string(b.held_by));
+      bad(object + " held by hand id " + std::to_string(b.held_by));
+    // the grasp decisions take a held body's pose ring: only dynamic objects are ever held
+    if ((b.holders != 0) != (b.held_by != physics::kNotHeld))
+      bad(object + " held and not held (its holders and held_by disagree)");
+    if (b.holders != 0 && !scene.objects[i].dynamic) bad(object + " is static and held");
   }
   for (const physics::HandState& h : s.hands) {
     if (h.blocking_out_G.size() > static_cast<std::size_t>(physics::kMaxBlockingPlanes))

@@ -488,6 +488,20 @@ TEST(WorldCheckpoint, DamagedForeignOrOutOfSceneCheckpointsAreRefusedWithWhy) {
             std::string::npos);
   EXPECT_NE(refusal(with([](WorldState& s) { s.bodies.pop_back(); }), fresh).find("another scene"),
             std::string::npos);
+  const int floor = cockpit.scene.find_object("floor");
+  ASSERT_GE(floor, 0);
+  ASSERT_FALSE(cockpit.scene.objects[static_cast<std::size_t>(floor)].dynamic);
+  EXPECT_NE(refusal(with([&](WorldState& s) {
+                      s.bodies[static_cast<std::size_t>(floor)].holders = 1;
+                      s.bodies[static_cast<std::size_t>(floor)].held_by = 0;
+                    }),
+                    fresh)
+                .find("static and held"),
+            std::string::npos);
+  EXPECT_NE(refusal(with([&](WorldState& s) { s.bodies[static_cast<std::size_t>(cockpit.cup)].holders = 1; }),
+                    fresh)
+                .find("disagree"),
+            std::string::npos);
 }
 
 TEST(WorldCheckpoint, AFileIsWrittenWholeAndItsErrorsNameIt) {
