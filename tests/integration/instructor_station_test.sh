@@ -27,7 +27,14 @@ unset VCOCKPIT_PARTICIPANT VCOCKPIT_PKI_DIR VCOCKPIT_IDENTITY
 port=$($py -c "import socket; s=socket.socket(); s.bind(('127.0.0.1', 0)); print(s.getsockname()[1])")
 url=http://127.0.0.1:$port
 for f in qos.xml cockpit.yaml hmd.yaml hand.yaml glove_logs; do ln -s "$src/config/$f" "$tmp/rigcfg/$f"; done
-sed -e "s/^domain: .*/domain: $domain/" "$src/config/rig.yaml" > "$tmp/rigcfg/rig.yaml"
+# under the sanitizers the lockstep physics steps two hands at about 0.3x real time: the gloves
+# replay at a quarter speed there, so the replay is still running when the browser clicks unfreeze (a
+# replay held at its end sends nothing for the world to step to)
+rate=1
+[ "${VCOCKPIT_SANITIZED:-0}" = 1 ] && rate=0.25
+sed -e "s/^domain: .*/domain: $domain/" -e "s/--rate, \"1\"/--rate, \"$rate\"/" \
+  "$src/config/rig.yaml" > "$tmp/rigcfg/rig.yaml"
+grep -q -- "--rate, \"$rate\"" "$tmp/rigcfg/rig.yaml" || { echo "FAIL: no --rate in rig.yaml to set"; exit 1; }
 "$bin/rig_launcher" "$tmp/rigcfg/rig.yaml" --ui --ui-port "$port" --out "$tmp/rig" --quiet \
   > "$tmp/rig.log" 2>&1 &
 rig_pid=$!
