@@ -297,7 +297,8 @@ def main():
               f"{video.get('height_px')} H.264 at {video.get('fps')} fps): "
               f"**{ig_video['fps']:.1f} fps** ({fps_drop:.1f} % fewer); render p50 "
               f"{ig_video['render_ms']['p50']:.1f} ms, p99 {ig_video['render_ms']['p99']:.1f} ms; "
-              f"{video.get('video_frames')} video frames ({video.get('repeated')} repeated), "
+              f"{video.get('video_frames')} frames in the video ({video.get('repeated')} display "
+              f"periods held the previous image), "
               f"{video.get('frames_dropped')} of {video.get('frames_submitted')} rendered frames "
               f"left out because the encoder, on idle CPU time only, was behind.\n")
     md.append("## The drawn fingertip against the glove at frame end\n")

@@ -268,10 +268,12 @@ bool ImageGenerator::start_video() {
 void ImageGenerator::finish_video() {
   if (!video_) return;
   if (video_->finish()) {
-    spdlog::info("video {}: {} frames ({:.1f} s; {} repeated to keep real time, {} skipped over "
-                 "the rate), {} of {} rendered frames dropped because the encoder was behind",
+    spdlog::info("video {}: {} frames over {:.1f} s ({} display periods hold the previous image, "
+                 "{} frames skipped over the rate), {} of {} rendered frames dropped because the "
+                 "encoder was behind",
                  video_path_, video_->video_frames(),
-                 static_cast<double>(video_->video_frames()) / video_fps_, video_->repeated(),
+                 static_cast<double>(video_->video_frames() + video_->repeated()) / video_fps_,
+                 video_->repeated(),
                  video_->skipped(), video_->dropped(), video_->submitted());
   } else {
     spdlog::error("video {} not written: {}", video_path_, video_->error());

@@ -23,6 +23,7 @@
 #include <system_error>
 #include <utility>
 
+#include "image_generator/node/matroska_stream.hpp"
 #include "image_generator/render/image_scale.hpp"
 #include "image_generator/render/png_writer.hpp"
 #include "image_generator/render/text_overlay.hpp"
@@ -136,11 +137,11 @@ VideoRecorder::VideoRecorder(VideoOptions options, int eye_width_px, int height_
 
   // clang-format off
   argv_ = {options_.ffmpeg, "-hide_banner", "-nostats", "-loglevel", "error", "-y",
-           "-f", "rawvideo", "-pix_fmt", "rgb24",
-           "-video_size", std::to_string(width_px_) + "x" + std::to_string(height_px_),
-           "-framerate", format_number(options_.fps), "-i", "pipe:0",
+           "-f", "matroska", "-i", "pipe:0",
            "-an", "-c:v", "libx264", "-preset", options_.preset,
            "-crf", std::to_string(options_.crf), "-pix_fmt", "yuv420p", "-threads", "1",
+           // each frame keeps its timestamp (a multiple of the display period): no repeats
+           "-fps_mode", "vfr", "-r", format_number(options_.fps),
            "-movflags", "+faststart", "-f", "mp4", partial_path_};
   // clang-format on
 
@@ -305,6 +306,8 @@ void VideoRecorder::work() {
   worker_tid_ = static_cast<pid_t>(syscall(SYS_gettid));
   lower_priority(0, Priority::kNice);
   block_sigpipe();
+  const std::vector<uint8_t> header = matroska_stream_header(width_px_, height_px_);
+  write_all(header.data(), header.size());
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     wake_.wait(lock, [this] { return head_ != tail_ || stopping_; });
@@ -334,31 +337,27 @@ void VideoRecorder::encode(const Slot& slot) {
     ++skipped_;
     return;
   }
-  // the previous image again for every video frame the render did not fill
-  for (; last_index_ >= 0 && last_index_ + 1 < index; ++last_index_) {
-    if (!write_rgb()) return;
-    ++repeated_;
-    ++video_frames_;
-  }
   if (slot.frame) {  // the view straight from the frame it is in: no copy of it first
     convert(slot.frame->data(), 2 * eye_width_px_, slot.sim_time_ns);
   } else {
     convert(slot.rgba.data(), source_width_px_, slot.sim_time_ns);
   }
-  if (!write_rgb()) return;
-  last_index_ = index;
-  ++video_frames_;
+  write_frame(index);
 }
 
 void VideoRecorder::hold_last_frame_until(int64_t end_index) {
-  // frames dropped at the end (the encoder behind): the last image stays, so the video still
-  // lasts as long as the run
-  while (last_index_ >= 0 && last_index_ < end_index) {
-    if (!write_rgb()) return;
-    ++last_index_;
-    ++repeated_;
-    ++video_frames_;
-  }
+  // frames dropped at the end (the encoder behind): the last image once more at the last
+  // rendered frame's period, so the video still lasts as long as the run
+  if (last_index_ >= 0 && last_index_ < end_index) write_frame(end_index);
+}
+
+void VideoRecorder::write_frame(int64_t index) {
+  const int64_t timestamp_us = std::llround(static_cast<double>(index) * 1e6 / options_.fps);
+  const auto prefix = matroska_frame_prefix(timestamp_us, rgb_.size());
+  if (!write_all(prefix.data(), prefix.size()) || !write_all(rgb_.data(), rgb_.size())) return;
+  if (last_index_ >= 0) repeated_ += static_cast<uint64_t>(index - last_index_ - 1);
+  last_index_ = index;
+  ++video_frames_;
 }
 
 void VideoRecorder::convert(const uint8_t* rgba, int stride_px, int64_t sim_time_ns) {
@@ -376,9 +375,7 @@ void VideoRecorder::convert(const uint8_t* rgba, int stride_px, int64_t sim_time
                     label);
 }
 
-bool VideoRecorder::write_rgb() {
-  const uint8_t* data = rgb_.data();
-  std::size_t left = rgb_.size();
+bool VideoRecorder::write_all(const uint8_t* data, std::size_t left) {
   while (left > 0) {
     const ssize_t n = write(pipe_fd_, data, left);
     if (n < 0) {

@@ -3,16 +3,17 @@
 // thread and at low CPU priority, so recording never takes time from rendering or the physics.
 // The render thread only copies the frame into one of a few preallocated slots (never blocks:
 // with every slot busy the frame is dropped and counted); a worker thread scales it, burns in the
-// sim time, and pipes raw RGB to ffmpeg.
+// sim time, and pipes it to ffmpeg as raw RGB frames with timestamps (matroska_stream.hpp).
 //
-// Timeline: the video has a constant frame rate (the display's), and each frame is placed by the
-// monotonic time it was finished, so the video plays in real time and lasts as long as the run.
-// The first frame is video frame 0 at t0; a frame finished at t is video frame
-// k = llround((t - t0) * fps / 1e9). Missing indices before it repeat the previous image (render
-// slower than fps, or dropped frames); a frame whose k is not past the last one written is
-// skipped (render faster than fps). Frames dropped after the last one written (the encoder
-// behind at the end) leave its image held to the last rendered frame's k: the video always lasts
-// as long as the rendering did.
+// Timeline: the video's nominal rate is the display's, and each frame is placed by the monotonic
+// time it was finished, so the video plays in real time and lasts as long as the run. The first
+// frame is at video period 0 at t0; a frame finished at t is at period
+// k = llround((t - t0) * fps / 1e9). Periods with no frame of their own (render slower than fps,
+// or frames dropped) keep the previous image on screen: nothing is encoded for them, so an
+// encoder that falls behind never builds a backlog. A frame whose k is not past the last one
+// written is skipped (render faster than fps). Frames dropped after the last one written (the
+// encoder behind at the end) leave its image written once more at the last rendered frame's k:
+// the video always lasts as long as the rendering did.
 
 #include <sys/types.h>
 
@@ -77,8 +78,10 @@ class VideoRecorder {
 
   uint64_t submitted() const;  // every submit() call, dropped ones included
   uint64_t dropped() const;    // submits refused: no free slot (the encoder fell behind) or failed
-  uint64_t video_frames() const { return video_frames_; }  // written to the video, repeats included
-  uint64_t repeated() const { return repeated_; }  // repeats keeping the timeline (slow render)
+  uint64_t video_frames() const { return video_frames_; }  // images in the video
+  // display periods the previous image stays on for (slow render, dropped frames): the video
+  // lasts video_frames() + repeated() periods
+  uint64_t repeated() const { return repeated_; }
   uint64_t skipped() const { return skipped_; }    // two frames in one video frame (fast render)
   int width_px() const { return width_px_; }       // of the video
   int height_px() const { return height_px_; }
@@ -101,7 +104,8 @@ class VideoRecorder {
   void encode(const Slot& slot);
   // the view's pixels (stride_px from row to row) -> rgb_ (scaled, cropped, labelled)
   void convert(const uint8_t* rgba, int stride_px, int64_t sim_time_ns);
-  bool write_rgb();
+  void write_frame(int64_t index);  // rgb_ at period index
+  bool write_all(const uint8_t* data, std::size_t bytes);
   void hold_last_frame_until(int64_t end_index);
   void fail_writing(const std::string& why);
   std::string finish_error(const std::string& why, int status) const;
