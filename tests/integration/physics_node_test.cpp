@@ -288,7 +288,9 @@ TEST_F(PhysicsNodeTest, RealTimeHoldsOneKilohertzAndTheHandFollowsTheSamples) {
     ++tracked;
   }
   EXPECT_GT(tracked, sanitized() ? 50 : 500) << "about 90 hand states a second for 10 s";
-  EXPECT_GE(exact, tracked * (sanitized() ? 90 : 98) / 100)
+  // under the sanitizers (-O1, 5-15x slower) a 1 kHz step is late more often: more catch-ups,
+  // 87 % exact under TSan; an interpolation gone wrong leaves next to none exact
+  EXPECT_GE(exact, tracked * (sanitized() ? 75 : 98) / 100)
       << "all but the states next to a lost sample (or a resynchronisation) are exact";
 }
 
