@@ -112,7 +112,9 @@ TEST_F(FaultLossTest, UnderThirtyPercentLossTheRecorderKeepsEverythingOrCountsEx
   const Recorded r = record_real_time_replay(dir_, 10.0, env_, hand_);
   EXPECT_GT(r.published, 9000);
   ASSERT_GE(r.lost_line, 0) << "a # lost: line";
-  EXPECT_GT(r.span, r.published / 2) << "the recorder matched within half the run";
+  // discovery under 30 % loss takes 1-5 s here (lost announcements wait for the next period):
+  // what matters is that thousands of samples were recorded to count
+  EXPECT_GE(r.span, 3000) << "the recorder matched with at least 3 s of the run to go";
   EXPECT_EQ(r.recorded + r.lost_line, r.span) << "recorded + lost = sent while it was there";
   EXPECT_EQ(r.lost_line, r.missing) << "the count is exact";
   // the writer keeps 1 s of samples for repairs: what is lost is lost before the reliable
