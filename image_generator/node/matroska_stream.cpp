@@ -44,34 +44,31 @@ constexpr std::size_t kBlockHeaderBytes = 4;  // track number, int16 relative ti
 
 using Bytes = std::vector<uint8_t>;
 
-void put_id(Bytes& out, uint32_t id) {
-  int bytes = 4;
-  while (bytes > 1 && (id >> (8 * (bytes - 1))) == 0)
-    --bytes;
-  for (int i = bytes - 1; i >= 0; --i)
-    out.push_back(static_cast<uint8_t>(id >> (8 * i)));
+// EBML writes every number big-endian
+void store_big_endian(uint8_t* out, uint64_t value, std::size_t bytes) {
+  for (std::size_t i = 0; i < bytes; ++i)
+    out[i] = static_cast<uint8_t>(value >> (8 * (bytes - 1 - i)));
 }
 
+std::size_t id_bytes(uint32_t id) { return id > 0xFFFFFF ? 4 : id > 0xFFFF ? 3 : id > 0xFF ? 2 : 1; }
+
 // 8-byte EBML size: a 0x01 marker byte, then 56 bits of value
-template <typename Out>
-void put_size(Out out, uint64_t size) {
+void store_size(uint8_t* out, uint64_t size) {
   out[0] = 0x01;
-  for (std::size_t i = 1; i < kSizeBytes; ++i)
-    out[i] = static_cast<uint8_t>(size >> (8 * (kSizeBytes - 1 - i)));
+  store_big_endian(out + 1, size, kSizeBytes - 1);
 }
 
 void put_element(Bytes& out, uint32_t id, const Bytes& payload) {
-  put_id(out, id);
   const std::size_t at = out.size();
-  out.resize(at + kSizeBytes);
-  put_size(out.begin() + static_cast<std::ptrdiff_t>(at), payload.size());
+  out.resize(at + id_bytes(id) + kSizeBytes);
+  store_big_endian(&out[at], id, id_bytes(id));
+  store_size(&out[at + id_bytes(id)], payload.size());
   out.insert(out.end(), payload.begin(), payload.end());
 }
 
 void put_uint(Bytes& out, uint32_t id, uint64_t value) {
-  Bytes payload;
-  for (int i = 7; i >= 0; --i)
-    payload.push_back(static_cast<uint8_t>(value >> (8 * i)));
+  Bytes payload(8);
+  store_big_endian(payload.data(), value, payload.size());
   put_element(out, id, payload);
 }
 
@@ -94,9 +91,11 @@ std::vector<uint8_t> matroska_stream_header(int width_px, int height_px) {
   put_uint(ebml, kDocTypeReadVersion, 2);
   put_element(out, kEbml, ebml);
 
-  put_id(out, kSegment);
-  for (int i = 0; i < 8; ++i)  // unknown size: the stream ends when the pipe closes
-    out.push_back(i == 0 ? 0x01 : 0xFF);
+  const std::size_t segment_at = out.size();
+  out.resize(segment_at + 4 + kSizeBytes);
+  store_big_endian(&out[segment_at], kSegment, 4);
+  // unknown size (every value bit set): the stream ends when the pipe closes
+  store_size(&out[segment_at + 4], (uint64_t{1} << 56) - 1);
 
   Bytes info;
   put_uint(info, kTimestampScale, kNanosecondsPerTick);
@@ -125,29 +124,28 @@ std::array<uint8_t, kMatroskaFramePrefixBytes> matroska_frame_prefix(int64_t tim
                                                                      std::size_t frame_bytes) {
   if (timestamp_us < 0) throw std::invalid_argument("matroska: negative timestamp");
   std::array<uint8_t, kMatroskaFramePrefixBytes> out{};
-  std::size_t at = 0;
-  auto put_byte = [&](uint32_t value) { out[at++] = static_cast<uint8_t>(value); };
-  auto put_id4 = [&](uint32_t id) {
-    for (int i = 3; i >= 0; --i) put_byte(id >> (8 * i));
+  uint8_t* at = out.data();
+  auto put = [&](uint64_t value, std::size_t bytes) {
+    store_big_endian(at, value, bytes);
+    at += bytes;
   };
-  auto put_size8 = [&](uint64_t size) {
-    put_size(out.begin() + static_cast<std::ptrdiff_t>(at), size);
+  auto put_size = [&](uint64_t size) {
+    store_size(at, size);
     at += kSizeBytes;
   };
   const uint64_t block_bytes = kBlockHeaderBytes + frame_bytes;
   const uint64_t timestamp_element_bytes = 1 + kSizeBytes + 8;
   const uint64_t block_element_bytes = 1 + kSizeBytes + block_bytes;
-  put_id4(kCluster);
-  put_size8(timestamp_element_bytes + block_element_bytes);
-  put_byte(kClusterTimestamp);
-  put_size8(8);
-  for (int i = 7; i >= 0; --i) put_byte(static_cast<uint32_t>(static_cast<uint64_t>(timestamp_us) >> (8 * i)));
-  put_byte(kSimpleBlock);
-  put_size8(block_bytes);
-  put_byte(kTrackNumberVint);
-  put_byte(0);  // the block at its cluster's timestamp (int16 offset 0)
-  put_byte(0);
-  put_byte(kKeyframeFlag);
+  put(kCluster, 4);
+  put_size(timestamp_element_bytes + block_element_bytes);
+  put(kClusterTimestamp, 1);
+  put_size(8);
+  put(static_cast<uint64_t>(timestamp_us), 8);
+  put(kSimpleBlock, 1);
+  put_size(block_bytes);
+  put(kTrackNumberVint, 1);
+  put(0, 2);  // the block at its cluster's timestamp (int16 offset 0)
+  put(kKeyframeFlag, 1);
   return out;
 }
 
