@@ -109,11 +109,12 @@ TEST_F(FaultLossTest, ARealTimeReplayAt1kHzIsRecordedWhole) {
 
 TEST_F(FaultLossTest, UnderThirtyPercentLossTheRecorderKeepsEverythingOrCountsExactly) {
   use_loss(30);
-  const Recorded r = record_real_time_replay(dir_, 10.0, env_, hand_);
-  EXPECT_GT(r.published, 9000);
-  ASSERT_GE(r.lost_line, 0) << "a # lost: line";
-  // discovery under 30 % loss takes 1-5 s here (lost announcements wait for the next period):
+  // discovery under 30 % loss takes 1-8 s here, and now and then 15-25 s (lost discovery
+  // messages are repaired at Fast DDS's own pace; kDiscoveryUnderLoss): 15 s of replay, and
   // what matters is that thousands of samples were recorded to count
+  const Recorded r = record_real_time_replay(dir_, 15.0, env_, hand_);
+  EXPECT_GT(r.published, 14000);
+  ASSERT_GE(r.lost_line, 0) << "a # lost: line";
   EXPECT_GE(r.span, 3000) << "the recorder matched with at least 3 s of the run to go";
   EXPECT_EQ(r.recorded + r.lost_line, r.span) << "recorded + lost = sent while it was there";
   EXPECT_EQ(r.lost_line, r.missing) << "the count is exact";
@@ -121,6 +122,12 @@ TEST_F(FaultLossTest, UnderThirtyPercentLossTheRecorderKeepsEverythingOrCountsEx
   // reader matched (its best-effort twin's losses), a few at most
   EXPECT_LT(r.lost_line, r.span / 100);
 }
+
+// How long two processes may take to find each other under 30 % loss. A lost discovery message
+// waits for Fast DDS's next heartbeat or announcement, and losses chain: from a physics node's
+// start to a monitor's first status of it, 40 trials here took p50 3.2 s, 8.2 s at the 95th
+// percentile, then 15.5 and 25.3 s; in one run of .ci/run it took over 60 s.
+constexpr int64_t kDiscoveryUnderLoss = 150 * kSecond;
 
 // The lockstep replay of the grasp log under loss: the same files as the offline runner.
 void lockstep_under_loss(int percent, const std::string& dir,
@@ -143,10 +150,11 @@ void lockstep_under_loss(int percent, const std::string& dir,
   ChildProcess monitor({bin_dir() + "/test_cockpit_monitor", "--out", monitor_file}, env,
                        dir + "/monitor_" + tag + ".log");
   // discovery is slow under loss: the monitor must see the node before the replay starts
-  ASSERT_TRUE(wait_for_line(monitor_file, "status node=physics_node", 60 * kSecond))
+  ASSERT_TRUE(wait_for_line(monitor_file, "status node=physics_node", kDiscoveryUnderLoss))
       << read_text(dir + "/monitor_" + tag + ".log");
   ChildProcess driver({bin_dir() + "/glove_driver", "--source", "replay", "--log", log,
-                       "--lockstep", "--rate", "0"},
+                       "--lockstep", "--rate", "0", "--match-timeout",
+                       std::to_string(kDiscoveryUnderLoss / kSecond)},
                       env, dir + "/driver_" + tag + ".log");
   ASSERT_EQ(driver.wait(240 * kSecond), 0) << read_text(dir + "/driver_" + tag + ".log");
   // The driver ends when the node has received every sample, not stepped through them (slow

@@ -72,7 +72,8 @@ int main(int argc, char** argv) {
     cockpit::HandSample sample;
     while (received < count && !shutdown_requested() && monotonic_now_ns() < deadline_ns) {
       reader.wait_for_data(100'000'000);
-      while (reader.take(sample)) {
+      // no more than --count: a burst read at once may hold more than the count still needs
+      while (received < count && reader.take(sample)) {
         sample.source_stamp_ns(0);
         const auto bytes = test::serialize(sample);
         const auto size = static_cast<uint32_t>(bytes.size());
