@@ -9,22 +9,18 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "common/config_error.hpp"
+
 #include <array>
 #include <cstdint>
 #include <memory>
 #include <initializer_list>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace vcockpit {
-
-class ConfigError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 class ConfigNode {
  public:

@@ -1,5 +1,6 @@
 // hand.yaml (hand/hand_yaml.cpp): any text is either a hand model or a ConfigError.
 
+#include "common/yaml_config.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "hand/hand_yaml.hpp"
 

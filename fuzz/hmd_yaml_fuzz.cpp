@@ -1,5 +1,6 @@
 // hmd.yaml (image_generator/node/hmd_yaml.cpp): any text is either an HMD or a ConfigError.
 
+#include "common/yaml_config.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "image_generator/node/hmd_yaml.hpp"
 

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "common/yaml_config.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "physics_node/config/scene_config.hpp"
 

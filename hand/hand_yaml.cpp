@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "common/pose.hpp"
+#include "common/yaml_config.hpp"
 
 namespace vcockpit {
 namespace {

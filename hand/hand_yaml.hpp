@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "common/yaml_config.hpp"
+#include "common/config_error.hpp"
 #include "hand/hand_model.hpp"
 
 namespace vcockpit {

@@ -18,7 +18,7 @@
 // the same max gap: its "bridged" gaps are those a physics node with that max gap would bridge.
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 namespace vcockpit::hand {

@@ -1,6 +1,7 @@
 #include "image_generator/node/hmd_yaml.hpp"
 
 #include "common/pose.hpp"
+#include "common/yaml_config.hpp"
 
 namespace vcockpit {
 namespace {

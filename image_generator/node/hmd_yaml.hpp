@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "common/yaml_config.hpp"
+#include "common/config_error.hpp"
 #include "image_generator/render/hmd_config.hpp"
 
 namespace vcockpit {

@@ -10,7 +10,7 @@
 
 #include <string>
 
-#include "common/yaml_config.hpp"
+#include "common/config_error.hpp"
 #include "physics_node/physics/scene.hpp"
 
 namespace vcockpit {

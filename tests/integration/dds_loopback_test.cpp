@@ -20,7 +20,7 @@ TEST(DdsLoopback, ThousandHandSamplesAtOneKilohertzReliableNoneLost) {
   constexpr int kCount = 1000;
   const std::string dir = make_temp_dir("dds_loopback");
   const std::string out = dir + "/received.bin";
-  const auto shm_before = list_dev_shm();
+  const auto shm_before = list_dds_shm();
   const auto env = dds_test_env();
 
   ChildProcess sub({bin_dir() + "/test_hand_sample_sub", "--count", std::to_string(kCount),
@@ -39,8 +39,8 @@ TEST(DdsLoopback, ThousandHandSamplesAtOneKilohertzReliableNoneLost) {
     ASSERT_EQ(records[i], serialize(expected)) << "sample " << i << " differs";
   }
 
-  const auto leftovers = new_entries(shm_before, list_dev_shm());
-  remove_dev_shm(leftovers);
+  const auto leftovers = new_entries(shm_before, list_dds_shm());
+  remove_dds_shm(leftovers);
   EXPECT_TRUE(leftovers.empty()) << "left in /dev/shm: " << leftovers.size() << " files, first "
                                  << (leftovers.empty() ? "" : leftovers.front());
 }

@@ -127,7 +127,7 @@ check "[ -n '$said' ] && [ '${frames:-0}' -ge 1 ] && [ '$frames' = '$said_frames
                        $said_s > $run_s - 5 && $said_s < $run_s + 3) }'" \
   "rig.mp4 plays: $frames frames over $duration s (the image generator wrote ${said_frames:-?} over ${said_s:-?} s of a ${run_s} s run)"
 shm_after=$(ls /dev/shm | sort)
-left=$(comm -13 <(echo "$shm_before") <(echo "$shm_after") | grep -E 'fastrtps|fast_datasharing|sem\.' || true)
+left=$(comm -13 <(echo "$shm_before") <(echo "$shm_after") | grep -E '^(sem\.)?(fastrtps_|fast_datasharing_)' || true)
 check "[ -z '$left' ]" "no /dev/shm files left"
 [ $fail -ne 0 ] && { tail -n 40 "$tmp/rig.log"; exit 1; }
 [ $browser -eq 77 ] && exit 77

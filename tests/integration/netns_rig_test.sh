@@ -32,7 +32,7 @@ done
 ns_after=$(ip netns list 2>/dev/null | sort)
 [ "$ns_before" = "$ns_after" ] || { echo "FAIL: namespaces left: $ns_after"; fail=1; }
 shm_after=$(ls /dev/shm | sort)
-left=$(comm -13 <(echo "$shm_before") <(echo "$shm_after") | grep -E 'fastrtps|fast_datasharing|sem\.' || true)
+left=$(comm -13 <(echo "$shm_before") <(echo "$shm_after") | grep -E '^(sem\.)?(fastrtps_|fast_datasharing_)' || true)
 [ -z "$left" ] || { echo "FAIL: /dev/shm files left: $left"; fail=1; }
 [ $fail -eq 0 ] && echo "netns_rig_test: passed"
 exit $fail

@@ -179,7 +179,7 @@ sys.exit(0 if s['ok'] and $want and s['frames_rendered'] > 0 else 1)\"" \
   "its summary ($want), frames rendered: seen through the monitor's identity"
 
 shm_after=$(ls /dev/shm | sort)
-left=$(comm -13 <(echo "$shm_before") <(echo "$shm_after") | grep -E 'fastrtps|fast_datasharing|sem\.' || true)
+left=$(comm -13 <(echo "$shm_before") <(echo "$shm_after") | grep -E '^(sem\.)?(fastrtps_|fast_datasharing_)' || true)
 check "[ -z '$left' ]" "no /dev/shm files left"
 [ $fail -eq 0 ] && echo "security_test: passed"
 exit $fail

@@ -95,11 +95,18 @@ int ChildProcess::stop(int64_t grace_ns) {
   return status;
 }
 
-std::vector<std::string> list_dev_shm() {
+std::vector<std::string> list_dds_shm() {
   std::vector<std::string> out;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator("/dev/shm", ec)) {
-    out.push_back(entry.path().filename().string());
+    const std::string name = entry.path().filename().string();
+    for (const char* prefix : {"fastrtps_", "sem.fastrtps_", "fast_datasharing_",
+                               "sem.fast_datasharing_"}) {
+      if (name.rfind(prefix, 0) == 0) {
+        out.push_back(name);
+        break;
+      }
+    }
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -113,7 +120,7 @@ std::vector<std::string> new_entries(const std::vector<std::string>& before,
   return out;
 }
 
-void remove_dev_shm(const std::vector<std::string>& names) {
+void remove_dds_shm(const std::vector<std::string>& names) {
   std::error_code ec;
   for (const auto& name : names) fs::remove(fs::path("/dev/shm") / name, ec);
 }

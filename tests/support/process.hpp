@@ -35,13 +35,15 @@ class ChildProcess {
   bool reaped_ = false;
 };
 
-// Directory listing of /dev/shm, to check a test leaves none of its own files behind.
-std::vector<std::string> list_dev_shm();
+// Fast DDS's files in /dev/shm (shared-memory segments, their semaphores, data-sharing pools),
+// to check a test leaves none behind. Only these: other programs' files (a browser's, Python's
+// semaphores) come and go with tests running beside it.
+std::vector<std::string> list_dds_shm();
 // Entries of `after` not in `before`.
 std::vector<std::string> new_entries(const std::vector<std::string>& before,
                                      const std::vector<std::string>& after);
 // Removes the given /dev/shm entries (cleanup after the assertion, so a failure does not leak).
-void remove_dev_shm(const std::vector<std::string>& names);
+void remove_dds_shm(const std::vector<std::string>& names);
 
 // Directory of the test's own executables (build/bin), from VCOCKPIT_BIN_DIR set by ctest.
 std::string bin_dir();

@@ -30,10 +30,10 @@ inline bool sanitized() {
 
 class ProcessTest : public ::testing::Test {
  protected:
-  void SetUp() override { shm_before_ = list_dev_shm(); }
+  void SetUp() override { shm_before_ = list_dds_shm(); }
   void TearDown() override {
-    const auto leftovers = new_entries(shm_before_, list_dev_shm());
-    remove_dev_shm(leftovers);
+    const auto leftovers = new_entries(shm_before_, list_dds_shm());
+    remove_dds_shm(leftovers);
     if (expect_clean_shm_) {
       EXPECT_TRUE(leftovers.empty()) << leftovers.size() << " files left in /dev/shm, e.g. "
                                      << (leftovers.empty() ? "" : leftovers.front());

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/pose.hpp"
+#include "common/yaml_config.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/test_files.hpp"
 

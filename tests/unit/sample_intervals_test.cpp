@@ -5,6 +5,7 @@
 #include "hand/sample_intervals.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "hand/input_counts.hpp"
 

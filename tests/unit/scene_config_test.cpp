@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "common/pose.hpp"
+#include "common/yaml_config.hpp"
 #include "hand/hand_yaml.hpp"
 #include "physics_node/physics/world.hpp"
 #include "tests/support/process.hpp"
