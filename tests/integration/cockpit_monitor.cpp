@@ -9,7 +9,8 @@
 //   watched id=.. sim_time_ns=.. held=.. received_ns=.. x=.. y=.. z=.. qw=.. qx=.. qy=.. qz=..
 //        (every state of the object --watch-object names, as it comes)
 //   frame seq=.. width=.. height=.. source_stamp_ns=.. start_ns=.. end_ns=.. received_ns=..
-// and on exit (SIGINT/SIGTERM or --duration) the last state of every object:
+// and the last state of every object, every 0.5 s while new states come and on exit
+// (SIGINT/SIGTERM or --duration; the last line of an id is its newest state):
 //   object id=.. sim_time_ns=.. held=.. x=.. y=.. z=.. qw=.. qx=.. qy=.. qz=..
 
 #include <CLI/CLI.hpp>
@@ -63,6 +64,16 @@ int main(int argc, char** argv) {
       return 1;
     }
     std::map<uint32_t, cockpit::ObjectState> last_objects;
+    const auto write_objects = [&] {
+      for (const auto& [id, state] : last_objects) {
+        std::fprintf(f, "object id=%u sim_time_ns=%lld held=%d", id,
+                     static_cast<long long>(state.sim_time_ns()), state.held_by_hand_id());
+        print_pose(f, state.X_GO());
+        std::fputc('\n', f);
+      }
+    };
+    bool objects_changed = false;
+    int64_t objects_written_ns = 0;
     const int64_t end_ns =
         duration_s > 0 ? monotonic_now_ns() + seconds_to_ns(duration_s) : INT64_MAX;
     cockpit::GraspEvent e;
@@ -114,6 +125,7 @@ int main(int argc, char** argv) {
       }
       while (objects.take(o)) {
         last_objects[o.object_id()] = o;
+        objects_changed = true;
         if (static_cast<int64_t>(o.object_id()) != watched_id) continue;
         std::fprintf(f, "watched id=%u sim_time_ns=%lld held=%d received_ns=%lld", o.object_id(),
                      static_cast<long long>(o.sim_time_ns()), o.held_by_hand_id(),
@@ -131,14 +143,14 @@ int main(int argc, char** argv) {
                      static_cast<long long>(fr.render_end_ns()),
                      static_cast<long long>(monotonic_now_ns()));
       }
+      if (objects_changed && monotonic_now_ns() - objects_written_ns >= 500'000'000) {
+        write_objects();
+        objects_changed = false;
+        objects_written_ns = monotonic_now_ns();
+      }
       std::fflush(f);
     }
-    for (const auto& [id, state] : last_objects) {
-      std::fprintf(f, "object id=%u sim_time_ns=%lld held=%d", id,
-                   static_cast<long long>(state.sim_time_ns()), state.held_by_hand_id());
-      print_pose(f, state.X_GO());
-      std::fputc('\n', f);
-    }
+    write_objects();
     std::fclose(f);
   } catch (const std::exception& ex) {
     spdlog::error("{}", ex.what());
