@@ -125,7 +125,9 @@ TEST_F(GloveDriverTest, InterruptedRecordingLeavesAValidLogOrNone) {
                       dir + "/replay.log");
   ChildProcess rec_clean({glove_driver(), "--record", clean}, env_, dir + "/clean.log");
   ChildProcess rec_killed({glove_driver(), "--record", killed}, env_, dir + "/killed.log");
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  // Under the sanitizers the recorders take over a second to start and match (under TSan
+  // beside the renderer's tests, 16 samples after 1.5 s): they get 4 s there.
+  std::this_thread::sleep_for(std::chrono::milliseconds(sanitized() ? 4000 : 1500));
   rec_clean.signal(SIGINT);
   rec_killed.signal(SIGKILL);
   expect_clean_shm_ = false;
