@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include "common/fast_dds_shm.hpp"
+
 namespace vcockpit::rig {
 
 namespace fs = std::filesystem;
@@ -21,11 +23,8 @@ int remove_new_dds_shm(const std::vector<std::string>& before) {
   int removed = 0;
   for (const auto& name : dev_shm_entries()) {
     if (std::binary_search(before.begin(), before.end(), name)) continue;
-    const bool dds = name.rfind("fastrtps_", 0) == 0 || name.rfind("sem.fastrtps_", 0) == 0 ||
-                     name.rfind("fast_datasharing_", 0) == 0 ||
-                     name.rfind("sem.fast_datasharing_", 0) == 0;
     std::error_code ec;
-    if (dds && fs::remove(fs::path("/dev/shm") / name, ec)) ++removed;
+    if (is_fast_dds_shm_name(name) && fs::remove(fs::path("/dev/shm") / name, ec)) ++removed;
   }
   return removed;
 }

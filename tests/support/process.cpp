@@ -15,6 +15,9 @@
 #include <filesystem>
 #include <stdexcept>
 #include <thread>
+#include <utility>
+
+#include "common/fast_dds_shm.hpp"
 
 extern char** environ;
 
@@ -99,14 +102,8 @@ std::vector<std::string> list_dds_shm() {
   std::vector<std::string> out;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator("/dev/shm", ec)) {
-    const std::string name = entry.path().filename().string();
-    for (const char* prefix : {"fastrtps_", "sem.fastrtps_", "fast_datasharing_",
-                               "sem.fast_datasharing_"}) {
-      if (name.rfind(prefix, 0) == 0) {
-        out.push_back(name);
-        break;
-      }
-    }
+    std::string name = entry.path().filename().string();
+    if (is_fast_dds_shm_name(name)) out.push_back(std::move(name));
   }
   std::sort(out.begin(), out.end());
   return out;
