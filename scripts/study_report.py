@@ -26,9 +26,13 @@ RULE_LABELS = {
     "relaxed": "(b) relaxed",
     "relaxed_gesture": "(c) relaxed + gesture",
     "default": "(d) project default",
+    "default_paper_gesture": "(e) project, paper's gesture reading",
 }
 RULE_COLORS = {"strict": "#8c564b", "relaxed": "#d62728", "relaxed_gesture": "#1f77b4",
-               "default": "#2ca02c"}
+               "default": "#2ca02c", "default_paper_gesture": "#9467bd"}
+# where a failed trial failed (bench/study/grasp_trial.hpp), in order
+FAILURES = ["never grasped", "lost while held", "dropped", "misplaced", "wrong changes"]
+FAILURE_COLORS = ["#7f7f7f", "#d62728", "#ff7f0e", "#bcbd22", "#17becf"]
 
 
 def percentile(values, q):
@@ -255,6 +259,46 @@ def plot_timeline(timeline_dir, rules, path, strict_xi, shipped):
     return True
 
 
+def plot_failures(compared, by_rule, objects, path):
+    # one panel per rule: for each object, its failed trials by where they failed
+    fig, axes = plt.subplots(1, len(compared), figsize=(3.2 * len(compared), 3.6), sharey=True)
+    for ax, name in zip(axes, compared):
+        bottom = [0] * len(objects)
+        for kind, color in zip(FAILURES, FAILURE_COLORS):
+            counts = [sum(1 for t in by_rule.get(name, [])
+                          if t["object"] == o and not t["success"] and t.get("failure") == kind)
+                      for o in objects]
+            ax.bar(range(len(objects)), counts, bottom=bottom, color=color, label=kind)
+            bottom = [b + c for b, c in zip(bottom, counts)]
+        ax.set_xticks(range(len(objects)))
+        ax.set_xticklabels(objects, rotation=60, ha="right", fontsize=7)
+        ax.set_title(RULE_LABELS.get(name, name), fontsize=8)
+    axes[0].set_ylabel("failed trials")
+    axes[-1].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path + ".tmp.png", dpi=110)
+    plt.close(fig)
+    os.replace(path + ".tmp.png", path)
+
+
+def gesture_text(p):
+    rule = p["gesture_rule"]
+    if rule is False or rule == "none":
+        return "none"
+    reading = "project's reading" if rule in (True, "project") else "paper's reading"
+    return f"> 2 links, thumb, α0 {p['alpha0_deg']:g}° ({reading})"
+
+
+def additions_text(name, p):
+    if p.get("hold_rule") != "grip":
+        return "none: one test decides grasp and release every step"
+    return (f"held until the tracked hand lets go (opened by {p['release_opening_share']:g} of its "
+            f"grasp flexion and ≥ {p['release_opening_deg']:g}°, or its thumb or opposed fingers "
+            f"{p['release_gap_m'] * 100:g} cm off the object), hold {p['min_hold_s']:g} s, "
+            f"release delay {p['release_delay_s']:g} s, cooldown {p['regrab_cooldown_s']:g} s, "
+            f"palm opposition")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("trials")
@@ -283,6 +327,7 @@ def main():
 
     plot_rules(compared, metrics, f"{args.out_dir}/rules.png")
     plot_penetration(compared, by_rule, f"{args.out_dir}/penetration.png")
+    plot_failures(compared, by_rule, objects, f"{args.out_dir}/failures.png")
     if sweeps:
         plot_sweeps(sweeps, f"{args.out_dir}/sweeps.png")
     have_timeline = plot_timeline(args.timeline_dir, rules, f"{args.out_dir}/timeline.png",
@@ -299,7 +344,8 @@ def main():
 
     n_total = len(doc["trials"])
     md = []
-    md.append("# The grasp study: strict vs relaxed vs relaxed + gesture vs the project's rule\n")
+    md.append("# The grasp study: strict vs relaxed vs relaxed + gesture vs the project's rule, in "
+              "both readings of the gesture constraint\n")
     md.append(f"- Command: `{args.command}`")
     md.append(f"- Commit: {commit_line()}")
     md.append(f"- Machine: {machine_line()}")
@@ -314,12 +360,8 @@ def main():
     md.append("|---|---|---|---|")
     for name in compared:
         p = rules[name]["params"]
-        gesture = (f"> 2 links, thumb, α0 {p['alpha0_deg']:g}°" if p["gesture_rule"] else "none")
-        additions = ("none: one test decides grasp and release every step" if name != "default" else
-                     f"hysteresis (×{p['exit_scale']:g}, α0 − {p['exit_alpha_margin_deg']:g}°, "
-                     f"{p['exit_min_contacts']} links held), hold {p['min_hold_s']:g} s, "
-                     f"release delay {p['release_delay_s']:g} s, cooldown {p['regrab_cooldown_s']:g} s, "
-                     f"release on opening {p['release_opening_deg']:g}°, palm opposition")
+        gesture = gesture_text(p)
+        additions = additions_text(name, p)
         md.append(f"| {RULE_LABELS[name]} | ξ {p['xi_N']:g} N, η {p['eta_Nm']:g} N m | {gesture} | "
                   f"{additions} |")
     md.append("")
@@ -359,6 +401,22 @@ def main():
     for o in objects:
         md.append(f"| {o} | " + " | ".join(fmt_share(per_object[r][o]["success"]) for r in compared) + " |")
     md.append("")
+    md.append("## Where the failed trials failed\n")
+    md.append("never grasped; lost while held (grasped, let go or slipped before it was lifted "
+              "5 cm); dropped (lifted, let go and fallen 2 cm); misplaced (lifted, not dropped, not "
+              "set down within 3 cm or still held); a control: wrong changes.\n")
+    md.append("| object | " + " | ".join(RULE_LABELS[r] for r in compared) + " |")
+    md.append("|---|" + "---|" * len(compared))
+    for o in objects:
+        cells = []
+        for r in compared:
+            failed = [t for t in by_rule.get(r, []) if t["object"] == o and not t["success"]]
+            parts = [f"{sum(1 for t in failed if t.get('failure') == k)} {k}" for k in FAILURES
+                     if any(t.get("failure") == k for t in failed)]
+            cells.append(", ".join(parts) if parts else "—")
+        md.append(f"| {o} | " + " | ".join(cells) + " |")
+    md.append("")
+    md.append("![where the failed trials failed](failures.png)\n")
     md.append("## Sweeps of rule (c)\n")
     for group, label, unit in (("alpha0", "α0", "°"), ("xi", "ξ (η = 0.1 m × ξ)", " N")):
         points = sweeps.get(group, [])

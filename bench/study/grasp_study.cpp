@@ -41,7 +41,10 @@ nlohmann::json params_json(const physics::GraspParams& p) {
   return {{"xi_N", p.xi_N},
           {"eta_Nm", p.eta_Nm},
           {"alpha0_deg", p.alpha0_deg},
-          {"gesture_rule", p.gesture_rule},
+          {"gesture_rule", p.gesture_rule == physics::GestureRule::kProject ? "project"
+                           : p.gesture_rule == physics::GestureRule::kPaper ? "paper"
+                                                                            : "none"},
+          {"hold_rule", p.hold_rule == physics::HoldRule::kTrackedGrip ? "grip" : "test"},
           {"min_contacts", p.min_contacts},
           {"exit_min_contacts", p.exit_min_contacts},
           {"exit_scale", p.exit_scale},
@@ -49,7 +52,9 @@ nlohmann::json params_json(const physics::GraspParams& p) {
           {"min_hold_s", p.min_hold_s},
           {"release_delay_s", p.release_delay_s},
           {"regrab_cooldown_s", p.regrab_cooldown_s},
+          {"release_opening_share", p.release_opening_share},
           {"release_opening_deg", p.release_opening_deg},
+          {"release_gap_m", p.release_gap_m},
           {"palm_opposition", p.palm_opposition}};
 }
 
@@ -57,6 +62,7 @@ nlohmann::json result_json(const TrialResult& r) {
   return {{"control_case", r.control_case},
           {"control_changes", r.control_changes},
           {"success", r.success},
+          {"failure", r.failure},
           {"grasped", r.grasped},
           {"lifted", r.lifted},
           {"placed", r.placed},

@@ -242,6 +242,19 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
     r.placed = !body.held() && r.place_error_m <= kPlaceTolerance_m;
     r.success = r.grasped && r.lifted && r.placed;
   }
+  if (r.success) {
+    r.failure.clear();
+  } else if (!r.grasped) {
+    r.failure = "never grasped";
+  } else if (r.control_case) {
+    r.failure = "wrong changes";
+  } else if (!r.lifted) {
+    r.failure = "lost while held";
+  } else if (r.drops > 0) {
+    r.failure = "dropped";
+  } else {
+    r.failure = "misplaced";
+  }
   if (r.grasped && r.first_contact_s >= 0) r.convergence_s = r.first_grasp_s - r.first_contact_s;
   r.closed_s = closed.first >= 0 ? static_cast<double>(closed.second - closed.first) * 1e-9 : 0.0;
   r.switch_rate_hz = r.closed_s > 0 ? r.switches_closed / r.closed_s : 0.0;

@@ -12,7 +12,11 @@
 //   penetration  of the hand's links into it, and of it into other bodies (per step, the deepest
 //                contact; max over the trial and mean over the steps in contact);
 //   drops        releases after which it fell more than 2 cm within 0.5 s (not set down);
-//   placement    its distance from where the gesture sets it down, 1 s after the log ends.
+//   placement    its distance from where the gesture sets it down, 1 s after the log ends;
+//   failure      where a failed trial failed: "never grasped"; "lost while held" (grasped but let
+//                go or slipped before it was lifted 5 cm); "dropped" (lifted, then let go and
+//                fallen 2 cm); "misplaced" (lifted and not dropped, but not set down within 3 cm,
+//                or still held); a control case: "never grasped" or "wrong changes".
 // A control case (the knobs, the levers) measures the grasped controls' moving parts the same way
 // (convergence, chatter, the hand's penetration) and succeeds when the controls make exactly the
 // gesture's changes, in order, nothing else is grasped, and none is left held.
@@ -31,6 +35,7 @@ struct TrialResult {
   bool control_case = false;  // controls operated (no lift, placement, drops or object depth)
   int control_changes = 0;    // position changes of the controls
   bool success = false;
+  std::string failure;  // empty on success
   bool grasped = false;
   bool lifted = false;  // >= 5 cm while held
   bool placed = false;  // ends released within 3 cm of the target

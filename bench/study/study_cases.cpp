@@ -13,23 +13,29 @@ physics::GraspParams paper_test(const physics::GraspParams& shipped) {
   p.min_hold_s = 0.0;
   p.release_delay_s = 0.0;
   p.regrab_cooldown_s = 0.0;
-  p.release_opening_deg = 0.0;
+  p.release_opening_share = 0.0;
   p.palm_opposition = false;
+  p.gesture_rule = physics::GestureRule::kPaper;
+  p.hold_rule = physics::HoldRule::kContactTest;
   return p;
 }
 
 std::vector<Rule> compared_rules(const physics::GraspParams& shipped) {
   std::vector<Rule> rules;
   physics::GraspParams strict = paper_test(shipped);
-  strict.gesture_rule = false;
+  strict.gesture_rule = physics::GestureRule::kNone;
   strict.xi_N = kStrictXi_N;
   strict.eta_Nm = kStrictEta_Nm;
   rules.push_back({"strict", "rules", 0.0, strict});
   physics::GraspParams relaxed = paper_test(shipped);
-  relaxed.gesture_rule = false;
+  relaxed.gesture_rule = physics::GestureRule::kNone;
   rules.push_back({"relaxed", "rules", 0.0, relaxed});
   rules.push_back({"relaxed_gesture", "rules", 0.0, paper_test(shipped)});
   rules.push_back({"default", "rules", 0.0, shipped});
+  // the project's rule with the paper's literal reading of the gesture constraint
+  physics::GraspParams default_paper = shipped;
+  default_paper.gesture_rule = physics::GestureRule::kPaper;
+  rules.push_back({"default_paper_gesture", "rules", 0.0, default_paper});
   return rules;
 }
 

@@ -9,9 +9,12 @@
 //                    rule: the paper's relaxed condition;
 //   relaxed_gesture  relaxed + the gesture constraint (more than 2 links, the thumb, alpha0 = 120):
 //                    the paper's stable-grasp condition;
-//   default          the project's rule as shipped: relaxed_gesture + hysteresis (exit_*), minimum
-//                    hold, release delay, re-grab cooldown, release on the hand opening, palm
-//                    opposition.
+//   default          the project's rule as shipped: the project's reading of the gesture
+//                    constraint (GestureRule::kProject), held while the tracked hand's grip holds
+//                    (HoldRule::kTrackedGrip), minimum hold, release delay, re-grab cooldown, palm
+//                    opposition;
+//   default_paper_gesture  the same with the paper's literal reading of the gesture constraint
+//                    (GestureRule::kPaper): the two readings side by side.
 // The paper's rules (the first three) have none of the project's additions: one test decides
 // grasp and release, every step. The physics (contacts, proxy hand, release velocity) is the same
 // for all four.
@@ -43,7 +46,7 @@ struct Rule {
 // opposition), with the shipped thresholds.
 physics::GraspParams paper_test(const physics::GraspParams& shipped);
 
-// The four rules compared, in order.
+// The five rules compared, in order.
 std::vector<Rule> compared_rules(const physics::GraspParams& shipped);
 // relaxed_gesture with alpha0 swept over 90-150 deg, and with xi swept (eta = xi x 0.1 m, the
 // shipped ratio).

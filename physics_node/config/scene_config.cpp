@@ -12,7 +12,9 @@ namespace vcockpit {
 namespace scene_parts {
 
 namespace fs = std::filesystem;
+using physics::GestureRule;
 using physics::GraspParams;
+using physics::HoldRule;
 using physics::Material;
 using physics::ObjectSpec;
 using physics::Scene;
@@ -283,11 +285,29 @@ void parse_hands(const ConfigNode& node, const std::string& base_dir, Scene& sce
   }
 }
 
+// project | paper | none; true and false, from before the paper's reading was kept, are project
+// and none
+GestureRule parse_gesture_rule(const ConfigNode& n) {
+  const std::string v = n.as_string();
+  if (v == "project" || v == "true") return GestureRule::kProject;
+  if (v == "paper") return GestureRule::kPaper;
+  if (v == "none" || v == "false") return GestureRule::kNone;
+  n.fail("'" + v + "': expected project, paper or none");
+}
+
+HoldRule parse_hold_rule(const ConfigNode& n) {
+  const std::string v = n.as_string();
+  if (v == "grip") return HoldRule::kTrackedGrip;
+  if (v == "test") return HoldRule::kContactTest;
+  n.fail("'" + v + "': expected grip (the tracked hand's grip) or test (the contact test)");
+}
+
 GraspParams parse_grasp(const ConfigNode& node) {
   node.expect_keys({"xi_N", "eta_Nm", "alpha0_deg", "min_contacts", "exit_min_contacts", "exit_scale",
                     "exit_alpha_margin_deg", "min_hold_s", "release_delay_s", "regrab_cooldown_s",
                     "velocity_window_s", "settle_speed_mps", "settle_window_s",
-                    "release_opening_deg", "palm_opposition", "gesture_rule"});
+                    "release_opening_share", "release_opening_deg", "release_gap_m",
+                    "palm_opposition", "gesture_rule", "hold_rule"});
   GraspParams g;
   auto pos = [](const ConfigNode& n) { return positive(n); };
   read_optional(node, "xi_N", g.xi_N, pos);
@@ -314,9 +334,16 @@ GraspParams parse_grasp(const ConfigNode& node) {
   read_optional(node, "velocity_window_s", g.velocity_window_s, pos);
   read_optional(node, "settle_speed_mps", g.settle_speed_mps, non_negative);
   read_optional(node, "settle_window_s", g.settle_window_s, pos);
+  read_optional(node, "release_opening_share", g.release_opening_share,
+                [](const ConfigNode& n) {
+                  const double v = n.as_double();
+                  return require(n, v, v >= 0.0 && v < 1.0, "must be in [0, 1) (0: off)");
+                });
   read_optional(node, "release_opening_deg", g.release_opening_deg, non_negative);
+  read_optional(node, "release_gap_m", g.release_gap_m, pos);
   g.palm_opposition = node.get_bool("palm_opposition", g.palm_opposition);
-  g.gesture_rule = node.get_bool("gesture_rule", g.gesture_rule);
+  if (node.has("gesture_rule")) g.gesture_rule = parse_gesture_rule(node["gesture_rule"]);
+  if (node.has("hold_rule")) g.hold_rule = parse_hold_rule(node["hold_rule"]);
   if (g.exit_alpha_margin_deg >= g.alpha0_deg) {
     const ConfigNode at =
         node.has("exit_alpha_margin_deg") ? node["exit_alpha_margin_deg"] : node["alpha0_deg"];

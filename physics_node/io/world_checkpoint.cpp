@@ -16,7 +16,8 @@ namespace vcockpit::physics_io {
 namespace {
 
 constexpr char kMagic[8] = {'V', 'C', 'K', 'P', 'O', 'I', 'N', 'T'};
-constexpr uint64_t kVersion = 1;
+// 2: GraspHold::opposed_fingers and palm_opposed
+constexpr uint64_t kVersion = 2;
 constexpr uint64_t kFrozenFlag = 1;
 // anchors are per touching pair: far more than any scene makes, far less than a corrupt length
 constexpr uint64_t kMaxVarCount = 1u << 16;

@@ -6,6 +6,7 @@
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/distance.h>
 
 #include <algorithm>
 #include <cmath>
@@ -554,6 +555,27 @@ bool CollisionWorld::link_overlaps(int hand, Link link, const Eigen::Isometry3d&
   fcl::CollisionResultd result;
   fcl::collide(&probe, m.objects[o].get(), request, result);
   return result.isCollision();
+}
+
+bool CollisionWorld::link_within(int hand, Link link, const Eigen::Isometry3d& X_GL, int object,
+                                 double gap_m) const {
+  const Impl& m = *impl_;
+  VCOCKPIT_ASSERT(0 <= hand && hand < hand_count_ && 0 <= object && object < object_count_,
+                  "a hand link and an object");
+  const auto body = static_cast<std::size_t>(hand_link_body(hand, link));
+  const auto o = static_cast<std::size_t>(object);
+  Aabb box = hand_link_box(hand, link, X_GL);
+  box.lo.array() -= gap_m;
+  box.hi.array() += gap_m;
+  if (!box.overlaps(shape_aabb(m.shapes[o], m.objects[o]->getTransform()))) return false;
+  const fcl::CollisionObjectd probe(
+      std::const_pointer_cast<fcl::CollisionGeometryd>(m.objects[body]->collisionGeometry()),
+      X_GL * m.X_LC[static_cast<std::size_t>(hand)][static_cast<std::size_t>(link)]);
+  // (an overlap gives a distance of zero or less)
+  const fcl::DistanceRequestd request;
+  fcl::DistanceResultd result;
+  fcl::distance(&probe, m.objects[o].get(), request, result);
+  return result.min_distance <= gap_m;
 }
 
 std::size_t CollisionWorld::candidate_pair_count() const { return impl_->pairs.size(); }

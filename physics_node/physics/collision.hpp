@@ -78,6 +78,8 @@ class CollisionWorld {
   // Whether hand link `link`, its frame at X_GL, overlaps object `object` where the last
   // set_poses put it: for a hand that is not a body of this world (the tracked one).
   bool link_overlaps(int hand, Link link, const Eigen::Isometry3d& X_GL, int object) const;
+  // Whether it is within gap_m of the object's surface (or in it), the same way.
+  bool link_within(int hand, Link link, const Eigen::Isometry3d& X_GL, int object, double gap_m) const;
 
   std::size_t candidate_pair_count() const;
   // Narrowphase points dropped since construction for a zero, NaN or non-unit normal (or a NaN

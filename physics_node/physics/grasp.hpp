@@ -1,23 +1,27 @@
 #pragma once
 // The stable-grasp condition (paper §4.4) for one object and one hand:
-//   equilibrium  |sum F| <= xi and |sum M| <= eta (eqs. 30-31) over the hand's contact forces on
-//                the object plus gravity, moments about the centroid;
-//   gesture      more than 2 hand links touching it (min_contacts), the thumb among them, and
-//                the angle between the thumb's contact normal and each other finger's above
-//                alpha0 (the palm counts as a contact but has no normal test). Off
-//                (GraspParams::gesture_rule false), any contact meeting eqs. 30-31 grasps.
-// A link with several contact points counts once, with its force-weighted mean normal. While the
-// object is held the test is looser (exit_scale, exit_alpha_margin_deg, exit_min_contacts):
-// hysteresis against the chatter the paper describes. A held object needs fewer links than a
-// grasp does (by default the thumb and one opposed finger): a real hand's grip loosens a finger as
-// it carries, and a pinch that lifted an object goes on holding it; the equilibrium test (eqs.
-// 30-31) still decides whether those links carry it.
+//   equilibrium  |sum F| <= xi and |sum M| <= eta (eqs. 30-31) over the hand's contacts on the
+//                object plus gravity, moments about the centroid;
+//   gesture      read as GraspParams::gesture_rule says (scene.hpp). The project's reading: the
+//                thumb touches (or, for a power grasp, the palm), and it and the fingers whose
+//                contact normal is more than alpha0 from its own make more than 2 links
+//                (min_contacts); a finger touching at less than alpha0 neither counts nor vetoes.
+//                The paper's literal reading: more than 2 links, the thumb among them, and every
+//                touching finger beyond alpha0. kNone: any contact meeting eqs. 30-31 grasps.
+// A link with several contact points counts once, with its force-weighted mean normal; a finger's
+// normal is the sum over its touching phalanges.
+//
+// While held (held true) the test is the paper's re-evaluation at looser thresholds (exit_scale,
+// exit_alpha_margin_deg, exit_min_contacts, any finger opposed): hysteresis against the chatter
+// the paper describes. Only GraspParams::hold_rule kContactTest lets go on it; the project's
+// kTrackedGrip judges the tracked hand's grip instead (grasp_tracker.hpp) and reports these
+// figures.
 //
 // A control (control.hpp) is grasped by the same rule restricted to its joint: the joint carries
 // every force and moment but the generalised one, so the equilibrium test is on that alone (the
 // hand's and gravity's force along a prismatic joint against xi, their moment about a revolute
-// axis against eta: a knob pinched without twisting it), and the thumb and one opposed finger
-// (exit_min_contacts) are enough to take it: a pinch turns a knob.
+// axis against eta: a knob pinched without twisting it), and exit_min_contacts links (by default
+// the thumb and one opposed finger) are enough to take it: a pinch turns a knob.
 
 #include <Eigen/Core>
 
@@ -41,6 +45,8 @@ enum class GraspReason : uint8_t {
   kHandOpened,         // RELEASE: the tracked fingers opened from their grip (release_opening_deg)
   kHandedOver,         // RELEASE: the other hand took it (its own grasp holds it alone)
   kReset,              // RELEASE: the scene was reset (World::reset_objects)
+  kThumbLeft,          // RELEASE: the tracked thumb (or opposing palm) left the object's surface
+  kFingersLeft,        // RELEASE: every tracked finger opposed at the grasp left its surface
 };
 
 const char* grasp_reason_name(GraspReason reason);
@@ -57,11 +63,14 @@ struct GraspCheck {
   int links_in_contact = 0;
   bool thumb = false;
   uint8_t fingers = 0;               // bit f: finger f touches
+  // the fingers that oppose the grasp's opposer (the thumb, or the palm when palm_opposes) by
+  // more than alpha0 (bit f; the thumb's bit never set)
+  uint8_t opposed_fingers = 0;
   double min_thumb_angle_deg = 0.0;  // smallest thumb-finger normal angle (180: no finger)
   // the largest angle between a finger's normal and the thumb's or (palm_opposition) the palm's:
   // the hold's test once an object is held (0: no such pair)
   double best_opposition_deg = 0.0;
-  bool palm_opposes = false;         // no thumb: the palm's normal stood for it (power grasp)
+  bool palm_opposes = false;         // the palm's normal stood for the thumb's (power grasp)
   double residual_force_N = 0.0;
   double residual_torque_Nm = 0.0;
   GraspReason verdict = GraspReason::kTooFewContacts;  // kStableGrasp when it holds

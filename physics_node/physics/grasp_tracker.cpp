@@ -50,7 +50,7 @@ void GraspTracker::update(int object, const ObjectSpec& o, const HandContact* co
                           std::size_t count, const HandNow& hand, uint32_t glove_links_inside,
                           GraspHold& hold, BodyState& body, std::vector<GraspEvent>& events,
                           const GraspJoint* joint) const {
-  HandOnObject one{hand, contacts, count, glove_links_inside, &hold};
+  HandOnObject one{hand, contacts, count, glove_links_inside, false, 0, &hold};
   update_hands(object, o, &one, 1, body, events, joint);
 }
 
@@ -68,8 +68,7 @@ void GraspTracker::clear_hand(const HandOnObject& h, bool held) const {
     hold.resting_links |= h.glove_links_inside;
     return;
   }
-  const bool opened = params_.release_opening_deg > 0.0 &&
-                      grip_opening_rad(h.hand, hold) > deg_to_rad(params_.release_opening_deg);
+  const bool opened = hand_opened(h.hand, hold);
   if (!cooled) {
     hold.resting_links |= h.glove_links_inside;
   } else {
@@ -139,7 +138,7 @@ void GraspTracker::update_held_by_one(int object, HandOnObject* hands, std::size
     attach(object, checks[k], to.hand, *to.hold, body, events, from.hand.hand_id);
     return;
   }
-  decide(object, checks[holder], from.hand, *from.hold, body, events);
+  decide(object, checks[holder], from, body, events);
 }
 
 // No hand holds it: the first hand whose own test takes it; else two hands whose gestures hold on
@@ -149,7 +148,7 @@ void GraspTracker::update_free(int object, const ObjectSpec& o, HandOnObject* ha
                                std::vector<GraspEvent>& events, const GraspJoint* joint) const {
   for (std::size_t k = 0; k < hand_count && !body.held(); ++k) {
     if (hands[k].count == 0 || hands[k].hold->handed_over) continue;  // (gave it away, still on it)
-    decide(object, checks[k], hands[k].hand, *hands[k].hold, body, events);
+    decide(object, checks[k], hands[k], body, events);
   }
   if (body.held() || joint != nullptr) return;
   const auto may_join = [&](std::size_t k) {
@@ -192,10 +191,26 @@ Residuals GraspTracker::two_hand_residuals(const HandOnObject& a, const HandOnOb
 
 GraspReason GraspTracker::held_verdict(const HandOnObject& h, const GraspCheck& check) const {
   if (!h.hand.tracking) return GraspReason::kGloveLost;
-  if (params_.release_opening_deg > 0.0 &&
-      grip_opening_rad(h.hand, *h.hold) > deg_to_rad(params_.release_opening_deg))
-    return GraspReason::kHandOpened;
-  return check.verdict;
+  if (hand_opened(h.hand, *h.hold)) return GraspReason::kHandOpened;
+  if (params_.hold_rule == HoldRule::kContactTest) return check.verdict;
+  // (a hand whose tracked grip is not known has nothing that says it let go)
+  return h.grip_known ? tracked_grip_verdict(h) : GraspReason::kStableGrasp;
+}
+
+GraspReason GraspTracker::tracked_grip_verdict(const HandOnObject& h) const {
+  const GraspHold& hold = *h.hold;
+  const auto near = [&](Link l) { return (h.tracked_links_near & (1u << static_cast<int>(l))) != 0; };
+  const auto finger_near = [&](int f) {
+    for (Link l : finger_links(static_cast<Finger>(f)))
+      if (near(l)) return true;
+    return false;
+  };
+  if (hold.palm_opposed ? !near(Link::kPalm) : !finger_near(static_cast<int>(Finger::kThumb)))
+    return GraspReason::kThumbLeft;
+  bool any_opposed = hold.opposed_fingers == 0;  // (none recorded: the opposer alone is asked)
+  for (int f = 1; f < kFingerCount && !any_opposed; ++f)
+    if ((hold.opposed_fingers & (1u << f)) != 0 && finger_near(f)) any_opposed = true;
+  return any_opposed ? GraspReason::kStableGrasp : GraspReason::kFingersLeft;
 }
 
 bool GraspTracker::failed_long_enough(const HandOnObject& h, GraspReason verdict) const {
@@ -247,8 +262,10 @@ void GraspTracker::update_two_handed(int object, const ObjectSpec& o, HandOnObje
   figures.residual_torque_Nm = both.torque_Nm;
   release(object, verdict[first], figures, h[first]->hand, *h[first]->hold, body, events,
           h[other]->hand.hand_id);
-  // the other hand keeps it if its own test (held thresholds) holds it alone, else lets go too
-  const GraspReason alone = lets_go[other] ? verdict[other] : held_verdict(*h[other], *check[other]);
+  // the other hand keeps it if its own test (held thresholds) holds it alone, else lets go too:
+  // carrying alone what two hands carried is a new hold, and eqs. 30-31 judge it
+  GraspReason alone = lets_go[other] ? verdict[other] : held_verdict(*h[other], *check[other]);
+  if (alone == GraspReason::kStableGrasp && !check[other]->holds()) alone = check[other]->verdict;
   if (alone != GraspReason::kStableGrasp) {
     release(object, alone, *check[other], h[other]->hand, *h[other]->hold, body, events,
             h[first]->hand.hand_id);
@@ -257,33 +274,25 @@ void GraspTracker::update_two_handed(int object, const ObjectSpec& o, HandOnObje
 
 void GraspTracker::decide(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
                           BodyState& body, std::vector<GraspEvent>& events) const {
-  VCOCKPIT_ASSERT(hold.history.size() >= 2, "grasp decisions are for dynamic objects only");
-  const bool held = (body.holders & hand.holder_bit) != 0;
-  if (!held) {
-    const bool cooled = hand.t_ns - hold.released_at_ns >= regrab_cooldown_ns_;
-    if (hand.tracking && cooled && check.holds()) attach(object, check, hand, hold, body, events);
-    return;
-  }
-  if (!hand.tracking) {
-    release(object, GraspReason::kGloveLost, check, hand, hold, body, events);
-    return;
-  }
-  GraspReason verdict = check.verdict;
-  if (params_.release_opening_deg > 0.0 &&
-      grip_opening_rad(hand, hold) > deg_to_rad(params_.release_opening_deg))
-    verdict = GraspReason::kHandOpened;
-  if (verdict == GraspReason::kStableGrasp) {
-    hold.failing_since_ns = -1;
-    return;
-  }
-  if (hold.failing_since_ns < 0) hold.failing_since_ns = hand.t_ns;
-  const bool failed_long_enough = hand.t_ns - hold.failing_since_ns >= release_delay_ns_;
-  const bool held_long_enough = hand.t_ns - hold.held_since_ns >= min_hold_ns_;
-  if (failed_long_enough && held_long_enough)
-    release(object, verdict, check, hand, hold, body, events);
+  HandOnObject h{hand, nullptr, 0, 0, false, 0, &hold};
+  decide(object, check, h, body, events);
 }
 
-double GraspTracker::grip_opening_rad(const HandNow& hand, GraspHold& hold) const {
+void GraspTracker::decide(int object, const GraspCheck& check, const HandOnObject& h,
+                          BodyState& body, std::vector<GraspEvent>& events) const {
+  GraspHold& hold = *h.hold;
+  VCOCKPIT_ASSERT(hold.history.size() >= 2, "grasp decisions are for dynamic objects only");
+  const bool held = (body.holders & h.hand.holder_bit) != 0;
+  if (!held) {
+    const bool cooled = h.hand.t_ns - hold.released_at_ns >= regrab_cooldown_ns_;
+    if (h.hand.tracking && cooled && check.holds()) attach(object, check, h.hand, hold, body, events);
+    return;
+  }
+  const GraspReason verdict = held_verdict(h, check);
+  if (failed_long_enough(h, verdict)) release(object, verdict, check, h.hand, hold, body, events);
+}
+
+double GraspTracker::grip_opening_rad(const HandNow& hand, const GraspHold& hold) {
   if (hand.tracked_q_rad == nullptr || hold.grip_fingers == 0) return 0.0;
   // The thumb opens a grip mostly by rotation and abduction, which its flexion does not show:
   // it counts only when it is the one gripping finger.
@@ -294,13 +303,31 @@ double GraspTracker::grip_opening_rad(const HandNow& hand, GraspHold& hold) cons
   int fingers = 0;
   for (int f = 0; f < kFingerCount; ++f) {
     if ((opening_fingers & (1u << f)) == 0) continue;
-    double& tightest = hold.grip_flexion_rad[static_cast<std::size_t>(f)];
-    const double now = finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f));
-    tightest = std::max(tightest, now);
-    opening_rad += tightest - now;
+    opening_rad += hold.grip_flexion_rad[static_cast<std::size_t>(f)] -
+                   finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f));
     ++fingers;
   }
   return opening_rad / fingers;
+}
+
+bool GraspTracker::hand_opened(const HandNow& hand, const GraspHold& hold) const {
+  if (params_.release_opening_share <= 0.0 || hand.tracked_q_rad == nullptr || hold.grip_fingers == 0)
+    return false;
+  // the share of the gripping fingers' mean flexion at the grasp (the same fingers as the opening)
+  const unsigned thumb = 1u << static_cast<int>(Finger::kThumb);
+  const unsigned opening_fingers =
+      (hold.grip_fingers & ~thumb) != 0 ? (hold.grip_fingers & ~thumb) : hold.grip_fingers;
+  double grasp_flexion_rad = 0.0;
+  int fingers = 0;
+  for (int f = 0; f < kFingerCount; ++f) {
+    if ((opening_fingers & (1u << f)) == 0) continue;
+    grasp_flexion_rad += hold.grip_flexion_rad[static_cast<std::size_t>(f)];
+    ++fingers;
+  }
+  grasp_flexion_rad /= fingers;
+  const double threshold_rad = std::max(params_.release_opening_share * grasp_flexion_rad,
+                                        deg_to_rad(params_.release_opening_deg));
+  return grip_opening_rad(hand, hold) > threshold_rad;
 }
 
 void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
@@ -312,6 +339,8 @@ void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& ha
   hold.history_next = 0;
   hold.history_count = 0;
   hold.grip_fingers = check.fingers;
+  hold.opposed_fingers = check.opposed_fingers;
+  hold.palm_opposed = check.palm_opposes;
   hold.resting_links = 0;
   hold.hand_clearing = false;
   for (int f = 0; f < kFingerCount; ++f)

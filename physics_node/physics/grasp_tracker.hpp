@@ -4,8 +4,15 @@
 //   attach   the stable-grasp test holds (grasp.hpp), the glove is tracked and the re-grab
 //            cooldown since the object's last release has passed: X_HO = X_GH^-1 X_GO (eq. 28),
 //            and the object follows the hand, X_GO = X_GH X_HO (eq. 29, the world's motion stage);
-//   release  the test (looser while held: hysteresis) has failed for release_delay_s in a row and
-//            the object has been held for min_hold_s; at once when the glove is lost. The object
+//   release  (hold_rule kTrackedGrip, the project's) the tracked hand's grip has failed for
+//            release_delay_s in a row and the object has been held for min_hold_s: the glove's
+//            gripping fingers opened by release_opening_share of their flexion at the grasp, or
+//            the tracked thumb (the palm, when it opposed) or every finger opposed at the grasp
+//            is farther than release_gap_m from the object's surface; at once when the glove is
+//            lost. The proxy's contact forces on an attached object do not let go of it: its
+//            fingers keep closing onto a body that cannot move to balance them. (kContactTest,
+//            the paper's: the stable-grasp test at its looser held thresholds fails instead.) The
+//            object
 //            leaves with the hand's motion over velocity_window_s (its held poses), so it can be
 //            set down or thrown without a jump; a hand slower than settle_speed_mps over
 //            settle_window_s is setting it down, and that window's mean is taken instead.
@@ -61,9 +68,13 @@ struct GraspHold {
   std::vector<Eigen::Isometry3d> history;  // pose at the last steps while held (ring)
   std::size_t history_next = 0;
   std::size_t history_count = 0;
-  // the tracked fingers that gripped it (bit f) and each one's tightest flexion while held (rad)
+  // the tracked fingers that gripped it (bit f) and each one's flexion at the grasp (rad)
   uint8_t grip_fingers = 0;
   std::array<double, kFingerCount> grip_flexion_rad{};
+  // the fingers opposed to the thumb (or the palm, palm_opposed) at the grasp (bit f): the grip
+  // the tracked hand must keep (hold_rule kTrackedGrip)
+  uint8_t opposed_fingers = 0;
+  bool palm_opposed = false;
   // The links (bit l) the proxy keeps a hair off it (ProxyHand::depth_limit_m) after a release:
   // those that touched it, and those whose glove link passes through it during the regrab
   // cooldown; after the cooldown, if the glove has opened from its grip (release_opening_deg),
@@ -102,6 +113,11 @@ struct HandOnObject {
   // the links of this hand's glove (tracked) hand that overlap the object now (bit l; needed
   // only while hold->hand_clearing)
   uint32_t glove_links_inside = 0;
+  // the links of the tracked hand, posed on the proxy's wrist (the hand's shape, not its lag),
+  // within release_gap_m of the object's surface (bit l); known only while this hand holds it and
+  // hold_rule is kTrackedGrip
+  bool grip_known = false;
+  uint32_t tracked_links_near = 0;
   GraspHold* hold = nullptr;  // this hand's grasp state of the object
 };
 
@@ -134,7 +150,10 @@ class GraspTracker {
                     const GraspJoint* joint = nullptr) const;
 
   // The attach/release decision for one dynamic object given its test: attaches (eq. 28) or
-  // releases it, appending the event.
+  // releases it, appending the event. (`h.contacts` are not read: `check` is their test.)
+  void decide(int object, const GraspCheck& check, const HandOnObject& h, BodyState& body,
+              std::vector<GraspEvent>& events) const;
+  // The same for a hand whose tracked grip is not known (its held test alone decides).
   void decide(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,
               BodyState& body, std::vector<GraspEvent>& events) const;
 
@@ -179,8 +198,14 @@ class GraspTracker {
   // has not been held that long; at least two poses).
   void held_velocity(const GraspHold& hold, std::size_t span_steps, Eigen::Vector3d& v_G,
                      Eigen::Vector3d& w_G) const;
-  // How far the gripping fingers opened (rad, mean over them), raising their tightest closure.
-  double grip_opening_rad(const HandNow& hand, GraspHold& hold) const;
+  // How far the gripping fingers opened from their flexion at the grasp (rad, mean over them).
+  static double grip_opening_rad(const HandNow& hand, const GraspHold& hold);
+  // The glove opened from its grip: by release_opening_share of the grasp's flexion and by at
+  // least release_opening_deg.
+  bool hand_opened(const HandNow& hand, const GraspHold& hold) const;
+  // The tracked hand's grip on a held object (kTrackedGrip): kStableGrasp while its thumb (or
+  // opposing palm) and one finger opposed at the grasp stay within release_gap_m.
+  GraspReason tracked_grip_verdict(const HandOnObject& h) const;
   GraspEvent event(int object, bool grasp, GraspReason reason, const GraspCheck& check,
                    const HandNow& hand, int other_hand_id) const;
 

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -76,19 +77,42 @@ struct ObjectSpec {
 };
 
 // Stable grasp (paper §4.4) and the hysteresis around it. Forces in N, torques in N m.
+// How the gesture constraint of §4.4 is read (docs/ARCHITECTURE.md, "Stable grasp").
+enum class GestureRule : uint8_t {
+  kNone,     // no gesture constraint: any hand contact meeting eqs. 30-31 grasps (the paper's
+             // relaxed test without its fix, kept for the study)
+  kPaper,    // the literal reading: more than 2 links, the thumb among them, and every other
+             // touching finger's normal more than alpha0 from the thumb's
+  kProject,  // the thumb (or, for a power grasp, the palm) and the fingers opposed to it by more
+             // than alpha0 make more than 2 links; a finger touching at less than alpha0 (a ring
+             // finger wrapping round a bar's end) neither counts nor vetoes
+};
+
+// What may let go of an object once it is held.
+enum class HoldRule : uint8_t {
+  // the stable-grasp test on the proxy's contacts every step, at its looser held thresholds
+  // (the paper's re-evaluation; the study's paper rules)
+  kContactTest,
+  // the grip the tracked hand makes: only the glove opening from its grip, the tracked thumb (or
+  // palm) or every opposed finger leaving the object's surface, a handover, a reset or a lost
+  // glove. The proxy's fingers rest on an attached object that cannot move to balance them, so
+  // the forces on it say nothing about whether the pilot still holds it.
+  kTrackedGrip,
+};
+
 struct GraspParams {
   double xi_N = 3.0;           // eq. 30: |sum F| over hand contacts + gravity
   double eta_Nm = 0.3;         // eq. 31: |sum M| about the centroid
   double alpha0_deg = 120.0;   // thumb vs each finger contact-normal angle must exceed this
-  // false: no gesture rule at all (contacts, thumb, opposition): any hand contact that meets
-  // eqs. 30-31 grasps. The paper's relaxed test before its gesture constraint (§4.4), for
-  // comparing the two (scripts/study); a cockpit runs with it on.
-  bool gesture_rule = true;
-  bool palm_opposition = true;  // no thumb on the object: the palm may oppose the fingers instead
+  GestureRule gesture_rule = GestureRule::kProject;
+  HoldRule hold_rule = HoldRule::kTrackedGrip;
+  bool palm_opposition = true;  // the palm may oppose the fingers instead of the thumb
   int min_contacts = 3;        // hand links touching the object ("more than 2")
-  int exit_min_contacts = 2;   // while held, this many suffice (a pinch holds what it lifted)
+  // kContactTest only: while held, this many links suffice (a pinch holds what it lifted); a
+  // control's joint is taken by this many (a pinch turns a knob)
+  int exit_min_contacts = 2;
   double exit_scale = 4.0;     // while held, xi and eta are this much looser (hysteresis)
-  double exit_alpha_margin_deg = 15.0;  // while held, the angle may drop this far below alpha0
+  double exit_alpha_margin_deg = 15.0;  // kContactTest: while held, the angle may drop this far
   double min_hold_s = 0.2;     // no release (but for a lost glove) before this
   double release_delay_s = 0.03;  // the condition must fail this long before a release
   double regrab_cooldown_s = 0.3;  // no new grasp of the same object for this long after release
@@ -99,11 +123,16 @@ struct GraspParams {
   // set down that way rolled off the console). settle_speed_mps 0: off.
   double settle_speed_mps = 0.15;
   double settle_window_s = 0.1;
-  // A held object is let go when the tracked fingers that gripped it have opened this far from
-  // their tightest closure while holding it (the sum of each finger's flexion angles, averaged
-  // over those fingers): the pilot's own hand opening, which the proxy's fingers, resting on the
-  // object's surface, do not show. 0: off.
-  double release_opening_deg = 25.0;
+  // A held object is let go when the tracked fingers that gripped it have opened by
+  // release_opening_share of the flexion they had at the grasp (the sum of each finger's flexion
+  // angles, averaged over those fingers), and by at least release_opening_deg (a grip of nearly
+  // straight fingers would otherwise let go at a tracker's jitter): the pilot's own hand opening,
+  // which the proxy's fingers, resting on the object's surface, do not show. share 0: off.
+  double release_opening_share = 0.25;
+  double release_opening_deg = 15.0;
+  // kTrackedGrip: let go when the tracked thumb (or the opposing palm), or every finger that was
+  // opposed at the grasp, is farther than this from the object's surface (the hand moved off it).
+  double release_gap_m = 0.01;
 };
 
 // Contact model details beyond the paper's equations.

@@ -562,6 +562,21 @@ uint32_t World::glove_links_inside(int hand, int object, const GraspHold& hold) 
   return inside;
 }
 
+uint32_t World::tracked_links_near(int hand, int object) const {
+  const HandSim& sim = hands_[static_cast<std::size_t>(hand)];
+  const HandState& hs = hand_state(hand);
+  observe_tracked_hand(hand);
+  // the tracked hand's shape on the proxy's wrist: X_GH X_GT^-1 X_GL(tracked)
+  const Eigen::Isometry3d X_HT = sim.proxy ? hs.X_GH * hs.to.X_GH.inverse() : Eigen::Isometry3d::Identity();
+  uint32_t near = 0;
+  for (int l = 0; l < kLinkCount; ++l) {
+    const Eigen::Isometry3d X_GL = sim.proxy ? X_HT * sim.tracked_X_GL[l] : hs.X_GL[l];
+    if (collision_.link_within(hand, static_cast<Link>(l), X_GL, object, scene_.grasp.release_gap_m))
+      near |= 1u << l;
+  }
+  return near;
+}
+
 void World::observe_tracked_hand(int hand) const {
   const HandSim& sim = hands_[static_cast<std::size_t>(hand)];
   const HandState& hs = hand_state(hand);
@@ -847,6 +862,9 @@ void World::grasp_stage() {
       on.count = hands_[h].on_object.size();
       on.hold = &hold;
       on.glove_links_inside = glove_links_inside(static_cast<int>(h), object, hold);
+      on.grip_known = scene_.grasp.hold_rule == HoldRule::kTrackedGrip && state_.hands[h].active &&
+                      (state_.bodies[object].holders & hands_[h].holder_bit) != 0;
+      on.tracked_links_near = on.grip_known ? tracked_links_near(static_cast<int>(h), object) : 0u;
     }
     grasp_tracker_.update_hands(object, o, on_object_.data(), on_object_.size(), state_.bodies[object],
                                 events_, o.control >= 0 ? &control_grasp_joint_[o.control] : nullptr);

@@ -177,6 +177,10 @@ class World {
   // that hand is clearing it after a release (GraspHold::hand_clearing), the only time they
   // matter.
   uint32_t glove_links_inside(int hand, int object, const GraspHold& hold) const;
+  // The links of the tracked hand, posed on the proxy's wrist, within grasp.release_gap_m of a
+  // held object (HandOnObject::tracked_links_near): the grip the pilot's hand makes round it,
+  // whatever the lag of the proxy's wrist.
+  uint32_t tracked_links_near(int hand, int object) const;
   // Where a held object is: eq. 29 for one hand, the mean of both hands' held poses for two.
   Eigen::Isometry3d held_pose(int object) const;
   void move_held_objects(double dt_s);

@@ -56,13 +56,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0xa5091ff49f70914b") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0x4b954d8920f3efc8") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0xa532f61a4696c971") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x58ae99d5decd1a7f") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x2b5c048c1604ca5d") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0x9db03eff4cc7585d") << "final state";
 }
 
 }  // namespace

@@ -23,16 +23,16 @@ std::string source_dir() { return std::getenv("VCOCKPIT_SOURCE_DIR"); }
 TEST(StudyRules, ThePapersRulesHaveNoneOfTheProjectsAdditions) {
   const physics::GraspParams shipped;
   const auto rules = compared_rules(shipped);
-  ASSERT_EQ(rules.size(), 4u);
+  ASSERT_EQ(rules.size(), 5u);
   EXPECT_EQ(rules[0].name, "strict");
-  EXPECT_FALSE(rules[0].params.gesture_rule);
+  EXPECT_EQ(rules[0].params.gesture_rule, physics::GestureRule::kNone);
   EXPECT_EQ(rules[0].params.xi_N, kStrictXi_N);
   EXPECT_EQ(rules[0].params.eta_Nm, kStrictEta_Nm);
   EXPECT_EQ(rules[1].name, "relaxed");
-  EXPECT_FALSE(rules[1].params.gesture_rule);
+  EXPECT_EQ(rules[1].params.gesture_rule, physics::GestureRule::kNone);
   EXPECT_EQ(rules[1].params.xi_N, shipped.xi_N);
   EXPECT_EQ(rules[2].name, "relaxed_gesture");
-  EXPECT_TRUE(rules[2].params.gesture_rule);
+  EXPECT_EQ(rules[2].params.gesture_rule, physics::GestureRule::kPaper);
   EXPECT_EQ(rules[2].params.alpha0_deg, 120.0);
   for (int r = 0; r < 3; ++r) {
     const physics::GraspParams& p = rules[r].params;
@@ -42,12 +42,19 @@ TEST(StudyRules, ThePapersRulesHaveNoneOfTheProjectsAdditions) {
     EXPECT_EQ(p.min_hold_s, 0.0) << rules[r].name;
     EXPECT_EQ(p.release_delay_s, 0.0) << rules[r].name;
     EXPECT_EQ(p.regrab_cooldown_s, 0.0) << rules[r].name;
-    EXPECT_EQ(p.release_opening_deg, 0.0) << rules[r].name;
+    EXPECT_EQ(p.release_opening_share, 0.0) << rules[r].name;
+    EXPECT_EQ(p.hold_rule, physics::HoldRule::kContactTest) << rules[r].name;
     EXPECT_FALSE(p.palm_opposition) << rules[r].name;
   }
   EXPECT_EQ(rules[3].name, "default");
   EXPECT_EQ(rules[3].params.exit_scale, shipped.exit_scale);
   EXPECT_EQ(rules[3].params.regrab_cooldown_s, shipped.regrab_cooldown_s);
+  EXPECT_EQ(rules[3].params.gesture_rule, physics::GestureRule::kProject);
+  EXPECT_EQ(rules[3].params.hold_rule, physics::HoldRule::kTrackedGrip);
+  // the project's rule with the paper's reading of the gesture, beside it
+  EXPECT_EQ(rules[4].name, "default_paper_gesture");
+  EXPECT_EQ(rules[4].params.gesture_rule, physics::GestureRule::kPaper);
+  EXPECT_EQ(rules[4].params.hold_rule, physics::HoldRule::kTrackedGrip);
   // the sweeps: alpha0 90..150 and xi 0.1..10 on rule (c), eta keeping the shipped ratio
   const auto alpha = alpha0_sweep(shipped);
   ASSERT_EQ(alpha.size(), 7u);
@@ -56,7 +63,7 @@ TEST(StudyRules, ThePapersRulesHaveNoneOfTheProjectsAdditions) {
   const auto xi = xi_sweep(shipped);
   ASSERT_EQ(xi.size(), 5u);
   for (const Rule& r : xi) {
-    EXPECT_TRUE(r.params.gesture_rule);
+    EXPECT_EQ(r.params.gesture_rule, physics::GestureRule::kPaper);
     EXPECT_DOUBLE_EQ(r.params.eta_Nm / r.params.xi_N, shipped.eta_Nm / shipped.xi_N);
   }
 }

@@ -1,5 +1,6 @@
 // The stable-grasp rule (paper §4.4): gesture (more than 2 links, the thumb, thumb-finger normal
-// angles above alpha0) and equilibrium (eqs. 30-31).
+// angles above alpha0), in the project's reading and the paper's literal one, and equilibrium
+// (eqs. 30-31).
 
 #include <gtest/gtest.h>
 
@@ -24,9 +25,11 @@ HandContact touch(Link link, Eigen::Vector3d p, Eigen::Vector3d n, double normal
   return c;
 }
 
-GraspCheck check(const std::vector<HandContact>& contacts, bool held = false) {
-  return evaluate_grasp(contacts.data(), contacts.size(), kCentroid, kMass, kGravity,
-                        GraspParams{}, held);
+GraspCheck check(const std::vector<HandContact>& contacts, bool held = false,
+                 GestureRule rule = GestureRule::kProject) {
+  GraspParams params;
+  params.gesture_rule = rule;
+  return evaluate_grasp(contacts.data(), contacts.size(), kCentroid, kMass, kGravity, params, held);
 }
 
 // Thumb on -x pressing +x; index and middle on +x pressing -x; friction carries the weight.
@@ -93,11 +96,14 @@ TEST(GraspRule, ThePalmOpposesTheFingersWhenTheThumbIsOff) {
   EXPECT_FALSE(c.thumb);
   EXPECT_TRUE(c.palm_opposes);
   EXPECT_NEAR(c.min_thumb_angle_deg, 180.0, 1e-9);
-  // a finger beside the palm, not opposite it, is no grasp
+  EXPECT_EQ(c.opposed_fingers, 0b00110);
+  // a finger beside the palm, not opposite it: the paper's reading vetoes; the project's does
+  // not count it, which leaves the palm and one finger (two links, no grasp)
   const double a = 100.0 * M_PI / 180.0;
   contacts[2] = touch(Link::kMiddleDistal, {0, 0.04, 0}, {std::cos(a), std::sin(a), 0}, 2.0, 0.5);
-  EXPECT_EQ(check(contacts).verdict, GraspReason::kFingersNotOpposed);
-  // with the thumb on as well, the thumb is the one that must oppose
+  EXPECT_EQ(check(contacts, false, GestureRule::kPaper).verdict, GraspReason::kFingersNotOpposed);
+  EXPECT_EQ(check(contacts).verdict, GraspReason::kTooFewContacts);
+  // with the thumb on as well and opposing, the thumb is the opposer
   contacts = balanced_three_point();
   contacts.push_back(touch(Link::kPalm, {0, 0, 0.04}, {0, 0, -1}, 0.0, 0.0));
   c = check(contacts);
@@ -120,17 +126,58 @@ TEST(GraspRule, ThumbFingerAngleUnderAlpha0IsNoGrasp) {
   // the middle finger presses at 100 deg from the thumb's normal (alpha0 is 120)
   const double a = 100.0 * M_PI / 180.0;
   contacts[2] = touch(Link::kMiddleDistal, {0, 0.04, 0}, {std::cos(a), std::sin(a), 0}, 2.0, 0.5);
-  const GraspCheck c = check(contacts);
+  const GraspCheck c = check(contacts, false, GestureRule::kPaper);
   EXPECT_EQ(c.verdict, GraspReason::kFingersNotOpposed);
   EXPECT_NEAR(c.min_thumb_angle_deg, 100.0, 1e-6);
+  // the project's reading: the middle finger does not count, leaving two links
+  EXPECT_EQ(check(contacts).verdict, GraspReason::kTooFewContacts);
+  EXPECT_EQ(check(contacts).opposed_fingers, 0b00010);
 }
 
-// Without the gesture rule (GraspParams::gesture_rule false) eqs. 30-31 alone decide: a palm
+// A real fist round a 3 cm bar: thumb, index and middle opposed, the ring finger wrapping round
+// at 105 deg from the thumb. The paper's literal reading refuses the grasp; the project's counts
+// the opposed fingers and lets the ring finger neither count nor veto.
+TEST(GraspRule, AWrappingFingerNeitherCountsNorVetoesInTheProjectsReading) {
+  auto contacts = balanced_three_point();
+  const double a = 105.0 * M_PI / 180.0;
+  contacts.push_back(touch(Link::kRingDistal, {0, 0.04, 0}, {std::cos(a), std::sin(a), 0}, 0.5, 0.0));
+  // (its 0.5 N along its normal, balanced by the thumb's)
+  contacts[0].F_G += 0.5 * Eigen::Vector3d(-std::cos(a), -std::sin(a), 0);
+  const GraspCheck project = check(contacts);
+  EXPECT_EQ(project.verdict, GraspReason::kStableGrasp) << grasp_reason_name(project.verdict);
+  EXPECT_EQ(project.links_in_contact, 4);
+  EXPECT_EQ(project.opposed_fingers, 0b00110);  // index, middle
+  EXPECT_NEAR(project.min_thumb_angle_deg, 180.0, 1e-9);
+  const GraspCheck paper = check(contacts, false, GestureRule::kPaper);
+  EXPECT_EQ(paper.verdict, GraspReason::kFingersNotOpposed);
+  EXPECT_NEAR(paper.min_thumb_angle_deg, 105.0, 1e-6);
+}
+
+// A power grasp whose thumb lies on the fingers: in the project's reading the palm, which
+// opposes more links than the thumb, is the opposer.
+TEST(GraspRule, TheProjectsReadingTakesThePalmWhenItOpposesMoreThanTheThumb) {
+  const double w = kMass * 9.81;
+  const std::vector<HandContact> contacts = {
+      touch(Link::kPalm, {-0.04, 0, 0}, {1, 0, 0}, 4.0, w / 2),
+      touch(Link::kIndexMiddle, {0.04, 0, 0.01}, {-1, 0, 0}, 2.0, w / 4),
+      touch(Link::kMiddleMiddle, {0.04, 0, -0.01}, {-1, 0, 0}, 2.0, w / 4),
+      // the thumb across the fingers' backs, along them: not opposed to them
+      touch(Link::kThumbDistal, {0.0, 0.04, 0}, {0, -1, 0}, 0.0, 0.0)};
+  const GraspCheck c = check(contacts);
+  EXPECT_EQ(c.verdict, GraspReason::kStableGrasp) << grasp_reason_name(c.verdict);
+  EXPECT_TRUE(c.thumb);
+  EXPECT_TRUE(c.palm_opposes);
+  EXPECT_EQ(c.opposed_fingers, 0b00110);
+  // the paper's reading asks the thumb, which opposes no finger
+  EXPECT_EQ(check(contacts, false, GestureRule::kPaper).verdict, GraspReason::kFingersNotOpposed);
+}
+
+// Without the gesture rule (GraspParams::gesture_rule kNone) eqs. 30-31 alone decide: a palm
 // under the object carrying its weight grasps it, as does a thumb-less pair in equilibrium, but
 // no contact, or an unbalanced one, does not.
 TEST(GraspRule, WithoutTheGestureRuleEquilibriumAloneDecides) {
   GraspParams params;
-  params.gesture_rule = false;
+  params.gesture_rule = GestureRule::kNone;
   const auto check_without = [&](const std::vector<HandContact>& contacts) {
     return evaluate_grasp(contacts.data(), contacts.size(), kCentroid, kMass, kGravity, params,
                           false);
@@ -158,12 +205,14 @@ TEST(GraspRule, WithoutTheGestureRuleEquilibriumAloneDecides) {
 }
 
 TEST(GraspRule, AHoldLastsWhileAnyFingerIsOpposed) {
-  // the middle finger wraps round the object's end at 100 deg from the thumb: no new grasp
-  // (every finger must oppose), but a held object stays held, the index still opposing
+  // the middle finger wraps round the object's end at 100 deg from the thumb: in the paper's
+  // reading no new grasp (every finger must oppose), but its held test (hold_rule test) stays
+  // held, the index still opposing
   auto contacts = balanced_three_point();
   const double a = 100.0 * M_PI / 180.0;
   contacts[2] = touch(Link::kMiddleDistal, {0, 0.04, 0}, {std::cos(a), std::sin(a), 0}, 2.0, 0.5);
   GraspParams params;
+  params.gesture_rule = GestureRule::kPaper;
   const GraspCheck entry =
       evaluate_grasp(contacts.data(), contacts.size(), kCentroid, kMass, kGravity, params, false);
   EXPECT_EQ(entry.verdict, GraspReason::kFingersNotOpposed);

@@ -17,8 +17,11 @@ constexpr double kStep_s = 0.001;
 constexpr int64_t kStep_ns = 1'000'000;
 constexpr int kHand = 0;
 
+// The paper's hold rule: the contact test, at its held thresholds, decides a release (the tests
+// below drive it with its outcomes); the tracked grip's tests set kTrackedGrip.
 GraspParams params() {
   GraspParams p;
+  p.hold_rule = HoldRule::kContactTest;
   p.min_hold_s = 0.2;
   p.release_delay_s = 0.03;
   p.regrab_cooldown_s = 0.3;
@@ -235,10 +238,11 @@ TEST(GraspTracker, StaticObjectsAndUntouchedFreeOnesAreLeftAlone) {
 }
 
 // The glove opening releases a held object that the proxy's fingers still touch (the test holds
-// on): when the gripping fingers' flexion, averaged, falls release_opening_deg below its tightest
-// while held; closing tighter after the grasp raises that mark, and opening less keeps the hold.
-// The thumb counts only when it grips alone: it opens by rotation and abduction, and a thumb
-// curling further while the fingers open wide must not keep the hold.
+// on): when the gripping fingers' flexion, averaged, has fallen by release_opening_share (0.25) of
+// what it was at the grasp, and by at least release_opening_deg (15). Closing tighter after the
+// grasp does not move that mark: a squeeze relaxed back to the grip still holds. The thumb counts
+// only when it grips alone: it opens by rotation and abduction, and a thumb curling further while
+// the fingers open wide must not keep the hold.
 TEST(GraspTracker, TheGloveOpeningReleasesWhatTheFingersStillTouch) {
   Rig rig;
   const auto set_flexion_deg = [&](double index_deg, double thumb_deg) {
@@ -250,14 +254,14 @@ TEST(GraspTracker, TheGloveOpeningReleasesWhatTheFingersStillTouch) {
   GraspCheck grip = holding();
   grip.fingers = (1u << static_cast<int>(Finger::kThumb)) | (1u << static_cast<int>(Finger::kIndex));
   set_flexion_deg(120.0, 80.0);
-  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // GRASP
-  set_flexion_deg(140.0, 90.0);                      // closing tighter: the mark rises
+  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // GRASP: the mark is 0.25 x 120 = 30 deg
+  set_flexion_deg(170.0, 90.0);                      // a squeeze
   EXPECT_TRUE(rig.run_until(0.3, grip).empty());
-  set_flexion_deg(125.0, 60.0);                      // the index opened 15 deg: still held
+  set_flexion_deg(95.0, 60.0);                       // the index opened 25 deg: still held
   EXPECT_TRUE(rig.run_until(0.5, grip).empty());
-  set_flexion_deg(115.0, 60.0);                      // 25 deg: not yet beyond
+  set_flexion_deg(91.0, 60.0);                       // 29 deg: not yet beyond
   EXPECT_TRUE(rig.run_until(0.6, grip).empty());
-  set_flexion_deg(112.0, 130.0);                     // 28 deg, the thumb curled: let go after the
+  set_flexion_deg(88.0, 130.0);                      // 32 deg, the thumb curled: let go after the
                                                      // release delay
   const auto events = rig.run_until(0.7, grip);
   ASSERT_EQ(events.size(), 1u);
@@ -267,6 +271,22 @@ TEST(GraspTracker, TheGloveOpeningReleasesWhatTheFingersStillTouch) {
   EXPECT_EQ(rig.body.held_by, kNotHeld);
 }
 
+// A pinch with nearly straight fingers has little flexion to lose: at least release_opening_deg
+// of opening lets go, not the share alone (a tracker's jitter would).
+TEST(GraspTracker, AStraightFingeredGripNeedsTheFloorOfOpening) {
+  Rig rig;
+  GraspCheck grip = holding();
+  grip.fingers = 1u << static_cast<int>(Finger::kIndex);
+  rig.glove_q_rad[static_cast<std::size_t>(hand::Joint::kIndexMcp)] = 20.0 * M_PI / 180.0;
+  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // the share would be 5 deg
+  rig.glove_q_rad[static_cast<std::size_t>(hand::Joint::kIndexMcp)] = 8.0 * M_PI / 180.0;
+  EXPECT_TRUE(rig.run_until(0.5, grip).empty()) << "12 deg of opening is under the floor";
+  rig.glove_q_rad[static_cast<std::size_t>(hand::Joint::kIndexMcp)] = 4.0 * M_PI / 180.0;
+  const auto events = rig.run_until(0.6, grip);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].reason, GraspReason::kHandOpened);
+}
+
 // A thumb gripping alone (with the palm, say) is the finger whose opening counts.
 TEST(GraspTracker, AThumbGrippingAloneIsWatchedForOpening) {
   Rig rig;
@@ -274,13 +294,140 @@ TEST(GraspTracker, AThumbGrippingAloneIsWatchedForOpening) {
   grip.fingers = 1u << static_cast<int>(Finger::kThumb);
   for (hand::Joint j : {hand::Joint::kThumbMcp, hand::Joint::kThumbIp})
     rig.glove_q_rad[static_cast<std::size_t>(j)] = 40.0 * M_PI / 180.0;
-  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // GRASP
+  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // GRASP at 80 deg: the mark is 20 deg
   EXPECT_TRUE(rig.run_until(0.3, grip).empty());
   for (hand::Joint j : {hand::Joint::kThumbMcp, hand::Joint::kThumbIp})
-    rig.glove_q_rad[static_cast<std::size_t>(j)] = 25.0 * M_PI / 180.0;  // opened 30 deg
+    rig.glove_q_rad[static_cast<std::size_t>(j)] = 28.0 * M_PI / 180.0;  // opened 24 deg
   const auto events = rig.run_until(0.4, grip);
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].reason, GraspReason::kHandOpened);
+}
+
+// ---- the tracked hand's grip (HoldRule::kTrackedGrip) ----------------------------------------
+
+// One held object under the project's hold rule: each step the tracked hand's links near the
+// object's surface (HandOnObject::tracked_links_near) and the contact test's outcome.
+struct GripRig {
+  GraspTracker tracker;
+  ObjectSpec bar;
+  GraspHold hold;
+  BodyState body;
+  std::vector<GraspEvent> events;
+  int64_t t_ns = 0;
+  JointAngles glove_q_rad{};
+  bool tracking = true;
+
+  GripRig() : tracker(grip_params(), kStep_s, {0.0, 0.0, -9.81}) {
+    bar.dynamic = true;
+    bar.mass_kg = 0.06;
+    hold = tracker.initial_hold(bar);
+  }
+  static GraspParams grip_params() {
+    GraspParams p = params();
+    p.hold_rule = HoldRule::kTrackedGrip;
+    return p;
+  }
+  static uint32_t links(std::initializer_list<Link> ls) {
+    uint32_t bits = 0;
+    for (Link l : ls) bits |= 1u << static_cast<int>(l);
+    return bits;
+  }
+  std::vector<GraspEvent> run_until(double t_s, const GraspCheck& check, uint32_t near) {
+    std::vector<GraspEvent> out;
+    while (t_ns < std::llround(t_s * 1e9)) {
+      t_ns += kStep_ns;
+      events.clear();
+      HandOnObject h{HandNow{t_ns, tracking, Eigen::Isometry3d::Identity(), &glove_q_rad},
+                     nullptr, 0, 0, body.held(), near, &hold};
+      tracker.decide(0, check, h, body, events);
+      if (body.held()) tracker.record_held_pose(hold, body);
+      out.insert(out.end(), events.begin(), events.end());
+    }
+    return out;
+  }
+};
+
+// Thumb, index and middle opposed at the grasp, the ring finger wrapping (not opposed).
+GraspCheck fist_grip() {
+  GraspCheck c = holding();
+  c.fingers = 0b01111;
+  c.opposed_fingers = 0b00110;
+  return c;
+}
+
+const uint32_t kWholeFist = GripRig::links({Link::kThumbDistal, Link::kIndexDistal,
+                                            Link::kMiddleMiddle, Link::kRingDistal});
+
+// Attached, the proxy's fingers keep closing onto an object that cannot move to balance them: the
+// contact test fails on eq. 30 or the opposition angle, and the object stays held while the
+// tracked hand still grips it.
+TEST(GraspTrackerGrip, TheContactTestFailingDoesNotLetGoWhileTheTrackedHandGrips) {
+  GripRig rig;
+  ASSERT_EQ(rig.run_until(0.001, fist_grip(), kWholeFist).size(), 1u);
+  EXPECT_EQ(rig.hold.opposed_fingers, 0b00110);
+  EXPECT_FALSE(rig.hold.palm_opposed);
+  EXPECT_TRUE(rig.run_until(0.5, failing(GraspReason::kForceResidual), kWholeFist).empty());
+  EXPECT_TRUE(rig.run_until(1.0, failing(GraspReason::kFingersNotOpposed), kWholeFist).empty());
+  // one opposed finger is enough to go on holding
+  EXPECT_TRUE(rig.run_until(1.5, failing(), GripRig::links({Link::kThumbDistal, Link::kMiddleDistal}))
+                  .empty());
+  EXPECT_EQ(rig.body.held_by, kHand);
+}
+
+TEST(GraspTrackerGrip, TheThumbLeavingLetsGoAfterTheReleaseDelay) {
+  GripRig rig;
+  rig.run_until(0.5, fist_grip(), kWholeFist);
+  const auto events = rig.run_until(
+      0.6, holding(), GripRig::links({Link::kIndexDistal, Link::kMiddleMiddle, Link::kRingDistal}));
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_FALSE(events[0].grasp);
+  EXPECT_EQ(events[0].reason, GraspReason::kThumbLeft);
+  EXPECT_EQ(events[0].t_ns, 531'000'000) << "failing since 501 ms: 30 ms later";
+}
+
+// The wrapping ring finger was not opposed at the grasp: it alone does not keep the hold.
+TEST(GraspTrackerGrip, EveryOpposedFingerLeavingLetsGo) {
+  GripRig rig;
+  rig.run_until(0.5, fist_grip(), kWholeFist);
+  const auto events =
+      rig.run_until(0.6, holding(), GripRig::links({Link::kThumbDistal, Link::kRingDistal}));
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].reason, GraspReason::kFingersLeft);
+}
+
+// A power grasp: the palm opposed the fingers, so it is the palm that must stay.
+TEST(GraspTrackerGrip, APalmGraspLetsGoWhenThePalmLeaves) {
+  GripRig rig;
+  GraspCheck power = fist_grip();
+  power.palm_opposes = true;
+  const uint32_t wrapped = GripRig::links({Link::kPalm, Link::kIndexMiddle, Link::kMiddleMiddle});
+  rig.run_until(0.5, power, wrapped);
+  EXPECT_TRUE(rig.hold.palm_opposed);
+  EXPECT_TRUE(rig.run_until(0.6, holding(), wrapped).empty()) << "no thumb needed";
+  const auto events =
+      rig.run_until(0.7, holding(), GripRig::links({Link::kIndexMiddle, Link::kMiddleMiddle}));
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].reason, GraspReason::kThumbLeft);
+}
+
+TEST(GraspTrackerGrip, TheGloveOpeningAndALostGloveStillLetGo) {
+  GripRig rig;
+  rig.glove_q_rad[static_cast<std::size_t>(hand::Joint::kIndexMcp)] = 1.5;
+  rig.glove_q_rad[static_cast<std::size_t>(hand::Joint::kMiddleMcp)] = 1.5;
+  rig.run_until(0.5, fist_grip(), kWholeFist);
+  rig.glove_q_rad[static_cast<std::size_t>(hand::Joint::kIndexMcp)] = 0.0;
+  rig.glove_q_rad[static_cast<std::size_t>(hand::Joint::kMiddleMcp)] = 0.0;
+  auto events = rig.run_until(0.6, holding(), kWholeFist);  // the proxy's links still inside
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].reason, GraspReason::kHandOpened);
+
+  GripRig lost;
+  lost.run_until(0.01, fist_grip(), kWholeFist);
+  lost.tracking = false;
+  events = lost.run_until(0.011, holding(), kWholeFist);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].reason, GraspReason::kGloveLost);
+  EXPECT_EQ(events[0].t_ns, 11'000'000) << "at once, before the minimum hold";
 }
 
 // The links that touched an object when it was let go stand off it until the regrab cooldown
@@ -423,8 +570,16 @@ std::vector<HandContact> pinch(const Eigen::Vector3d& centre_G, double side_y_m,
   return c;
 }
 
+// The project's hold rule: a hand lets go when its tracked grip leaves (the rig's gloves are near
+// the object where they touch it).
+GraspParams two_hand_params() {
+  GraspParams p = params();
+  p.hold_rule = HoldRule::kTrackedGrip;
+  return p;
+}
+
 struct TwoHandRig {
-  GraspTracker tracker{params(), kStep_s, {0.0, 0.0, -9.81}};
+  GraspTracker tracker{two_hand_params(), kStep_s, {0.0, 0.0, -9.81}};
   ObjectSpec box;
   BodyState body;
   std::array<GraspHold, 2> holds;
@@ -451,6 +606,9 @@ struct TwoHandRig {
       on[h].hold = &holds[h];
       // a glove closed on it has its links inside it (where the proxy's rest on its surface)
       for (const HandContact& c : *contacts[h]) on[h].glove_links_inside |= 1u << static_cast<int>(c.link);
+      // ... and so near its surface (the tracked grip, for the project's hold rule)
+      on[h].grip_known = (body.holders & (1u << h)) != 0;
+      on[h].tracked_links_near = on[h].glove_links_inside;
     }
     tracker.update_hands(0, box, on.data(), on.size(), body, events);
     for (int h = 0; h < 2; ++h)
@@ -504,7 +662,7 @@ TEST(GraspTrackerTwoHands, WhenOneHandLetsGoTheOtherKeepsWhatItCanCarryAlone) {
   for (int i = 0; i < 50; ++i) rig.step(pinch(kCentre, 0.0, weight_N), {});
   EXPECT_EQ(rig.body.holders, 1u);
   EXPECT_EQ(rig.body.held_by, 0) << "the world names the holder; the tracker keeps it in step";
-  EXPECT_EQ(rig.text(), "release left (too few contacts) with right\n");
+  EXPECT_EQ(rig.text(), "release left (thumb left the object) with right\n");
 }
 
 TEST(GraspTrackerTwoHands, ALightObjectGoesToTheOtherHandOnceAndNotBack) {

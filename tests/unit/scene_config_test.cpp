@@ -285,7 +285,10 @@ TEST_F(ShippedCockpit, GraspAndContactBlocks) {
   EXPECT_EQ(scene_->grasp.alpha0_deg, 120.0);
   EXPECT_EQ(scene_->grasp.min_contacts, 3);
   EXPECT_EQ(scene_->grasp.exit_min_contacts, 2);
-  EXPECT_TRUE(scene_->grasp.gesture_rule);
+  EXPECT_EQ(scene_->grasp.gesture_rule, physics::GestureRule::kProject);
+  EXPECT_EQ(scene_->grasp.hold_rule, physics::HoldRule::kTrackedGrip);
+  EXPECT_DOUBLE_EQ(scene_->grasp.release_opening_share, 0.2);
+  EXPECT_DOUBLE_EQ(scene_->grasp.release_gap_m, 0.005);
   EXPECT_EQ(scene_->contact.max_points_per_pair, 4);
 }
 
@@ -541,8 +544,14 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
        "grasp:", "grasp.min_hold_s", "must be >= 0"},
       {"unknown_grasp_key", "min_contacts: 3}", "min_contacts: 3, xi: 1}", "grasp:", "grasp.xi",
        "unknown key 'xi'"},
-      {"gesture_rule_not_bool", "min_contacts: 3}", "min_contacts: 3, gesture_rule: maybe}",
-       "grasp:", "grasp.gesture_rule", "expected true or false"},
+      {"gesture_rule_unknown", "min_contacts: 3}", "min_contacts: 3, gesture_rule: maybe}",
+       "grasp:", "grasp.gesture_rule", "expected project, paper or none"},
+      {"hold_rule_unknown", "min_contacts: 3}", "min_contacts: 3, hold_rule: forces}",
+       "grasp:", "grasp.hold_rule", "expected grip"},
+      {"opening_share_of_one", "min_contacts: 3}", "min_contacts: 3, release_opening_share: 1.0}",
+       "grasp:", "grasp.release_opening_share", "must be in [0, 1)"},
+      {"release_gap_zero", "min_contacts: 3}", "min_contacts: 3, release_gap_m: 0}",
+       "grasp:", "grasp.release_gap_m", "must be positive"},
       {"max_substeps_zero", "max_substeps: 16", "max_substeps: 0",
        "contact:", "contact.max_substeps", "must be an integer in [1, 1000]"},
       {"substep_safety_above_one", "max_substeps: 16", "max_substeps: 16, substep_safety: 2",
