@@ -128,11 +128,11 @@ struct GraspParams {
   // angles, averaged over those fingers), and by at least release_opening_deg (a grip of nearly
   // straight fingers would otherwise let go at a tracker's jitter): the pilot's own hand opening,
   // which the proxy's fingers, resting on the object's surface, do not show. share 0: off.
-  double release_opening_share = 0.25;
+  double release_opening_share = 0.2;
   double release_opening_deg = 15.0;
   // kTrackedGrip: let go when the tracked thumb (or the opposing palm), or every finger that was
   // opposed at the grasp, is farther than this from the object's surface (the hand moved off it).
-  double release_gap_m = 0.01;
+  double release_gap_m = 0.005;
 };
 
 // Contact model details beyond the paper's equations.

@@ -2,6 +2,9 @@
 //  - the full rig replaying the grasping log in lockstep: GRASP then RELEASE of the cup, the
 //    cup's final pose equal to the offline runner's, frames rendered, and snapshots whose pixels
 //    show the hand next to the cup while it is held;
+//  - the full rig replaying the real Leap Motion "grab" on its bar in lockstep: the bar taken by
+//    0.30 s as the fist closes, let go between 0.70 and 1.00 s because the hand opened, and
+//    everything where the offline runner leaves it;
 //  - the full rig replaying the knob log in lockstep: the control events the offline runner
 //    writes, in order and at the same times, and each control's final position in summary.json;
 //  - kill -9 of the image generator mid-run: the launcher restarts it, it rebuilds the scene from
@@ -237,6 +240,44 @@ TEST_F(RigTest, FullRigReplaysTheGraspInLockstepLikeTheOfflineRunner) {
   EXPECT_GT(video.duration_s, 5.0) << "the 8.5 s replay";
   EXPECT_LT(video.duration_s, wall_s) << "not longer than the run";
   EXPECT_FALSE(std::filesystem::exists(dir_ + "/out/rig.mp4.partial"));
+}
+
+// A real recording through the whole rig, as config/rig_leap.yaml runs it (without the renderer:
+// what is checked is the grasp).
+TEST_F(RigTest, FullRigHoldsTheRealLeapBarUntilTheFistOpens) {
+  const std::string data = source_dir() + "/tests/data/real/";
+  const std::string rig_text =
+      "domain: " + domain_ + "\nqos: " + config("qos.xml") + "\nparticipant: loopback\nlog: " + data +
+      "leap_grab.csv\nnodes:\n  - {name: physics_node, command: [physics_node, --lockstep, --scene, " +
+      data + "leap_grab_scene.yaml], required: true, start_delay_s: 0.3}\n" + kLockstepGlove;
+  ChildProcess rig = launch(rig_text);
+  ASSERT_EQ(rig.wait(90 * kSecond), 0) << launcher_log();
+  const std::string summary = read_text(dir_ + "/out/summary.json");
+  const Json json = parse_summary(summary);
+  const Json events = json.value("events", Json::array());
+  ASSERT_GE(events.size(), 2u) << summary;
+  EXPECT_EQ(events[0].value("event", ""), "grasp") << summary;
+  EXPECT_EQ(events[0].value("object", ""), "bar") << summary;
+  EXPECT_LE(events[0].value("t_s", 99.0), 0.30) << summary;
+  EXPECT_EQ(events[1].value("event", ""), "release") << summary;
+  const double release_s = events[1].value("t_s", -1.0);
+  EXPECT_GE(release_s, 0.70) << summary;
+  EXPECT_LE(release_s, 1.00) << summary;
+  const std::string reason = events[1].value("reason", "");
+  EXPECT_TRUE(reason.rfind("hand opened", 0) == 0 || reason.rfind("thumb left", 0) == 0 ||
+              reason.rfind("fingers left", 0) == 0)
+      << reason;
+
+  // where the offline runner leaves it (tests/scenario/real_leap_grab_test.cpp checks that run)
+  physics_io::OfflineOptions offline;
+  offline.scene_path = data + "leap_grab_scene.yaml";
+  offline.log_paths = {data + "leap_grab.csv"};
+  offline.out_dir = dir_ + "/offline";
+  physics_io::run_offline(load_scene(offline.scene_path), offline);
+  const auto expected = read_final_poses(offline.out_dir + "/summary.json");
+  const auto seen = read_final_poses(dir_ + "/out/summary.json");
+  ASSERT_TRUE(expected.count("bar") && seen.count("bar")) << summary;
+  EXPECT_LT((seen.at("bar") - expected.at("bar")).norm(), 1e-8);
 }
 
 TEST_F(RigTest, FullRigReportsAControlLogsEventsAsTheOfflineRunnerWritesThem) {

@@ -238,7 +238,7 @@ TEST(GraspTracker, StaticObjectsAndUntouchedFreeOnesAreLeftAlone) {
 }
 
 // The glove opening releases a held object that the proxy's fingers still touch (the test holds
-// on): when the gripping fingers' flexion, averaged, has fallen by release_opening_share (0.25) of
+// on): when the gripping fingers' flexion, averaged, has fallen by release_opening_share (0.2) of
 // what it was at the grasp, and by at least release_opening_deg (15). Closing tighter after the
 // grasp does not move that mark: a squeeze relaxed back to the grip still holds. The thumb counts
 // only when it grips alone: it opens by rotation and abduction, and a thumb curling further while
@@ -254,14 +254,14 @@ TEST(GraspTracker, TheGloveOpeningReleasesWhatTheFingersStillTouch) {
   GraspCheck grip = holding();
   grip.fingers = (1u << static_cast<int>(Finger::kThumb)) | (1u << static_cast<int>(Finger::kIndex));
   set_flexion_deg(120.0, 80.0);
-  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // GRASP: the mark is 0.25 x 120 = 30 deg
+  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // GRASP: the mark is 0.2 x 120 = 24 deg
   set_flexion_deg(170.0, 90.0);                      // a squeeze
   EXPECT_TRUE(rig.run_until(0.3, grip).empty());
-  set_flexion_deg(95.0, 60.0);                       // the index opened 25 deg: still held
+  set_flexion_deg(100.0, 60.0);                      // the index opened 20 deg: still held
   EXPECT_TRUE(rig.run_until(0.5, grip).empty());
-  set_flexion_deg(91.0, 60.0);                       // 29 deg: not yet beyond
+  set_flexion_deg(97.0, 60.0);                       // 23 deg: not yet beyond
   EXPECT_TRUE(rig.run_until(0.6, grip).empty());
-  set_flexion_deg(88.0, 130.0);                      // 32 deg, the thumb curled: let go after the
+  set_flexion_deg(94.0, 130.0);                      // 26 deg, the thumb curled: let go after the
                                                      // release delay
   const auto events = rig.run_until(0.7, grip);
   ASSERT_EQ(events.size(), 1u);
@@ -278,7 +278,7 @@ TEST(GraspTracker, AStraightFingeredGripNeedsTheFloorOfOpening) {
   GraspCheck grip = holding();
   grip.fingers = 1u << static_cast<int>(Finger::kIndex);
   rig.glove_q_rad[static_cast<std::size_t>(hand::Joint::kIndexMcp)] = 20.0 * M_PI / 180.0;
-  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // the share would be 5 deg
+  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // the share would be 4 deg
   rig.glove_q_rad[static_cast<std::size_t>(hand::Joint::kIndexMcp)] = 8.0 * M_PI / 180.0;
   EXPECT_TRUE(rig.run_until(0.5, grip).empty()) << "12 deg of opening is under the floor";
   rig.glove_q_rad[static_cast<std::size_t>(hand::Joint::kIndexMcp)] = 4.0 * M_PI / 180.0;
@@ -294,10 +294,10 @@ TEST(GraspTracker, AThumbGrippingAloneIsWatchedForOpening) {
   grip.fingers = 1u << static_cast<int>(Finger::kThumb);
   for (hand::Joint j : {hand::Joint::kThumbMcp, hand::Joint::kThumbIp})
     rig.glove_q_rad[static_cast<std::size_t>(j)] = 40.0 * M_PI / 180.0;
-  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // GRASP at 80 deg: the mark is 20 deg
+  ASSERT_EQ(rig.run_until(0.01, grip).size(), 1u);  // GRASP at 80 deg: the mark is 16 deg
   EXPECT_TRUE(rig.run_until(0.3, grip).empty());
   for (hand::Joint j : {hand::Joint::kThumbMcp, hand::Joint::kThumbIp})
-    rig.glove_q_rad[static_cast<std::size_t>(j)] = 28.0 * M_PI / 180.0;  // opened 24 deg
+    rig.glove_q_rad[static_cast<std::size_t>(j)] = 30.0 * M_PI / 180.0;  // opened 20 deg
   const auto events = rig.run_until(0.4, grip);
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].reason, GraspReason::kHandOpened);

@@ -65,6 +65,8 @@ RealGripRun replay_real_grip(const std::string& scene_path, const std::string& l
       std::fprintf(stderr, "%.3f %s p %.4f %.4f %.4f v %.3f %.3f %.3f proxy %.4f %.4f %.4f tracked %.4f %.4f %.4f\n",
                    t_s, body.held() ? "held" : "free", p.x(), p.y(), p.z(), body.v_G.x(), body.v_G.y(),
                    body.v_G.z(), proxy.x(), proxy.y(), proxy.z(), tracked.x(), tracked.y(), tracked.z());
+      for (const Eigen::Vector3d& n : hs.blocking_out_G)
+        std::fprintf(stderr, "    blocking %.2f %.2f %.2f\n", n.x(), n.y(), n.z());
     }
     if (!body.held()) {
       const double horizontal_mps = body.v_G.head<2>().norm();
