@@ -266,7 +266,8 @@ def plot_failures(compared, by_rule, objects, path):
         bottom = [0] * len(objects)
         for kind, color in zip(FAILURES, FAILURE_COLORS):
             counts = [sum(1 for t in by_rule.get(name, [])
-                          if t["object"] == o and not t["success"] and t.get("failure") == kind)
+                          if t["object"] == o and not t["result"]["success"]
+                          and t["result"].get("failure") == kind)
                       for o in objects]
             ax.bar(range(len(objects)), counts, bottom=bottom, color=color, label=kind)
             bottom = [b + c for b, c in zip(bottom, counts)]
@@ -410,7 +411,8 @@ def main():
     for o in objects:
         cells = []
         for r in compared:
-            failed = [t for t in by_rule.get(r, []) if t["object"] == o and not t["success"]]
+            failed = [t["result"] for t in by_rule.get(r, [])
+                      if t["object"] == o and not t["result"]["success"]]
             parts = [f"{sum(1 for t in failed if t.get('failure') == k)} {k}" for k in FAILURES
                      if any(t.get("failure") == k for t in failed)]
             cells.append(", ".join(parts) if parts else "—")

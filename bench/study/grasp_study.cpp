@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -133,6 +134,14 @@ int run(int argc, char** argv) {
   app.add_option("--timeline-index", timeline_index, "... and its number")
       ->check(CLI::NonNegativeNumber);
   bool plain = false;
+  std::vector<std::string> only_rules;
+  app.add_option("--rules", only_rules,
+                 "only these compared rules (strict, relaxed, relaxed_gesture, default, "
+                 "default_paper_gesture); default: all")
+      ->delimiter(',');
+  std::vector<std::string> only_objects;
+  app.add_option("--objects", only_objects, "only these objects or control cases; default: all")
+      ->delimiter(',');
   app.add_flag("--plain", plain,
                "no variation: each gesture as scripted, 50th-percentile hand, clean input (one "
                "trial per object and rule)");
@@ -144,6 +153,13 @@ int run(int argc, char** argv) {
 
   const physics::Scene shipped = load_scene(source_dir + "/config/cockpit.yaml");
   std::vector<Rule> rules = compared_rules(shipped.grasp);
+  if (!only_rules.empty()) {
+    std::vector<Rule> kept;
+    for (const Rule& r : rules)
+      if (std::find(only_rules.begin(), only_rules.end(), r.name) != only_rules.end()) kept.push_back(r);
+    if (kept.size() != only_rules.size()) throw std::invalid_argument("--rules: an unknown rule");
+    rules = kept;
+  }
   const std::size_t compared = rules.size();
   if (sweep_trials > 0) {
     for (auto& r : alpha0_sweep(shipped.grasp)) rules.push_back(r);
@@ -158,8 +174,12 @@ int run(int argc, char** argv) {
   std::vector<Work> work;
   for (std::size_t r = 0; r < rules.size(); ++r) {
     const int n = r < compared ? trials : sweep_trials;
-    for (std::size_t o = 0; o < objects.size(); ++o)
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      if (!only_objects.empty() &&
+          std::find(only_objects.begin(), only_objects.end(), objects[o].object) == only_objects.end())
+        continue;
       for (int i = 0; i < n; ++i) work.push_back({r, o, i});
+    }
   }
   std::vector<TrialResult> results(work.size());
   std::vector<std::string> errors(work.size());
