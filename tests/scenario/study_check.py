@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Checks a grasp study's outputs (scripts/study --quick in study_quick):
-the files exist, every rule has trials, and the numbers are not degenerate.
+the files exist, every rule (both readings of the gesture constraint among them) has trials, the
+failed trials are placed, and the numbers are not degenerate.
 
   study_check.py OUT_DIR
 """
@@ -16,8 +17,8 @@ def main(out_dir):
         if not ok:
             failures.append(what)
 
-    for name in ("results.md", "results.json", "rules.png", "penetration.png", "sweeps.png",
-                 "timeline.png"):
+    for name in ("results.md", "results.json", "rules.png", "penetration.png", "failures.png",
+                 "sweeps.png", "timeline.png"):
         path = os.path.join(out_dir, name)
         check(os.path.isfile(path) and os.path.getsize(path) > 0, f"{name} missing or empty")
     if failures:
@@ -27,7 +28,8 @@ def main(out_dir):
         doc = json.load(f)
     metrics = doc["metrics"]
     compared = [r["name"] for r in doc["rules"] if r["group"] == "rules"]
-    check(compared == ["strict", "relaxed", "relaxed_gesture", "default"], f"rules {compared}")
+    check(compared == ["strict", "relaxed", "relaxed_gesture", "default", "default_paper_gesture"],
+          f"rules {compared}")
     total = successes = 0
     for r in doc["rules"]:
         m = metrics[r["name"]]
@@ -53,7 +55,8 @@ def main(out_dir):
         check(len(doc["sweeps"].get(group, [])) >= 5, f"sweep {group} missing")
     with open(os.path.join(out_dir, "results.md")) as f:
         md = f.read()
-    for text in ("## Headline", "(a) strict", "(d) project default", "## Sweeps", "rules.png"):
+    for text in ("## Headline", "(a) strict", "(d) project default", "(e) project, paper's gesture",
+                 "## Where the failed trials failed", "failures.png", "## Sweeps", "rules.png"):
         check(text in md, f"results.md lacks {text!r}")
     if failures:
         print("\n".join(failures))
