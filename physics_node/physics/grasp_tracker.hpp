@@ -115,7 +115,8 @@ struct HandOnObject {
   uint32_t glove_links_inside = 0;
   // the links of the tracked hand, posed on the proxy's wrist (the hand's shape, not its lag),
   // within release_gap_m of the object's surface (bit l); known only while this hand holds it and
-  // hold_rule is kTrackedGrip
+  // hold_rule is kTrackedGrip, and measured only as far as the verdict needs (the first near link
+  // of the thumb or palm, and of one opposed finger)
   bool grip_known = false;
   uint32_t tracked_links_near = 0;
   GraspHold* hold = nullptr;  // this hand's grasp state of the object

@@ -562,19 +562,34 @@ uint32_t World::glove_links_inside(int hand, int object, const GraspHold& hold) 
   return inside;
 }
 
-uint32_t World::tracked_links_near(int hand, int object) const {
+uint32_t World::tracked_links_near(int hand, int object, const GraspHold& hold) const {
   const HandSim& sim = hands_[static_cast<std::size_t>(hand)];
   const HandState& hs = hand_state(hand);
   observe_tracked_hand(hand);
   // the tracked hand's shape on the proxy's wrist: X_GH X_GT^-1 X_GL(tracked)
   const Eigen::Isometry3d X_HT = sim.proxy ? hs.X_GH * hs.to.X_GH.inverse() : Eigen::Isometry3d::Identity();
-  uint32_t near = 0;
-  for (int l = 0; l < kLinkCount; ++l) {
-    const Eigen::Isometry3d X_GL = sim.proxy ? X_HT * sim.tracked_X_GL[l] : hs.X_GL[l];
-    if (collision_.link_within(hand, static_cast<Link>(l), X_GL, object, scene_.grasp.release_gap_m))
-      near |= 1u << l;
+  const auto near = [&](Link l) {
+    const int i = static_cast<int>(l);
+    const Eigen::Isometry3d X_GL = sim.proxy ? X_HT * sim.tracked_X_GL[i] : hs.X_GL[i];
+    return collision_.link_within(hand, l, X_GL, object, scene_.grasp.release_gap_m);
+  };
+  const auto bit = [](Link l) { return 1u << static_cast<int>(l); };
+  // a finger's links from its tip in: the tip is the one nearest an object it grips
+  const auto first_near = [&](Finger f) -> uint32_t {
+    const auto links = finger_links(f);
+    for (auto it = links.rbegin(); it != links.rend(); ++it)
+      if (near(*it)) return bit(*it);
+    return 0u;
+  };
+  uint32_t found = hold.palm_opposed ? (near(Link::kPalm) ? bit(Link::kPalm) : 0u)
+                                     : first_near(Finger::kThumb);
+  for (int f = 1; f < kFingerCount; ++f) {
+    if ((hold.opposed_fingers & (1u << f)) == 0) continue;
+    const uint32_t hit = first_near(static_cast<Finger>(f));
+    found |= hit;
+    if (hit != 0) break;
   }
-  return near;
+  return found;
 }
 
 void World::observe_tracked_hand(int hand) const {
@@ -864,7 +879,7 @@ void World::grasp_stage() {
       on.glove_links_inside = glove_links_inside(static_cast<int>(h), object, hold);
       on.grip_known = scene_.grasp.hold_rule == HoldRule::kTrackedGrip && state_.hands[h].active &&
                       (state_.bodies[object].holders & hands_[h].holder_bit) != 0;
-      on.tracked_links_near = on.grip_known ? tracked_links_near(static_cast<int>(h), object) : 0u;
+      on.tracked_links_near = on.grip_known ? tracked_links_near(static_cast<int>(h), object, hold) : 0u;
     }
     grasp_tracker_.update_hands(object, o, on_object_.data(), on_object_.size(), state_.bodies[object],
                                 events_, o.control >= 0 ? &control_grasp_joint_[o.control] : nullptr);

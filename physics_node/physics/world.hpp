@@ -180,7 +180,9 @@ class World {
   // The links of the tracked hand, posed on the proxy's wrist, within grasp.release_gap_m of a
   // held object (HandOnObject::tracked_links_near): the grip the pilot's hand makes round it,
   // whatever the lag of the proxy's wrist.
-  uint32_t tracked_links_near(int hand, int object) const;
+  // Only the links the verdict needs are measured, tips first: the opposer's (the thumb's, or the
+  // palm) until one is near, then the opposed fingers' until one is near.
+  uint32_t tracked_links_near(int hand, int object, const GraspHold& hold) const;
   // Where a held object is: eq. 29 for one hand, the mean of both hands' held poses for two.
   Eigen::Isometry3d held_pose(int object) const;
   void move_held_objects(double dt_s);
