@@ -161,11 +161,30 @@ std::string grip_scene_text(const GripSceneSpec& spec, const std::string& out_pa
   return text;
 }
 
+namespace {
+
+// The scene the text is, as load_scene reads it from out_path.
+physics::Scene parse_at(const std::string& text, const std::string& out_path) {
+  const std::string dir = fs::path(out_path).parent_path().string();
+  return parse_scene(ConfigNode::load_string(text, out_path), dir);
+}
+
+}  // namespace
+
+GripSceneSpec with_candidate(GripSceneSpec base, const fit::GripTrial& trial) {
+  base.X_GO = trial.placement.X_GO;
+  if (trial.layout) base.layout = *trial.layout;
+  return base;
+}
+
+physics::Scene grip_scene(const GripSceneSpec& spec, const std::string& out_path) {
+  return parse_at(grip_scene_text(spec, out_path), out_path);
+}
+
 physics::Scene write_grip_scene(const GripSceneSpec& spec, const std::string& out_path) {
   const std::string text = grip_scene_text(spec, out_path);
   // what goes under the name must load: parse it first, from where it will be
-  const std::string dir = fs::path(out_path).parent_path().string();
-  physics::Scene scene = parse_scene(ConfigNode::load_string(text, out_path), dir);
+  physics::Scene scene = parse_at(text, out_path);
   AtomicFile file(out_path);
   file.write(text);
   file.commit();

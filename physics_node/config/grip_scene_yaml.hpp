@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "physics_node/fit/grip_choice.hpp"
 #include "physics_node/fit/grip_scene_layout.hpp"
 #include "physics_node/physics/scene.hpp"
 
@@ -41,6 +42,14 @@ struct GripSceneSpec {
 // The scene's text for a file at out_path. The cockpit file must load (load_scene); throws
 // ConfigError naming its file:line:col when it does not or lacks the material_of object.
 std::string grip_scene_text(const GripSceneSpec& spec, const std::string& out_path);
+
+// The scene grip_scene_text is, as load_scene would read it from a file at out_path (nothing
+// written): what grip_fit replays each candidate on (the numbers rounded as the file has them).
+physics::Scene grip_scene(const GripSceneSpec& spec, const std::string& out_path);
+
+// The spec of a candidate (fit/grip_choice.hpp): `base` (the object's name, shape, mass, the hand,
+// the cockpit) with the candidate's pose and supports.
+GripSceneSpec with_candidate(GripSceneSpec base, const fit::GripTrial& trial);
 
 // Writes grip_scene_text atomically once it loads; returns the loaded scene. Throws ConfigError
 // (the text does not load: a bad cockpit section) or FileError (cannot write).

@@ -124,7 +124,18 @@ struct Start {
   Eigen::Vector3d p_G;
   RestOrientation rest;
   double yaw_rad;
+  int rest_index;
 };
+
+// Two accepted results the same pose (FitResult::accepted): centres within 1 mm, turned less than
+// 2 deg apart.
+constexpr double kSamePosition_m = 1e-3;
+constexpr double kSameTurn_deg = 2.0;
+bool same_pose(const Placement& a, const Placement& b) {
+  if ((a.X_GO.translation() - b.X_GO.translation()).norm() > kSamePosition_m) return false;
+  const double turn_rad = Eigen::AngleAxisd(a.X_GO.linear().transpose() * b.X_GO.linear()).angle();
+  return turn_rad <= kSameTurn_deg * M_PI / 180.0;
+}
 
 // Search coordinates: position in mm from the start's, then (a free yaw only) yaw in kYawUnit_rad.
 Eigen::Isometry3d pose_from(const Start& start, const Eigen::VectorXd& x) {
@@ -154,18 +165,30 @@ bool better(const Placement& b, const Placement& a, const FitLimits& limits) {
 // (or, where the yaw is not free, the position nudged kNudge_m along each of H's axes either way).
 std::vector<Start> starts_for(const GripHand& hand, const Shape& shape) {
   std::vector<Start> out;
+  const std::vector<RestOrientation> rests = rest_orientations(shape);
   for (const Eigen::Vector3d& p_G : start_positions(hand, shape)) {
-    for (const RestOrientation& rest : rest_orientations(shape)) {
+    for (std::size_t r = 0; r < rests.size(); ++r) {
+      const RestOrientation& rest = rests[r];
+      const int index = static_cast<int>(r);
       const std::vector<double> yaws = start_yaws_rad(hand.X_GH.linear(), rest, kStartYaws);
       for (double yaw_rad : yaws)
-        out.push_back({p_G, rest, yaw_rad});
+        out.push_back({p_G, rest, yaw_rad, index});
       for (int k = 0; !rest.yaw_free && k < kStartYaws; ++k) {
         const Eigen::Vector3d axis_G = hand.X_GH.linear().col(k / 2);
-        out.push_back({p_G + (k % 2 ? -kNudge_m : kNudge_m) * axis_G, rest, yaws.front()});
+        out.push_back({p_G + (k % 2 ? -kNudge_m : kNudge_m) * axis_G, rest, yaws.front(), index});
       }
     }
   }
   return out;
+}
+
+// Which resting orientation and yaw a search result has.
+void label(Placement& p, const Start& start, const Eigen::VectorXd& x) {
+  p.rest_index = start.rest_index;
+  p.rest_name = start.rest.name;
+  p.yaw_free = start.rest.yaw_free;
+  const double yaw_rad = start.yaw_rad + (start.rest.yaw_free ? kYawUnit_rad * x[3] : 0.0);
+  p.yaw_rad = std::remainder(yaw_rad, 2.0 * M_PI);
 }
 
 // One start's search; adds its cost evaluations to `evaluations`.
@@ -184,7 +207,8 @@ Placement search_from(const GripHand& hand, const Shape& shape, const FitLimits&
     evaluations += r.evaluations;
     x = r.x;
   }
-  const Placement p = evaluate_placement(hand, shape, pose_from(start, x), limits);
+  Placement p = evaluate_placement(hand, shape, pose_from(start, x), limits);
+  label(p, start, x);
   if (p.accepted) return p;
   // too tight for the margins: polished once more near the limits (Margins)
   const auto tight = [&](const Eigen::VectorXd& y) {
@@ -193,9 +217,14 @@ Placement search_from(const GripHand& hand, const Shape& shape, const FitLimits&
   };
   const SimplexResult r = minimise_simplex(tight, x, {kTightEvaluations, 0.5, 1e-3});
   evaluations += r.evaluations;
-  const Placement polished = evaluate_placement(hand, shape, pose_from(start, r.x), limits);
+  Placement polished = evaluate_placement(hand, shape, pose_from(start, r.x), limits);
+  label(polished, start, r.x);
   return polished.accepted ? polished : p;
 }
+
+// A bound must clear the nearest by this much to leave a link out (far above the rounding of
+// either; the skipped link's exact distance is then surely not the least).
+constexpr double kBoundMargin_m = 1e-9;
 
 }  // namespace
 
@@ -205,11 +234,31 @@ Placement evaluate_placement(const GripHand& hand, const Shape& shape,
   p.X_GO = X_GO;
   p.link_distance_m[0] = box_signed_distance(shape, X_GO, hand.palm_size_m, hand.X_GP);
   std::array<Eigen::Vector3d, hand::kLinkCount> n_G{};
-  for (int l = 1; l < hand::kLinkCount; ++l) {
-    const auto k = static_cast<std::size_t>(l);
-    const LinkContact c = capsule_contact(shape, X_GO, hand.a_G[k], hand.b_G[k], hand.radius_m[k]);
-    p.link_distance_m[k] = c.distance_m;
-    n_G[k] = c.n_G;
+  // Each finger's phalanges nearest first by a cheap lower bound; one whose bound lies beyond the
+  // finger's nearest so far (and outside the object) cannot be its nearest nor the deepest, nor
+  // add to the cost: its exact distance is left out and the bound stands for it.
+  const ShapeCore core = shape_core(shape, X_GO);
+  for (int f = 0; f < hand::kFingerCount; ++f) {
+    const auto links = hand::finger_links(static_cast<Finger>(f));
+    std::array<std::pair<double, std::size_t>, 3> order{};
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      const auto k = static_cast<std::size_t>(links[i]);
+      order[i] = {capsule_distance_lower_bound(core, hand.a_G[k], hand.b_G[k], hand.radius_m[k]),
+                  k};
+    }
+    std::sort(order.begin(), order.end());
+    double nearest_m = INFINITY;
+    for (const auto& [bound_m, k] : order) {
+      if (bound_m > kBoundMargin_m && bound_m > nearest_m + kBoundMargin_m) {
+        p.link_distance_m[k] = bound_m;
+        continue;
+      }
+      const LinkContact c =
+          capsule_contact(shape, X_GO, hand.a_G[k], hand.b_G[k], hand.radius_m[k]);
+      p.link_distance_m[k] = c.distance_m;
+      n_G[k] = c.n_G;
+      nearest_m = std::min(nearest_m, c.distance_m);
+    }
   }
   for (int f = 0; f < hand::kFingerCount; ++f) {
     const auto fk = static_cast<std::size_t>(f);
@@ -250,8 +299,19 @@ FitResult fit_object_in_grip(const GripHand& hand, const Shape& shape, const Fit
     if (p.accepted && !before.empty())
       p.approach_m = hand_approach(before, shape, p.X_GO).nearest_m;
     if (result.starts == 0 || better(p, result.best, limits)) result.best = p;
+    if (p.accepted) result.accepted.push_back(p);
     ++result.starts;
   }
+  // best first (a stable sort: on a full tie the earlier start), then the same poses left out
+  std::stable_sort(result.accepted.begin(), result.accepted.end(),
+                   [&](const Placement& a, const Placement& b) { return better(a, b, limits); });
+  std::vector<Placement> distinct;
+  for (const Placement& p : result.accepted) {
+    const bool seen = std::any_of(distinct.begin(), distinct.end(),
+                                  [&](const Placement& q) { return same_pose(p, q); });
+    if (!seen) distinct.push_back(p);
+  }
+  result.accepted = std::move(distinct);
   return result;
 }
 

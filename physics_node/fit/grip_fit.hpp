@@ -35,7 +35,8 @@
 // fingers gripping (touching and opposed) wins, then the most touching, then (given the recorded
 // hands before the moment, hand_approach.hpp) one the hand does not pass through before the moment
 // (no link deeper than max_depth_m), then the lower cost, then the earlier start; if none passes,
-// the lowest cost (the figures of "no placement").
+// the lowest cost (the figures of "no placement"). Every distinct accepted result is kept too, in
+// that order (FitResult::accepted): grip_fit replays them in turn until one holds.
 
 #include <Eigen/Geometry>
 #include <array>
@@ -61,7 +62,9 @@ struct FitLimits {
 
 struct Placement {
   Eigen::Isometry3d X_GO = Eigen::Isometry3d::Identity();
-  std::array<double, hand::kLinkCount> link_distance_m{};      // signed, palm included
+  // signed, palm included; a phalanx that cannot be its finger's nearest (a cheap bound beyond
+  // it, outside the object) holds that bound instead: the search needs no more of it
+  std::array<double, hand::kLinkCount> link_distance_m{};
   std::array<double, hand::kFingerCount> finger_distance_m{};  // least over its phalanges
   std::array<hand::Link, hand::kFingerCount> finger_link{};    // the phalanx that gives it
   hand::Link deepest_link = hand::Link::kPalm;                 // the link of least signed distance
@@ -77,6 +80,11 @@ struct Placement {
   // fit_object_in_grip with the hands before the moment, for an accepted placement: their least
   // link distance (< 0: the hand reaches into the object before gripping it); +inf otherwise
   double approach_m = INFINITY;
+  // the resting orientation searched in (rest_orientation.hpp): its index and name
+  int rest_index = 0;
+  const char* rest_name = "any";
+  bool yaw_free = false;  // ... whether its yaw is free, and the yaw about world z (rad) it has,
+  double yaw_rad = 0.0;   // wrapped to (-pi, pi]
 };
 
 // The figures of one pose.
@@ -85,6 +93,10 @@ Placement evaluate_placement(const GripHand& hand, const physics::Shape& shape,
 
 struct FitResult {
   Placement best;  // accepted, or the nearest miss
+  // every accepted result, best first (the order above; `best` is the first), each a distinct
+  // pose: a result within same_position_m (1 mm) and same_turn_deg (2 deg) of a better one is
+  // left out. The candidates grip_fit replays (grip_choice.hpp).
+  std::vector<Placement> accepted;
   int starts = 0;
   int evaluations = 0;
 };

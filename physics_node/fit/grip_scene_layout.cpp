@@ -1,5 +1,6 @@
 #include "physics_node/fit/grip_scene_layout.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -110,6 +111,40 @@ GripSceneLayout lay_out_supports(const GripHand& hand, const physics::Shape& sha
     if (out.pedestal_clearance_m >= rule.pedestal_clearance_m ||
         share - rule.footprint_step < rule.min_footprint_share - 1e-9)
       break;
+  }
+  if (rule.extend_m > 0.0 && out.pedestal_clearance_m >= rule.pedestal_clearance_m) {
+    // the sides' offsets from the object's centre along (+-along, +-across), grown in turn
+    const Eigen::Vector3d u_along = horizontal(yaw), u_across = horizontal(yaw + 0.5 * M_PI);
+    std::array<double, 4> side = {0.5 * out.pedestal.size_m.x(), 0.5 * out.pedestal.size_m.x(),
+                                  0.5 * out.pedestal.size_m.y(), 0.5 * out.pedestal.size_m.y()};
+    const std::array<double, 4> limit = {
+        0.5 * along_m + rule.extend_m, 0.5 * along_m + rule.extend_m,
+        0.5 * across_m + rule.extend_m, 0.5 * across_m + rule.extend_m};
+    const auto box_of = [&](const std::array<double, 4>& s) {
+      SupportBox box = out.pedestal;
+      box.size_m.x() = s[0] + s[1];
+      box.size_m.y() = s[2] + s[3];
+      box.p_G.head<2>() = p_GO.head<2>() + (0.5 * (s[0] - s[1]) * u_along).head<2>() +
+                          (0.5 * (s[2] - s[3]) * u_across).head<2>();
+      return box;
+    };
+    std::array<bool, 4> open = {true, true, true, true};
+    while (open[0] || open[1] || open[2] || open[3]) {
+      for (std::size_t k = 0; k < 4; ++k) {
+        if (!open[k]) continue;
+        std::array<double, 4> next = side;
+        next[k] = std::min(side[k] + rule.extend_step_m, limit[k]);
+        hand::Link nearest = hand::Link::kPalm;
+        if (next[k] <= side[k] ||
+            clearance_m(hand, box_of(next), nearest) < rule.pedestal_clearance_m) {
+          open[k] = false;
+          continue;
+        }
+        side = next;
+      }
+    }
+    out.pedestal = box_of(side);
+    out.pedestal_clearance_m = clearance_m(hand, out.pedestal, out.pedestal_nearest_link);
   }
   return out;
 }

@@ -18,16 +18,16 @@ std::vector<RestOrientation> rest_orientations(const physics::Shape& shape) {
   const Eigen::Matrix3d lying = about_y(0.5 * M_PI);  // the object's z (its axis) along world x
   switch (shape.kind) {
     case physics::ShapeKind::kSphere:
-      return {{Eigen::Matrix3d::Identity(), false}};
+      return {{Eigen::Matrix3d::Identity(), false, "any"}};
     case physics::ShapeKind::kCylinder:
-      return {{lying, true}, {Eigen::Matrix3d::Identity(), false}};
+      return {{lying, true, "lying"}, {Eigen::Matrix3d::Identity(), false, "standing"}};
     case physics::ShapeKind::kCapsule:
-      return {{lying, true}};
+      return {{lying, true, "lying"}};
     case physics::ShapeKind::kBox:
       // z up, y up (Rx(90) y = z), x up (Ry(-90) x = z)
-      return {{Eigen::Matrix3d::Identity(), true},
-              {about_x(0.5 * M_PI), true},
-              {about_y(-0.5 * M_PI), true}};
+      return {{Eigen::Matrix3d::Identity(), true, "on its z faces"},
+              {about_x(0.5 * M_PI), true, "on its y faces"},
+              {about_y(-0.5 * M_PI), true, "on its x faces"}};
   }
   return {};
 }

@@ -21,6 +21,9 @@ struct RestOrientation {
   Eigen::Matrix3d R_rest = Eigen::Matrix3d::Identity();  // at yaw 0, in the world
   bool yaw_free =
       false;  // false: turning about the vertical changes nothing (a sphere, a standing cylinder)
+  // for the report: "any" (a sphere), "lying", "standing" (a cylinder on a cap), "on its z faces"
+  // (a box; x, y alike)
+  const char* name = "any";
 };
 
 std::vector<RestOrientation> rest_orientations(const physics::Shape& shape);

@@ -49,6 +49,19 @@ double box_signed_distance(const physics::Shape& shape, const Eigen::Isometry3d&
 double segment_segment_distance(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1,
                                 const Eigen::Vector3d& p2, const Eigen::Vector3d& q2);
 
+// A cheap bound for signed distances (the placement search and the hand's approach leave out
+// links and hands that cannot be the nearest): the shape lies within radius_m of the segment
+// a_G..b_G (a point for a ball or a box: its centre; a capsule's or a cylinder's axis).
+struct ShapeCore {
+  Eigen::Vector3d a_G = Eigen::Vector3d::Zero();
+  Eigen::Vector3d b_G = Eigen::Vector3d::Zero();
+  double radius_m = 0.0;
+};
+ShapeCore shape_core(const physics::Shape& shape, const Eigen::Isometry3d& X_GO);
+// At most capsule_signed_distance of the capsule link a_G..b_G (radius_m) from the shape.
+double capsule_distance_lower_bound(const ShapeCore& core, const Eigen::Vector3d& a_G,
+                                    const Eigen::Vector3d& b_G, double radius_m);
+
 // How far the shape reaches from its centroid along the unit direction u_O (its support
 // function; every scene shape is symmetric about its centroid, so also along -u_O).
 double support_half_extent(const physics::Shape& shape, const Eigen::Vector3d& u_O);

@@ -1,6 +1,7 @@
-// grip_fit, the command: exit 0 and a scene that loads; exit 1 and the best placement's figures
-// when none fits (no file); exit 2 and a clear error for bad flags and files (the loaders'
-// file:line), never leaving a file.
+// grip_fit, the command: exit 0 and a scene that loads, its placement replayed and held; exit 1
+// and the best placement's figures when none fits, or a line per candidate when none holds (no
+// file); exit 2 and a clear error for bad flags and files (the loaders' file:line), never leaving
+// a file.
 
 #include <gtest/gtest.h>
 
@@ -49,19 +50,43 @@ TEST_F(GripFitCli, WritesASceneThatLoads) {
   ASSERT_GE(ball, 0);
   EXPECT_DOUBLE_EQ(scene.objects[static_cast<std::size_t>(ball)].mass_kg, 0.05);
   EXPECT_GE(scene.find_object("pedestal"), 0);
-  for (const char* expected : {"moment: t_s 0.", "placement: sphere r 25.0 mm at p_G (", "thumb",
-                               "deepest link:", "pedestal", "wrote "}) {
+  for (const char* expected : {"first closed stretch: t_s ", "  tried t_s ", ": HOLDS: GRASP ",
+                               "moment: t_s 0.", "placement: sphere r 25.0 mm at p_G (", "thumb",
+                               "deepest link:", "pedestal", "replayed: GRASP ", "wrote "}) {
     EXPECT_NE(output("ball").find(expected), std::string::npos) << expected << "\n"
                                                                 << output("ball");
   }
-  // --at forces the moment (the nearest sample)
+  EXPECT_NE(read_text(out_).find("# Replayed on the log: GRASP "), std::string::npos);
+  // --at forces the moment (the nearest sample); --no-verify takes its placement unreplayed
   ASSERT_EQ(run("at", {"--log", log_, "--shape", "sphere", "--size", "0.025", "--out", out_, "--at",
-                       "0.6"}),
+                       "0.6", "--no-verify"}),
             0)
       << output("at");
   // samples at 0.5983 and 0.6071 s: the first is nearer
   EXPECT_NE(output("at").find("moment: t_s 0.5983"), std::string::npos) << output("at");
   EXPECT_NE(output("at").find("forced by --at"), std::string::npos) << output("at");
+  EXPECT_NE(output("at").find("replayed: no (--no-verify)"), std::string::npos) << output("at");
+  EXPECT_NE(output("at").find(": taken unreplayed (--no-verify)"), std::string::npos)
+      << output("at");
+  EXPECT_NE(read_text(out_).find("# Not replayed (--no-verify)."), std::string::npos);
+}
+
+// A placement the replayed hand does not hold is not written: the closed fist at 0.6 s has swept
+// through the ball's place before (it is never grasped), so --at 0.6 alone fails, naming why.
+TEST_F(GripFitCli, NoPlacementThatHoldsExitsOneWithEachTrialAndWritesNothing) {
+  EXPECT_EQ(run("held", {"--log", log_, "--shape", "sphere", "--size", "0.025", "--out", out_,
+                         "--at", "0.6"}),
+            1)
+      << output("held");
+  const std::string out = output("held");
+  const auto tried = out.find("  tried t_s 0.5983 (closure ");
+  ASSERT_NE(tried, std::string::npos) << out;
+  EXPECT_NE(out.find("any, result 1 of 1 at (", tried), std::string::npos) << out;
+  EXPECT_NE(out.find(": not grasped by ", tried), std::string::npos) << out;
+  EXPECT_NE(output("held").find("no placement holds when replayed"), std::string::npos)
+      << output("held");
+  EXPECT_FALSE(fs::exists(out_));
+  EXPECT_FALSE(fs::exists(out_ + ".partial"));
 }
 
 TEST_F(GripFitCli, NoPlacementExitsOneWithTheBestFiguresAndWritesNothing) {
@@ -127,8 +152,8 @@ TEST_F(GripFitCli, BadFlagsAndFilesExitTwoNamedAndWriteNothing) {
     EXPECT_FALSE(fs::exists(out_ + ".partial")) << c.name;
   }
   EXPECT_EQ(run("help", {"--help"}), 0);
-  for (const char* flag :
-       {"--log", "--hand", "--shape", "--size", "--out", "--mass", "--at", "--cockpit"})
+  for (const char* flag : {"--log", "--hand", "--shape", "--size", "--out", "--mass", "--at",
+                           "--no-verify", "--cockpit"})
     EXPECT_NE(output("help").find(flag), std::string::npos) << flag;
 }
 

@@ -71,6 +71,41 @@ TEST(GripFitMoment, TheStillestSampleOfTheFirstClosedStretch) {
   EXPECT_EQ(sample_motion(hand, samples, 185, {}), 0.0);
 }
 
+TEST(GripFitMoment, TheStretchItsClosingItsOpeningAndTheMomentsToTry) {
+  const hand::HandModel hand = test::grip_fit_hand();
+  const auto samples = recording();
+  const auto stretch = first_closed_stretch(hand, samples);
+  ASSERT_TRUE(stretch);
+  const auto t = [&](std::size_t i) { return hand::ns_to_log_seconds(samples[i].t_ns); };
+  // closed (85 %) from 0.36 s (the closure rises 0.1-0.4 s) to 1.02 s (it falls 1.0-1.2 s);
+  // below 75 % from 1.06 s
+  EXPECT_NEAR(t(stretch->first), 0.36, 1e-9);
+  EXPECT_NEAR(t(stretch->last_closed), 1.03, 1e-9);
+  EXPECT_NEAR(t(stretch->end), 1.06, 1e-9);
+  // the closing: the last sample within 5 % of the most open before (0.11 s: 3.3 %), no more
+  // than 0.3 s before the stretch (0.06 s)
+  EXPECT_NEAR(t(stretch->closing), 0.11, 1e-9);
+  // opening: after the last sample within 5 % of the highest (1.01 s: 95 %, within rounding)
+  EXPECT_GE(t(stretch->opening), 1.0 - 1e-9);
+  EXPECT_LE(t(stretch->opening), 1.01 + 1e-9);
+  // the moments end 0.5 s after the stretch's start
+  EXPECT_NEAR(t(stretch->last_moment), 0.86, 1e-9);
+  const std::vector<std::size_t> moments = moments_across(*stretch, samples, 0.03);
+  ASSERT_FALSE(moments.empty());
+  EXPECT_EQ(moments.front(), stretch->closing);
+  for (std::size_t k = 1; k < moments.size(); ++k) {
+    EXPECT_NEAR(t(moments[k]) - t(moments[k - 1]), 0.03, 1e-9) << k;
+  }
+  EXPECT_LE(moments.back(), stretch->last_moment);
+  EXPECT_GT(t(moments.back()), 0.86 - 0.03);
+  EXPECT_EQ(moments_across(*stretch, samples, 0.0).size(),
+            stretch->last_moment - stretch->closing + 1);
+  // a closing longer than closing_s starts that long before the stretch
+  MomentRule short_closing;
+  short_closing.closing_s = 0.1;
+  EXPECT_NEAR(t(first_closed_stretch(hand, samples, short_closing)->closing), 0.26, 1e-9);
+}
+
 TEST(GripFitMoment, AShallowDipDoesNotEndTheStretchADeepOneDoes) {
   const hand::HandModel hand = test::grip_fit_hand();
   // to 80 %: below closed (85 %), above reopened (75 %): the stretch goes on

@@ -68,15 +68,42 @@ double bottom_z(const physics::ObjectSpec& box) {
 TEST(GripFitScene, PedestalTouchesTheObjectFromBelowOnATableUnderTheHand) {
   const fit::GripHand hand = fit::grip_hand_at(test::grip_fit_hand(), test::fist_sample());
   const Shape bar = Shape::cylinder(0.015, 0.12);
-  const fit::GripSceneLayout layout = fit::lay_out_supports(hand, bar, bar_pose(hand));
+  fit::LayoutRule core_rule;
+  core_rule.extend_m = 0.0;  // the core alone: its sides not pushed out
+  const fit::GripSceneLayout core = fit::lay_out_supports(hand, bar, bar_pose(hand), core_rule);
   const double lowest_z = bar_pose(hand).translation().z() - 0.015;
-  EXPECT_NEAR(layout.object_lowest_z_m, lowest_z, 1e-12);
-  EXPECT_NEAR(layout.pedestal.p_G.z() + 0.5 * layout.pedestal.size_m.z(), lowest_z, 1e-12);
+  EXPECT_NEAR(core.object_lowest_z_m, lowest_z, 1e-12);
+  EXPECT_NEAR(core.pedestal.p_G.z() + 0.5 * core.pedestal.size_m.z(), lowest_z, 1e-12);
   // along the bar's axis (yaw 110 deg), 60 % of its length and width, unless the hand is in the way
-  EXPECT_NEAR(layout.pedestal.yaw_rad, deg_to_rad(110.0), 1e-9);
-  EXPECT_NEAR(layout.pedestal.size_m.x(), layout.footprint_share * 0.12, 1e-9);
-  EXPECT_NEAR(layout.pedestal.size_m.y(), layout.footprint_share * 0.03, 1e-9);
-  EXPECT_TRUE(layout.pedestal_clearance_m >= 1e-3 || layout.footprint_share < 0.21);
+  EXPECT_NEAR(core.pedestal.yaw_rad, deg_to_rad(110.0), 1e-9);
+  EXPECT_NEAR(core.pedestal.size_m.x(), core.footprint_share * 0.12, 1e-9);
+  EXPECT_NEAR(core.pedestal.size_m.y(), core.footprint_share * 0.03, 1e-9);
+  EXPECT_TRUE(core.pedestal_clearance_m >= 1e-3 || core.footprint_share < 0.21);
+  EXPECT_NEAR((core.pedestal.p_G - bar_pose(hand).translation()).head<2>().norm(), 0.0, 1e-12);
+
+  // by default its sides are then pushed out as far as the hand leaves room, up to 6 cm beyond
+  // the bar: the core within it, the same top, still clear of the hand
+  const fit::GripSceneLayout layout = fit::lay_out_supports(hand, bar, bar_pose(hand));
+  EXPECT_DOUBLE_EQ(layout.footprint_share, core.footprint_share);
+  EXPECT_NEAR(layout.pedestal.p_G.z(), core.pedestal.p_G.z(), 1e-12);
+  EXPECT_NEAR(layout.pedestal.size_m.z(), core.pedestal.size_m.z(), 1e-12);
+  EXPECT_NEAR(layout.pedestal.yaw_rad, core.pedestal.yaw_rad, 1e-12);
+  const Eigen::Matrix2d R_GS = Eigen::Rotation2Dd(layout.pedestal.yaw_rad).toRotationMatrix();
+  const Eigen::Vector2d centre_S =
+      R_GS.transpose() * (layout.pedestal.p_G - core.pedestal.p_G).head<2>();
+  for (int a = 0; a < 2; ++a) {
+    const double half = 0.5 * layout.pedestal.size_m[a];
+    EXPECT_LE(centre_S[a] - half, -0.5 * core.pedestal.size_m[a] + 1e-12) << a;
+    EXPECT_GE(centre_S[a] + half, 0.5 * core.pedestal.size_m[a] - 1e-12) << a;
+    const double object_half = a == 0 ? 0.06 : 0.015;
+    EXPECT_GE(centre_S[a] - half, -object_half - 0.06 - 1e-9) << a;
+    EXPECT_LE(centre_S[a] + half, object_half + 0.06 + 1e-9) << a;
+  }
+  EXPECT_GT(layout.pedestal.size_m.x() * layout.pedestal.size_m.y(),
+            core.pedestal.size_m.x() * core.pedestal.size_m.y());
+  if (core.pedestal_clearance_m >= 1e-3) {
+    EXPECT_GE(layout.pedestal_clearance_m, 1e-3);
+  }
   ASSERT_TRUE(layout.table);
   const double table_top_z = layout.table->p_G.z() + 0.5 * layout.table->size_m.z();
   EXPECT_NEAR(table_top_z, layout.pedestal.p_G.z() - 0.5 * layout.pedestal.size_m.z(), 1e-12);
