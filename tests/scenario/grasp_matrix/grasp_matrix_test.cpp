@@ -147,7 +147,7 @@ TEST(GraspMatrixList, KnownFailingCellsExist) {
 }
 
 // The bundled recordings are what their scripts publish: a script edited without re-recording
-// its log (glove_driver --record, README "Glove logs") fails here.
+// its log (glove_driver --record, docs/glove_input.md "Glove logs") fails here.
 TEST(GraspMatrixLogs, RecordedLogsMatchTheirScripts) {
   const hand::HandModel hand = load_hand_model(source_dir() + "/config/hand.yaml");
   for (const auto& o : grasp_objects()) {
