@@ -9,6 +9,8 @@
 #include <cmath>
 #include <memory>
 
+#include "physics_node/physics/golden_section.hpp"
+
 namespace vcockpit::fit {
 namespace {
 
@@ -48,28 +50,9 @@ struct Minimum {
 // stop).
 template <typename F>
 Minimum convex_minimum(const F& f, double length_m) {
-  constexpr double kInvPhi = 0.6180339887498949;
-  double lo = 0.0, hi = 1.0;
-  double t1 = hi - kInvPhi * (hi - lo);
-  double t2 = lo + kInvPhi * (hi - lo);
-  double f1 = f(t1), f2 = f(t2);
-  for (int i = 0; i < kMaxIterations && (hi - lo) * length_m > kBracket_m; ++i) {
-    if (f1 <= f2) {
-      hi = t2;
-      t2 = t1;
-      f2 = f1;
-      t1 = hi - kInvPhi * (hi - lo);
-      f1 = f(t1);
-    } else {
-      lo = t1;
-      t1 = t2;
-      f1 = f2;
-      t2 = lo + kInvPhi * (hi - lo);
-      f2 = f(t2);
-    }
-  }
+  const physics::GoldenBracket g = physics::golden_section(f, length_m, kBracket_m, kMaxIterations);
   // the search never evaluates the ends themselves, where a monotone f has its least value
-  Minimum best = f1 <= f2 ? Minimum{f1, t1} : Minimum{f2, t2};
+  Minimum best = g.f1 <= g.f2 ? Minimum{g.f1, g.t1} : Minimum{g.f2, g.t2};
   for (double t : {0.0, 1.0}) {
     const double v = f(t);
     if (v < best.value) best = {v, t};

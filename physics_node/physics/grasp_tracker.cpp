@@ -292,42 +292,33 @@ void GraspTracker::decide(int object, const GraspCheck& check, const HandOnObjec
   if (failed_long_enough(h, verdict)) release(object, verdict, check, h.hand, hold, body, events);
 }
 
-double GraspTracker::grip_opening_rad(const HandNow& hand, const GraspHold& hold) {
-  if (hand.tracked_q_rad == nullptr || hold.grip_fingers == 0) return 0.0;
+GraspTracker::GripFlexion GraspTracker::grip_flexion(const HandNow& hand, const GraspHold& hold) {
+  GripFlexion out;
+  if (hand.tracked_q_rad == nullptr || hold.grip_fingers == 0) return out;
   // The thumb opens a grip mostly by rotation and abduction, which its flexion does not show:
   // it counts only when it is the one gripping finger.
   const unsigned thumb = 1u << static_cast<int>(Finger::kThumb);
   const unsigned opening_fingers =
       (hold.grip_fingers & ~thumb) != 0 ? (hold.grip_fingers & ~thumb) : hold.grip_fingers;
-  double opening_rad = 0.0;
   int fingers = 0;
   for (int f = 0; f < kFingerCount; ++f) {
     if ((opening_fingers & (1u << f)) == 0) continue;
-    opening_rad += hold.grip_flexion_rad[static_cast<std::size_t>(f)] -
-                   finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f));
+    const double at_grasp_rad = hold.grip_flexion_rad[static_cast<std::size_t>(f)];
+    out.at_grasp_rad += at_grasp_rad;
+    out.opening_rad += at_grasp_rad - finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f));
     ++fingers;
   }
-  return opening_rad / fingers;
+  out.at_grasp_rad /= fingers;
+  out.opening_rad /= fingers;
+  return out;
 }
 
 bool GraspTracker::hand_opened(const HandNow& hand, const GraspHold& hold) const {
-  if (params_.release_opening_share <= 0.0 || hand.tracked_q_rad == nullptr || hold.grip_fingers == 0)
-    return false;
-  // the share of the gripping fingers' mean flexion at the grasp (the same fingers as the opening)
-  const unsigned thumb = 1u << static_cast<int>(Finger::kThumb);
-  const unsigned opening_fingers =
-      (hold.grip_fingers & ~thumb) != 0 ? (hold.grip_fingers & ~thumb) : hold.grip_fingers;
-  double grasp_flexion_rad = 0.0;
-  int fingers = 0;
-  for (int f = 0; f < kFingerCount; ++f) {
-    if ((opening_fingers & (1u << f)) == 0) continue;
-    grasp_flexion_rad += hold.grip_flexion_rad[static_cast<std::size_t>(f)];
-    ++fingers;
-  }
-  grasp_flexion_rad /= fingers;
-  const double threshold_rad = std::max(params_.release_opening_share * grasp_flexion_rad,
+  if (params_.release_opening_share <= 0.0) return false;
+  const GripFlexion grip = grip_flexion(hand, hold);
+  const double threshold_rad = std::max(params_.release_opening_share * grip.at_grasp_rad,
                                         deg_to_rad(params_.release_opening_deg));
-  return grip_opening_rad(hand, hold) > threshold_rad;
+  return grip.opening_rad > threshold_rad;
 }
 
 void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& hand, GraspHold& hold,

@@ -199,8 +199,13 @@ class GraspTracker {
   // has not been held that long; at least two poses).
   void held_velocity(const GraspHold& hold, std::size_t span_steps, Eigen::Vector3d& v_G,
                      Eigen::Vector3d& w_G) const;
-  // How far the gripping fingers opened from their flexion at the grasp (rad, mean over them).
-  static double grip_opening_rad(const HandNow& hand, const GraspHold& hold);
+  // The gripping fingers' mean flexion at the grasp and how far they have opened from it (rad);
+  // zeros when the glove's joints or the grip are not known.
+  struct GripFlexion {
+    double at_grasp_rad = 0.0;
+    double opening_rad = 0.0;
+  };
+  static GripFlexion grip_flexion(const HandNow& hand, const GraspHold& hold);
   // The glove opened from its grip: by release_opening_share of the grasp's flexion and by at
   // least release_opening_deg.
   bool hand_opened(const HandNow& hand, const GraspHold& hold) const;

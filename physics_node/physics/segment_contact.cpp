@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "physics_node/physics/golden_section.hpp"
+
 namespace vcockpit::physics {
 namespace {
 
@@ -57,31 +59,10 @@ SegmentContact segment_contact(const Eigen::Vector3d& a_G, const Eigen::Vector3d
   const Eigen::Vector3d ab_B = X_BG.linear() * (b_G - a_G);
   const double length_m = ab_B.norm();
   const auto distance_at = [&](double t) { return local_distance(body, a_B + t * ab_B, nullptr); };
-  // golden-section search for the least signed distance over t in [0, 1] (a convex function)
-  constexpr double kInvPhi = 0.6180339887498949;
-  double lo = 0.0;
-  double hi = 1.0;
-  double t1 = hi - kInvPhi * (hi - lo);
-  double t2 = lo + kInvPhi * (hi - lo);
-  double d1 = distance_at(t1);
-  double d2 = distance_at(t2);
-  for (int i = 0; i < kMaxIterations && (hi - lo) * length_m > kBracket_m; ++i) {
-    if (d1 <= d2) {
-      hi = t2;
-      t2 = t1;
-      d2 = d1;
-      t1 = hi - kInvPhi * (hi - lo);
-      d1 = distance_at(t1);
-    } else {
-      lo = t1;
-      t1 = t2;
-      d1 = d2;
-      t2 = lo + kInvPhi * (hi - lo);
-      d2 = distance_at(t2);
-    }
-  }
+  // the least signed distance over t in [0, 1] (a convex function)
+  const GoldenBracket g = golden_section(distance_at, length_m, kBracket_m, kMaxIterations);
   // the ends too: a flat minimum at an end is found by the search only to within the bracket
-  double best_t = 0.5 * (lo + hi);
+  double best_t = 0.5 * (g.lo + g.hi);
   double best = distance_at(best_t);
   for (double t : {0.0, 1.0}) {
     const double d = distance_at(t);
