@@ -137,6 +137,18 @@ uint64_t RigMonitor::late_steps() const {
   return it == statuses_.end() ? 0 : it->second.late_steps();
 }
 
+bool RigMonitor::input_consumed(const std::vector<std::string>& input_nodes) const {
+  auto physics = statuses_.find("physics_node");
+  if (physics == statuses_.end()) return false;
+  uint64_t published = 0;
+  for (const std::string& name : input_nodes) {
+    auto it = statuses_.find(name);
+    if (it == statuses_.end() || it->second.state() != cockpit::STOPPING) return false;
+    published += it->second.published();
+  }
+  return physics->second.received() + physics->second.rejected() >= published;
+}
+
 std::string RigMonitor::status_line(double elapsed_s) const {
   auto rate = [&](const char* node) {
     auto it = statuses_.find(node);

@@ -54,6 +54,10 @@ class RigMonitor {
   // mean physics step rate over the statuses while the glove was alive, and the last late count
   double mean_step_rate_hz() const;
   uint64_t late_steps() const;
+  // Whether the physics node has taken every sample the named input nodes published, by the last
+  // statuses seen: each of them has reported STOPPING, and the physics node's accepted and
+  // rejected samples add up to what they published. False while any of those is unknown.
+  bool input_consumed(const std::vector<std::string>& input_nodes) const;
   std::string object_name(uint32_t id) const;
   // the last state of every dynamic object, by name
   const std::map<std::string, cockpit::ObjectState>& final_states() const { return final_; }

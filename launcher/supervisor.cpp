@@ -63,10 +63,19 @@ void Supervisor::pump_all(int timeout_ms) {
   for (auto& n : nodes_) n->pump(combined_);
 }
 
+namespace {
+constexpr int64_t kCatchUpLimit_ns = 60'000'000'000;
+constexpr int64_t kShowTheEnd_ns = 1'500'000'000;
+}  // namespace
+
 void Supervisor::supervise(RigMonitor& monitor, bool status_line) {
   const int64_t start_ns = monotonic_now_ns();
   int64_t last_line_ns = 0;
   int64_t drain_until_ns = -1;
+  int64_t catch_up_until_ns = -1;  // the input has ended: waiting for the physics to take it all
+  std::vector<std::string> input_nodes;
+  for (const auto& node : nodes_)
+    if (node->spec().ends_run) input_nodes.push_back(node->spec().name);
   while (true) {
     pump_all(20);
     monitor.poll();
@@ -74,6 +83,14 @@ void Supervisor::supervise(RigMonitor& monitor, bool status_line) {
     if (shutdown_requested()) {
       end_reason_ = "interrupted (Ctrl-C)";
       break;
+    }
+    if (catch_up_until_ns >= 0 &&
+        (monitor.input_consumed(input_nodes) || now_ns >= catch_up_until_ns)) {
+      if (now_ns >= catch_up_until_ns)
+        spdlog::warn("the physics node had not taken every sample {} s after the input ended",
+                     ns_to_seconds(kCatchUpLimit_ns));
+      catch_up_until_ns = -1;
+      drain_until_ns = now_ns + kShowTheEnd_ns;
     }
     if (drain_until_ns >= 0 && now_ns >= drain_until_ns) break;
     for (auto& node : nodes_) {
@@ -91,7 +108,9 @@ void Supervisor::supervise(RigMonitor& monitor, bool status_line) {
         }
         spdlog::info("{} finished: the run is over", spec.name);
         end_reason_ = spec.name + " finished";
-        drain_until_ns = now_ns + 1'500'000'000;  // let the others show the end
+        // a busy machine's physics node may still be stepping through queued samples: the run
+        // ends when it has taken them all (bounded), then the others have a moment to show it
+        catch_up_until_ns = now_ns + kCatchUpLimit_ns;
       } else if (spec.restart_delay_s) {
         spdlog::warn("{} ended with status {}: restarting in {} s", spec.name, status,
                      *spec.restart_delay_s);

@@ -29,8 +29,9 @@ class Supervisor {
   // Starts every node, each after the previous one's start delay. Throws std::runtime_error
   // naming the rig file and a node whose executable is missing.
   void start_nodes();
-  // Until the run ends: a node with ends_run exits 0 (then 1.5 s more for the others to show
-  // the end), a required node dies, or Ctrl-C. Restarts a node that has a restart delay. Polls
+  // Until the run ends: every node with ends_run has exited 0 (then, once the physics node has
+  // taken every sample they published or after 60 s, 1.5 s more for the others to show the
+  // end), a required node dies, or Ctrl-C. Restarts a node that has a restart delay. Polls
   // `monitor` on the way; with `status_line`, shows its status line on stderr every 250 ms.
   void supervise(RigMonitor& monitor, bool status_line);
   void stop_nodes();
