@@ -245,14 +245,15 @@ int run(int argc, char** argv) {
   if (!timeline_dir.empty()) {
     std::filesystem::create_directories(timeline_dir);
     for (std::size_t r = 0; r < compared; ++r) {
-      std::string csv = "t_s,links,residual_force_N,residual_torque_Nm,held,verdict,z_m\n";
+      std::string csv = "t_s,links,residual_force_N,residual_torque_Nm,held,verdict,x_m,y_m,z_m,events\n";
       run_trial(source_dir, objects[timeline_of], rules[r], variation_of(timeline_of, timeline_index),
                 [&](const TimelineRow& row) {
-                  char line[160];
-                  std::snprintf(line, sizeof line, "%.3f,%d,%.4f,%.5f,%d,%s,%.5f\n", row.t_s,
+                  char line[200];
+                  std::snprintf(line, sizeof line, "%.3f,%d,%.4f,%.5f,%d,%s,%.5f,%.5f,%.5f,", row.t_s,
                                 row.links, row.residual_force_N, row.residual_torque_Nm,
-                                row.held ? 1 : 0, row.verdict.c_str(), row.z_m);
+                                row.held ? 1 : 0, row.verdict.c_str(), row.x_m, row.y_m, row.z_m);
                   csv += line;
+                  csv += "\"" + row.events + "\"\n";
                 });
       write_atomically(timeline_dir + "/timeline_" + rules[r].name + ".csv", csv);
     }

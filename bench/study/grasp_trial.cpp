@@ -116,6 +116,7 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
   int64_t drop_watch_until_ns = -1;  // a release being watched for a fall
   double drop_from_z_m = 0.0;
   std::vector<physics::HandContact> first_hand;
+  std::string pending_events;  // for the timeline's next row
 
   auto step = [&] {
     world.step();
@@ -131,6 +132,11 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
       if (!is_target[static_cast<std::size_t>(e.object)]) {
         ++r.other_events;
         continue;
+      }
+      if (timeline) {
+        if (!pending_events.empty()) pending_events += "; ";
+        pending_events += std::string(e.grasp ? "grasp h" : "release h") + std::to_string(e.hand_id) +
+                          ": " + physics::grasp_reason_name(e.reason);
       }
       if (e.grasp) {
         if (r.grasps++ == 0) r.first_grasp_s = static_cast<double>(t_ns) * 1e-9;
@@ -214,7 +220,11 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
       row.residual_torque_Nm = check.residual_torque_Nm;
       row.held = body.held();
       row.verdict = physics::grasp_reason_name(check.verdict);
+      row.x_m = body.X_GO.translation().x();
+      row.y_m = body.X_GO.translation().y();
       row.z_m = z_m;
+      row.events = std::move(pending_events);
+      pending_events.clear();
       timeline(row);
     }
   };

@@ -67,7 +67,10 @@ struct TimelineRow {
   double residual_torque_Nm = 0.0;
   bool held = false;
   std::string verdict;
+  double x_m = 0.0;  // the object's position (world frame)
+  double y_m = 0.0;
   double z_m = 0.0;
+  std::string events;  // the target's grasp events since the last row ("grasp h0; release h1: why")
 };
 
 // Throws on a bad file or script. `timeline`, if given, gets a row every 10 ms.
