@@ -157,7 +157,7 @@ void GraspTracker::update_free(int object, const ObjectSpec& o, HandOnObject* ha
   for (std::size_t a = 0; a < hand_count; ++a) {
     for (std::size_t b = a + 1; b < hand_count && may_join(a); ++b) {
       if (!may_join(b)) continue;
-      const Residuals both = two_hand_residuals(hands[a], hands[b], body, o, false);
+      const Residuals both = two_hand_residuals(hands[a], hands[b], body, o);
       if (!residuals_hold(both, params_, false)) continue;
       GraspCheck ca = checks[a], cb = checks[b];
       ca.residual_force_N = cb.residual_force_N = both.force_N;
@@ -170,23 +170,39 @@ void GraspTracker::update_free(int object, const ObjectSpec& o, HandOnObject* ha
 }
 
 Residuals GraspTracker::two_hand_residuals(const HandOnObject& a, const HandOnObject& b,
-                                           const BodyState& body, const ObjectSpec& o,
-                                           bool held) const {
-  // eqs. 30-31 over both hands' contacts, gravity once
+                                           const BodyState& body, const ObjectSpec& o) const {
+  // eqs. 30-31 over both hands' contacts, gravity once: the sums first, then what the contacts'
+  // static friction could still add against them (their reserve) taken off
   const Eigen::Vector3d c_G = body.X_GO.translation();
   const double mu = std::sqrt(hand_mu_s_ * o.material.mu_s);  // the pair's (contact model)
   Eigen::Vector3d F = o.mass_kg * gravity_mps2_;
   Eigen::Vector3d M = Eigen::Vector3d::Zero();
-  double reserve_N = 0.0;
   for (const HandOnObject* h : {&a, &b}) {
     for (std::size_t i = 0; i < h->count; ++i) {
       const HandContact& c = h->contacts[i];
       F += c.F_G;
       M += (c.p_G - c_G).cross(c.F_G);
-      reserve_N += mu * std::max(0.0, c.F_G.dot(c.n_G));
     }
   }
-  return {held ? std::max(0.0, F.norm() - reserve_N) : F.norm(), M.norm()};
+  // Each contact's friction may grow, within its cone |f_t| <= mu N, against the residual:
+  // along -F by mu N |P_t F^|, and against M by mu N |P_t (M^ x r)| (P_t: onto its tangent
+  // plane). A contact pressing along the residual (a palm on top of a bar) adds nothing; a
+  // squeeze across it adds its whole cone. Force and torque are relieved each on its own, an
+  // optimistic bound that a real grip's friction meets in the same step only roughly.
+  const Eigen::Vector3d F_dir = F.norm() > 0.0 ? Eigen::Vector3d(F.normalized()) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d M_dir = M.norm() > 0.0 ? Eigen::Vector3d(M.normalized()) : Eigen::Vector3d::Zero();
+  double force_reserve_N = 0.0, torque_reserve_Nm = 0.0;
+  for (const HandOnObject* h : {&a, &b}) {
+    for (std::size_t i = 0; i < h->count; ++i) {
+      const HandContact& c = h->contacts[i];
+      const double friction_N = mu * std::max(0.0, c.F_G.dot(c.n_G));
+      if (friction_N <= 0.0) continue;
+      const auto tangential = [&](const Eigen::Vector3d& v) { return (v - v.dot(c.n_G) * c.n_G).norm(); };
+      force_reserve_N += friction_N * tangential(F_dir);
+      torque_reserve_Nm += friction_N * tangential(M_dir.cross(c.p_G - c_G));
+    }
+  }
+  return {std::max(0.0, F.norm() - force_reserve_N), std::max(0.0, M.norm() - torque_reserve_Nm)};
 }
 
 GraspReason GraspTracker::held_verdict(const HandOnObject& h, const GraspCheck& check) const {
@@ -238,7 +254,7 @@ void GraspTracker::update_two_handed(int object, const ObjectSpec& o, HandOnObje
     h[n] = &hands[k];
     check[n++] = &checks[k];
   }
-  const Residuals both = two_hand_residuals(*h[0], *h[1], body, o, true);
+  const Residuals both = two_hand_residuals(*h[0], *h[1], body, o);
   const bool together = residuals_hold(both, params_, true);
   const GraspReason apart = both.force_N > params_.xi_N * params_.exit_scale
                                 ? GraspReason::kForceResidual
@@ -247,9 +263,11 @@ void GraspTracker::update_two_handed(int object, const ObjectSpec& o, HandOnObje
   std::array<bool, 2> lets_go{};
   for (std::size_t i = 0; i < 2; ++i) {
     GraspReason v = held_verdict(*h[i], *check[i]);
-    // its gesture holds: eqs. 30-31 are both hands' together
-    if (v == GraspReason::kStableGrasp || v == GraspReason::kForceResidual ||
-        v == GraspReason::kTorqueResidual)
+    // the paper's rule: its gesture holds, and eqs. 30-31 are both hands' together (with the
+    // tracked grip, the hands' own grips decide, as for one hand)
+    if (params_.hold_rule == HoldRule::kContactTest &&
+        (v == GraspReason::kStableGrasp || v == GraspReason::kForceResidual ||
+         v == GraspReason::kTorqueResidual))
       v = together ? GraspReason::kStableGrasp : apart;
     verdict[i] = v;
     lets_go[i] = failed_long_enough(*h[i], v);

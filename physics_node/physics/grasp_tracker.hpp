@@ -178,14 +178,13 @@ class GraspTracker {
   // whether it has failed long enough to let go.
   GraspReason held_verdict(const HandOnObject& h, const GraspCheck& check) const;
   bool failed_long_enough(const HandOnObject& h, GraspReason verdict) const;
-  // Eqs. 30-31 over both hands' contacts. While held (`held`), the force residual is what the
-  // grips' friction could not take up: |sum F + m g| less sum mu_s N over the contacts. Held, the
-  // object moves with the hands and its contacts' friction no longer carries its weight (the
-  // relative motion that stretched it is gone), so the plain residual would read the whole
-  // weight and let go of anything heavier than xi x exit_scale, which a two-handed hold is for;
-  // the grips' normal forces, and so what they could carry, remain.
+  // Eqs. 30-31 over both hands' contacts, less what their static friction could still add: the
+  // force and torque residuals that the contacts' friction cones (at their normal forces now)
+  // could not take up. Two hands round a resting bar carry no weight yet (the panel does), and
+  // held, the object moves with the hands and its contacts' friction no longer carries its
+  // weight; the grips' normal forces, and so what they could carry, are there in both.
   Residuals two_hand_residuals(const HandOnObject& a, const HandOnObject& b, const BodyState& body,
-                               const ObjectSpec& o, bool held) const;
+                               const ObjectSpec& o) const;
   void update_held_by_one(int object, HandOnObject* hands, std::size_t hand_count,
                           std::size_t holder, const GraspCheck* checks, BodyState& body,
                           std::vector<GraspEvent>& events) const;
