@@ -62,6 +62,7 @@ nlohmann::json params_json(const physics::GraspParams& p) {
 nlohmann::json result_json(const TrialResult& r) {
   return {{"control_case", r.control_case},
           {"control_changes", r.control_changes},
+          {"changes", r.changes},
           {"success", r.success},
           {"failure", r.failure},
           {"grasped", r.grasped},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "glove_driver/glove/gesture_script.hpp"
@@ -127,6 +128,9 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
       const physics::ControlSpec& spec = world.scene().controls[static_cast<std::size_t>(c.control)];
       changes.push_back({spec.name, spec.positions[static_cast<std::size_t>(c.from)].name,
                          spec.positions[static_cast<std::size_t>(c.to)].name});
+      char at[32];
+      std::snprintf(at, sizeof at, " @%.3f", static_cast<double>(t_ns) * 1e-9);
+      r.changes.push_back(spec.name + " " + changes.back().from + "->" + changes.back().to + at);
     }
     for (const auto& e : world.step_events()) {
       if (!is_target[static_cast<std::size_t>(e.object)]) {

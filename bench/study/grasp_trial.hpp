@@ -34,6 +34,7 @@ namespace vcockpit::study {
 struct TrialResult {
   bool control_case = false;  // controls operated (no lift, placement, drops or object depth)
   int control_changes = 0;    // position changes of the controls
+  std::vector<std::string> changes;  // ... each "control from->to @t_s", in order
   bool success = false;
   std::string failure;  // empty on success
   bool grasped = false;
