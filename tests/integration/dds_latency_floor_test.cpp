@@ -53,9 +53,10 @@ TEST_F(DdsLatencyFloorTest, TwoSecondsAtOneKilohertzEverySampleAccountedForWithM
               transit.p50_us, transit.p99_us, transit.max_us, take.p50_us, take.p99_us,
               take.max_us);
   if (!sanitized()) {
-    // loopback is tens of microseconds; a median in milliseconds means something is wrong
-    EXPECT_LT(transit.p50_us, 2000.0) << json;
-    EXPECT_LT(take.p50_us, 2000.0) << json;
+    // loopback is tens of microseconds; a median of tens of milliseconds means something is
+    // wrong (the figure itself is bench/'s)
+    EXPECT_LT(transit.p50_us, 20000.0) << json;
+    EXPECT_LT(take.p50_us, 20000.0) << json;
   }
 }
 

