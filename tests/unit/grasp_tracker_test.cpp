@@ -579,7 +579,7 @@ GraspParams two_hand_params() {
 }
 
 struct TwoHandRig {
-  GraspTracker tracker{two_hand_params(), kStep_s, {0.0, 0.0, -9.81}};
+  GraspTracker tracker;
   ObjectSpec box;
   BodyState body;
   std::array<GraspHold, 2> holds;
@@ -588,7 +588,8 @@ struct TwoHandRig {
   std::array<bool, 2> tracking{true, true};
   std::array<JointAngles, 2> glove_q{};
 
-  explicit TwoHandRig(double mass_kg) {
+  explicit TwoHandRig(double mass_kg, const GraspParams& params = two_hand_params())
+      : tracker(params, kStep_s, {0.0, 0.0, -9.81}) {
     box.dynamic = true;
     box.mass_kg = mass_kg;
     for (auto& h : holds) h = tracker.initial_hold(box);
@@ -683,51 +684,47 @@ TEST(GraspTrackerTwoHands, TwoHandsSqueezingARestingHeavyBarTakeItWhenTheirFrict
   {
     TwoHandRig rig(2.5);
     rig.box.material.mu_s = 0.8;
-    auto press = [](double y) {
-      std::vector<HandContact> c = resting_squeeze(y, 0.0, 20.0);
-      return c;
-    };
-    for (int i = 0; i < 5; ++i) rig.step(press(-0.15), press(0.15));
+    for (int i = 0; i < 5; ++i) rig.step(resting_squeeze(-0.15, 0.0, 20.0), resting_squeeze(0.15, 0.0, 20.0));
     EXPECT_EQ(rig.body.holders, 0u) << rig.text();
   }
 }
 
-TEST(GraspTrackerTwoHands, HeldByTwoTrackedGripsTheResidualsDoNotLetGo) {
-  TwoHandRig rig(2.5);
-  const double weight_N = 2.5 * 9.81;
+// Both hands take the box, each carrying half its weight, and carry it 0.3 s.
+void carry_together(TwoHandRig& rig, double weight_N) {
   rig.step(pinch(kCentre, -0.15, weight_N / 2), pinch(kCentre, 0.15, weight_N / 2));
   ASSERT_EQ(rig.body.holders, 3u);
   for (int i = 0; i < 300; ++i)
     rig.step(pinch(kCentre, -0.15, weight_N / 2), pinch(kCentre, 0.15, weight_N / 2));
   rig.events.clear();
-  // set down and pressed into the panel: the hands' forces no longer balance it, but both
-  // tracked grips are still round it, so it stays held (issue: only the grip lets go)
+}
+
+// Set down and pressed into the panel for 0.2 s: the hands' forces no longer balance it.
+void press_into_the_panel(TwoHandRig& rig) {
   for (int i = 0; i < 200; ++i)
     rig.step(resting_squeeze(-0.15, 2.0, 8.0), resting_squeeze(0.15, 2.0, 8.0));
+}
+
+TEST(GraspTrackerTwoHands, HeldByTwoTrackedGripsTheResidualsDoNotLetGo) {
+  const double weight_N = 2.5 * 9.81;
+  TwoHandRig rig(2.5);
+  ASSERT_NO_FATAL_FAILURE(carry_together(rig, weight_N));
+  // both tracked grips are still round it, so it stays held (issue: only the grip lets go)
+  press_into_the_panel(rig);
   EXPECT_EQ(rig.body.holders, 3u) << rig.text();
   EXPECT_TRUE(rig.events.empty()) << rig.text();
   // under the paper's rule (eqs. 30-31 decide while held) the same lets go
-  TwoHandRig paper(2.5);
   GraspParams p = two_hand_params();
   p.hold_rule = HoldRule::kContactTest;
-  paper.tracker = GraspTracker(p, kStep_s, {0.0, 0.0, -9.81});
-  paper.step(pinch(kCentre, -0.15, weight_N / 2), pinch(kCentre, 0.15, weight_N / 2));
-  ASSERT_EQ(paper.body.holders, 3u);
-  for (int i = 0; i < 300; ++i)
-    paper.step(pinch(kCentre, -0.15, weight_N / 2), pinch(kCentre, 0.15, weight_N / 2));
-  for (int i = 0; i < 200; ++i)
-    paper.step(resting_squeeze(-0.15, 2.0, 8.0), resting_squeeze(0.15, 2.0, 8.0));
+  TwoHandRig paper(2.5, p);
+  ASSERT_NO_FATAL_FAILURE(carry_together(paper, weight_N));
+  press_into_the_panel(paper);
   EXPECT_EQ(paper.body.holders, 0u) << paper.text();
 }
 
 TEST(GraspTrackerTwoHands, WhenOneHandLetsGoTheOtherKeepsWhatItCanCarryAlone) {
   TwoHandRig rig(3.0);
   const double weight_N = 3.0 * 9.81;
-  rig.step(pinch(kCentre, -0.15, weight_N / 2), pinch(kCentre, 0.15, weight_N / 2));
-  ASSERT_EQ(rig.body.holders, 3u);
-  for (int i = 0; i < 300; ++i)
-    rig.step(pinch(kCentre, -0.15, weight_N / 2), pinch(kCentre, 0.15, weight_N / 2));
-  rig.events.clear();
+  ASSERT_NO_FATAL_FAILURE(carry_together(rig, weight_N));
   // the left hand takes its fingers off while the right now carries the whole weight (its grip
   // shifted to the middle: held by one end, the box's weight would twist out of it, eq. 31)
   for (int i = 0; i < 50; ++i) rig.step(pinch(kCentre, 0.0, weight_N), {});
