@@ -40,7 +40,7 @@ struct Flags {
   bool join_timeline = false;
   double start_offset_s = 0.0;
   bool lockstep = false;
-  int subscribers = 1;
+  int wait_readers = 1;
   double match_timeout_s = 30.0;
   uint64_t count = 0;
   double duration_s = 0.0;
@@ -94,10 +94,13 @@ void add_flags(CLI::App& app, Flags& f) {
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--lockstep", f.lockstep,
                "reliable keep-all delivery: wait for subscribers and their acknowledgements");
-  app.add_option("--subscribers", f.subscribers, "lockstep: subscribers to wait for")
-      ->check(CLI::PositiveNumber)
+  app.add_option("--wait-readers", f.wait_readers,
+                 "readers of cockpit/hand_sample to wait for before the first sample (0: start at "
+                 "once; lockstep needs at least 1)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  app.add_option("--match-timeout", f.match_timeout_s, "lockstep: seconds to wait for them")
+  app.add_option("--match-timeout", f.match_timeout_s,
+                 "seconds to wait for them: then lockstep fails, a stream starts anyway")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--count", f.count, "record: stop after this many samples");
@@ -121,8 +124,10 @@ int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Sour
   SamplePublisher publisher(participant, hand, options);
   publisher.add_load_counts(source.load_counts());
   ReplayCommands commands(participant, options.node_name);
-  if (!publisher.wait_for_subscribers()) return shutdown_requested() ? 0 : 1;
+  if (!publisher.wait_for_readers()) return shutdown_requested() ? 0 : 1;
   if (start_at_ns > monotonic_now_ns()) sleep_until_ns(start_at_ns);
+  spdlog::info("publishing on {} ({} reader(s) matched)", TopicTraits<cockpit::HandSample>::kName,
+               publisher.matched_readers());
   TerminalProgress progress;
   const int64_t run_start_ns = monotonic_now_ns();
   int64_t start_ns = run_start_ns;  // wall time of the timeline's 0 (moved by a restart)
@@ -224,7 +229,10 @@ int run(const Flags& f) {
   options.hand_id = f.hand_id.value_or(left ? 1 : 0);
   options.node_name = f.node_name;
   options.lockstep = f.lockstep;
-  options.subscribers = f.subscribers;
+  options.readers = f.wait_readers;
+  if (f.lockstep && f.wait_readers < 1)
+    throw CLI::ValidationError("--lockstep needs --wait-readers 1 or more: it waits for their "
+                               "acknowledgements");
   options.match_timeout_s = f.match_timeout_s;
   options.max_gap_ns = std::llround(f.max_gap_s * 1e9);
   if (f.join_timeline && f.rate <= 0)

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <optional>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "common/clock.hpp"
@@ -85,7 +86,7 @@ struct Recording {
       ++other_hands;
       return;
     }
-    hand_writers.insert(writer);
+    if (hand_writers.insert(writer).second) writers_in_order.push_back(writer);
     hand::GloveSample sample = from_hand_sample(message);
     const hand::GloveSample as_received = sample;
     if (!validator.accept(sample)) return;
@@ -93,11 +94,30 @@ struct Recording {
     last_sample_ns = monotonic_now_ns();
   }
 
-  uint64_t lost() const {
-    uint64_t n = 0;
-    for (const auto& w : hand_writers) n += gaps.missing_of(w);
-    return n;
+  // What this hand's writers sent and the log lacks, in total and at the start (before the
+  // recorder matched them), and per writer in the order they were first seen.
+  struct Lost {
+    uint64_t total = 0;
+    uint64_t at_start = 0;
+    std::string per_writer;  // "writer 1: first received sample 455, newest 5001, 454 sent ..."
+  };
+  Lost lost() const {
+    Lost l;
+    int n = 0;
+    for (const WriterId& w : writers_in_order) {
+      if (hand_writers.count(w) == 0) continue;
+      const SequenceGaps::Track t = gaps.of(w);
+      l.total += t.missing();
+      l.at_start += t.at_start();
+      ++n;
+      l.per_writer += (n > 1 ? "; " : "") + std::string("writer ") + std::to_string(n) +
+                      ": first received sample " + std::to_string(t.first) + ", newest " +
+                      std::to_string(t.newest) + ", " + std::to_string(t.at_start()) +
+                      " sent before, " + std::to_string(t.in_gaps) + " in gaps";
+    }
+    return l;
   }
+  std::vector<WriterId> writers_in_order;
 };
 
 }  // namespace
@@ -137,20 +157,29 @@ int run_recorder(DdsParticipant& participant, const hand::HandModel& hand,
     }
   }
   const auto& c = validator.counts();
-  const uint64_t lost = rec.lost();
+  const Recording::Lost lost = rec.lost();
   if (log.count() == 0) {
     spdlog::error("no samples received; {} not written (rejected {})", options.path, c.rejected());
     return 1;  // the partial file goes with `log`
   }
-  log.append_comment("lost: " + std::to_string(lost) + " samples (gaps in the sequence numbers of " +
-                     std::to_string(rec.hand_writers.size()) + " writer(s))");
+  // writers number their samples from 1: what came before a writer's first received sample was
+  // sent before this recorder matched it, and is missing from the log as much as a gap is
+  const std::string lost_text =
+      std::to_string(lost.total) + " samples (" + std::to_string(lost.at_start) +
+      " sent before the recorder matched their writer, " +
+      std::to_string(lost.total - lost.at_start) + " in gaps of the sequence numbers; " +
+      std::to_string(rec.hand_writers.size()) + " writer(s)" +
+      (lost.per_writer.empty() ? "" : ": " + lost.per_writer) + ")";
+  log.append_comment("lost: " + lost_text);
   log.commit();
-  spdlog::info("wrote {} samples to {}; lost {} (gaps in the writers' sequence numbers); rejected "
-               "{}: {} non-finite, {} bad quaternion, {} stale; {} of other hands",
-               log.count(), options.path, lost, c.rejected(), c.rejected_nonfinite,
+  spdlog::info("wrote {} samples to {}; lost {}; rejected {}: {} non-finite, {} bad quaternion, "
+               "{} stale; {} of other hands",
+               log.count(), options.path, lost_text, c.rejected(), c.rejected_nonfinite,
                c.rejected_out_of_range, c.rejected_stale, rec.other_hands);
-  if (lost > 0) {
-    spdlog::warn("{}: {} samples sent were never received", options.path, lost);
+  if (lost.total > 0) {
+    spdlog::warn("{}: {} samples sent were never received ({} of them before the recorder "
+                 "matched their writer)",
+                 options.path, lost.total, lost.at_start);
   }
   return 0;
 }

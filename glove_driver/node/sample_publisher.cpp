@@ -18,19 +18,24 @@ SamplePublisher::SamplePublisher(DdsParticipant& participant, const hand::HandMo
   last_status_ns_ = monotonic_now_ns();
 }
 
-bool SamplePublisher::wait_for_subscribers() {
-  if (!options_.lockstep) return true;
-  spdlog::info("lockstep: waiting for {} subscriber(s) on {}", options_.subscribers,
-               TopicTraits<cockpit::HandSample>::kName);
+bool SamplePublisher::wait_for_readers() {
+  if (options_.readers <= 0) return true;
+  spdlog::info("waiting up to {} s for {} reader(s) on {}{}", options_.match_timeout_s,
+               options_.readers, TopicTraits<cockpit::HandSample>::kName,
+               options_.lockstep ? "" : " (--wait-readers 0 starts at once)");
   const int64_t deadline = monotonic_now_ns() + seconds_to_ns(options_.match_timeout_s);
   while (!shutdown_requested() && monotonic_now_ns() < deadline) {
-    if (writer_.wait_for_matched(options_.subscribers, 100'000'000)) return true;
+    if (writer_.wait_for_matched(options_.readers, 100'000'000)) return true;
   }
-  if (!shutdown_requested()) {
-    spdlog::error("lockstep: {} subscriber(s) did not match within {} s", options_.subscribers,
+  if (shutdown_requested()) return false;
+  if (options_.lockstep) {
+    spdlog::error("lockstep: {} reader(s) did not match within {} s", options_.readers,
                   options_.match_timeout_s);
+    return false;
   }
-  return false;
+  spdlog::warn("{} reader(s) did not match within {} s ({} did): starting anyway", options_.readers,
+               options_.match_timeout_s, writer_.matched_count());
+  return true;
 }
 
 hand::InputCounts SamplePublisher::counts() const {

@@ -4,9 +4,11 @@
 // the physics node keeps (what loading the log counted, the validator's, and the intervals
 // between the samples it publishes, classified against --max-gap as the physics node does).
 //
-// Stream mode: best effort at the source's pace (stream profile). Lockstep: reliable keep-all
-// (reliable profile); waits for its subscribers to match before the first sample and for their
-// acknowledgement after the last, so a replay is lossless however fast it runs.
+// Both modes wait for their readers (--wait-readers) to match before the first sample, so a
+// reader started first (the physics node, a recorder) gets the run from its start.
+// Stream mode: at the source's pace (hand_stream profile). Lockstep: reliable keep-all (reliable
+// profile), and waits for the readers' acknowledgement after the last sample, so a replay is
+// lossless however fast it runs.
 
 #include <cstdint>
 #include <string>
@@ -20,8 +22,8 @@ namespace vcockpit::glove {
 struct PublisherOptions {
   uint32_t hand_id = 0;
   bool lockstep = false;
-  int subscribers = 1;           // lockstep: readers to wait for
-  double match_timeout_s = 30.0;
+  int readers = 1;               // readers to wait for before the first sample (0: none)
+  double match_timeout_s = 30.0;  // lockstep fails after it; a stream starts anyway
   std::string node_name = "glove_driver";
   int64_t max_gap_ns = hand::kDefaultMaxGap_ns;
 };
@@ -31,8 +33,10 @@ class SamplePublisher {
   SamplePublisher(DdsParticipant& participant, const hand::HandModel& hand,
                   const PublisherOptions& options);
 
-  // Lockstep: blocks until the subscribers matched (false on timeout or shutdown). Stream: true.
-  bool wait_for_subscribers();
+  // Blocks until `readers` readers matched. False on shutdown, or on timeout in lockstep; a
+  // stream starts anyway after the timeout (what it sends before a reader matches is that
+  // reader's to count as missed at the start).
+  bool wait_for_readers();
   // Validates and writes; false if the sample was rejected or the middleware refused it.
   bool publish(hand::GloveSample sample);
   // Publishes node_status when a second has passed since the last one.
@@ -47,6 +51,7 @@ class SamplePublisher {
   // Everything counted: loading, validation, intervals.
   hand::InputCounts counts() const;
   uint64_t published() const { return published_; }
+  int matched_readers() const { return writer_.matched_count(); }
   uint64_t write_failures() const { return write_failures_; }
 
  private:

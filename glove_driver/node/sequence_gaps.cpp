@@ -3,23 +3,21 @@
 namespace vcockpit::glove {
 
 bool SequenceGaps::add(const WriterId& writer, uint64_t sequence) {
-  auto [it, first] = newest_.try_emplace(writer, Track{sequence, 0});
+  auto [it, first] = tracks_.try_emplace(writer, Track{sequence, sequence, 0});
   if (first) return true;
   Track& track = it->second;
   if (sequence <= track.newest) {
     ++duplicates_;
     return false;
   }
-  const uint64_t gap = sequence - track.newest - 1;
-  track.missing += gap;
-  missing_ += gap;
+  track.in_gaps += sequence - track.newest - 1;
   track.newest = sequence;
   return true;
 }
 
-uint64_t SequenceGaps::missing_of(const WriterId& writer) const {
-  const auto it = newest_.find(writer);
-  return it == newest_.end() ? 0 : it->second.missing;
+SequenceGaps::Track SequenceGaps::of(const WriterId& writer) const {
+  const auto it = tracks_.find(writer);
+  return it == tracks_.end() ? Track{1, 0, 0} : it->second;
 }
 
 }  // namespace vcockpit::glove

@@ -61,7 +61,7 @@ std::string rig_yaml(const std::string& domain) {
           ", --fps, '30'], required: false, restart_delay_s: 0.2, start_delay_s: 0.3}\n";
   text += "  - {name: glove_driver, command: [glove_driver, --source, replay, --log, '{log}', "
           "--lockstep, --rate, '" + std::to_string(glove_rate()) +
-          "', --loop, --subscribers, '1', --start-at-ns, '{start_at_ns}'], "
+          "', --loop, --wait-readers, '1', --start-at-ns, '{start_at_ns}'], "
           "required: true, restart_delay_s: 0.2, restart_args: [--join-timeline]}\n";
   return text;
 }

@@ -74,7 +74,7 @@ run_rig() {
     > "$dir/image_generator.log" 2>&1 &
   local ig=$!; pids+=($ig)
   # shellcheck disable=SC2086
-  "$bin/glove_driver" $p_glove --source replay --log "$log" --lockstep --rate "$rate" --subscribers 1 \
+  "$bin/glove_driver" $p_glove --source replay --log "$log" --lockstep --rate "$rate" --wait-readers 1 \
     --match-timeout 20 > "$dir/glove_driver.log" 2>&1 &
   local glove=$!; pids+=($glove)
   local glove_cpu=0
