@@ -28,7 +28,7 @@
 #include "common/atomic_file.hpp"
 #include "common/cli_finite.hpp"
 #include "common/clock.hpp"
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "common/json_file.hpp"
 #include "common/latency_histogram.hpp"
 #include "common/logging.hpp"

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 
 namespace vcockpit::fuzz {
 

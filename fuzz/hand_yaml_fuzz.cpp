@@ -2,7 +2,7 @@
 
 #include "common/yaml_config.hpp"
 #include "fuzz/fuzz_support.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   using namespace vcockpit;

@@ -17,7 +17,7 @@
 #include "glove_driver/node/replay_commands.hpp"
 #include "glove_driver/node/sample_publisher.hpp"
 #include "common/terminal_progress.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 
 namespace vcockpit::glove {
 namespace {

@@ -8,7 +8,7 @@
 #include <mutex>
 #include <string>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "instructor/station_model.hpp"
 
 namespace vcockpit::instructor {

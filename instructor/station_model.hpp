@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 
 namespace vcockpit::instructor {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "common/latency_histogram.hpp"
 
 namespace vcockpit::rig {

@@ -20,7 +20,7 @@
 
 #include "common/cli_finite.hpp"
 #include "hand/glove_log.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "physics_node/config/grip_scene_yaml.hpp"
 #include "physics_node/fit/grip_choice.hpp"
 #include "physics_node/fit/grip_fit.hpp"

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <string>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "hand/hand_model.hpp"
 
 namespace vcockpit::glove {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 
 namespace vcockpit::glove {
 

@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <string>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "hand/sample_intervals.hpp"
 #include "hand/sample_validator.hpp"
 

@@ -11,7 +11,7 @@
 #include <array>
 #include <cstdint>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 
 namespace vcockpit::image_generator {
 

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <string>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "image_generator/node/hmd_yaml.hpp"
 #include "image_generator/node/snapshot_writer.hpp"
 

@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 
 namespace vcockpit::image_generator {
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "common/pose.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "physics_node/config/scene_parts.hpp"
 
 namespace vcockpit {

@@ -19,7 +19,7 @@
 #include <optional>
 #include <string>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "common/json_file.hpp"
 #include "common/latency_histogram.hpp"
 #include "hand/input_counts.hpp"

@@ -38,7 +38,7 @@
 #include <string>
 #include <vector>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "physics_node/io/input_timing.hpp"
 #include "physics_node/physics/scene.hpp"
 

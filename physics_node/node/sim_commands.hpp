@@ -10,7 +10,7 @@
 #include <map>
 #include <string>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "physics_node/physics/world.hpp"
 
 namespace vcockpit::physics_node {

@@ -32,7 +32,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "physics_node/io/non_finite_guard.hpp"
 #include "physics_node/physics/world.hpp"
 

@@ -22,7 +22,7 @@
 #include <thread>
 
 #include "common/clock.hpp"
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "common/logging.hpp"
 #include "common/signals.hpp"
 

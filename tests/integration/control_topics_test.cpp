@@ -11,8 +11,8 @@
 #include <set>
 #include <string>
 
-#include "common/dds_options.hpp"
-#include "common/dds_participant.hpp"
+#include "dds/dds_options.hpp"
+#include "dds/dds_participant.hpp"
 #include "image_generator/node/hmd_yaml.hpp"
 #include "image_generator/render/camera.hpp"
 #include "physics_node/config/scene_config.hpp"

@@ -18,7 +18,7 @@
 
 #include "common/clock.hpp"
 #include "hand/glove_log.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/offline_runner.hpp"
 #include "tests/support/monitor_log.hpp"

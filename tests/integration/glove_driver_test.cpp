@@ -12,7 +12,7 @@
 #include "hand/glove_log.hpp"
 #include "idl/topics/hand_sample_convert.hpp"
 #include "hand/sample_validator.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "tests/support/hand_sample_pattern.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/process_test.hpp"

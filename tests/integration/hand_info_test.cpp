@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "hand/hand_model.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "image_generator/node/hmd_yaml.hpp"
 #include "image_generator/render/camera.hpp"
 #include "tests/support/monitor_log.hpp"

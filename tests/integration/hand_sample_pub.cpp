@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "common/clock.hpp"
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 #include "common/logging.hpp"
 #include "common/signals.hpp"
 #include "tests/support/hand_sample_pattern.hpp"

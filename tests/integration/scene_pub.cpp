@@ -14,8 +14,8 @@
 #include <thread>
 
 #include "common/clock.hpp"
-#include "common/dds_participant.hpp"
-#include "hand/hand_yaml.hpp"
+#include "dds/dds_participant.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "idl/topics/hand_info_convert.hpp"
 #include "idl/topics/pose_convert.hpp"
 #include "common/logging.hpp"

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "common/clock.hpp"
-#include "common/dds_options.hpp"
-#include "common/dds_participant.hpp"
+#include "dds/dds_options.hpp"
+#include "dds/dds_participant.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/process_test.hpp"

@@ -14,7 +14,7 @@
 #include <map>
 #include <set>
 
-#include "common/dds_options.hpp"
+#include "dds/dds_options.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/node/state_publisher.hpp"
 #include "tests/support/test_env.hpp"

@@ -21,7 +21,7 @@
 #include <string>
 
 #include "hand/glove_log.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "physics_node/config/grip_scene_yaml.hpp"
 #include "physics_node/fit/grip_choice.hpp"
 #include "tests/scenario/real_grip/real_grip_run.hpp"

@@ -19,7 +19,7 @@
 #include <string>
 
 #include "common/pose.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "physics_node/physics/proxy_hand.hpp"
 #include "physics_node/physics/world.hpp"
 #include "tests/support/scene_builder.hpp"

@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "physics_node/physics/collision.hpp"
 #include "hand/hand_model.hpp"
 #include "tests/support/allocation_counter.hpp"

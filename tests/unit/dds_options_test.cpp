@@ -4,7 +4,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "common/dds_options.hpp"
+#include "dds/dds_options.hpp"
 
 namespace vcockpit {
 namespace {

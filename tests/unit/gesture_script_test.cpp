@@ -6,7 +6,7 @@
 
 #include "common/yaml_config.hpp"
 #include "glove_driver/glove/gesture_script.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "hand/tracker.hpp"
 
 namespace vcockpit::glove {

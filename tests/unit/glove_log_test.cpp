@@ -8,7 +8,7 @@
 #include <functional>
 
 #include "hand/glove_log.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "tests/support/process.hpp"
 
 namespace vcockpit::hand {

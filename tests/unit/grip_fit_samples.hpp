@@ -7,7 +7,7 @@
 
 #include "common/pose.hpp"
 #include "hand/glove_sample.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 
 namespace vcockpit::test {
 

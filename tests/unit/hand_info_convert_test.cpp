@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "cockpitPubSubTypes.h"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "idl/topics/hand_info_convert.hpp"
 #include "tests/support/test_files.hpp"
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "common/pose.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "hand/hand_model.hpp"
 #include "hand/tracker.hpp"
 #include "tests/support/allocation_counter.hpp"

@@ -1,6 +1,6 @@
 // hand.yaml: the shipped hand loads, and every bad value is an error naming file, line and key.
 
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 
 #include <gtest/gtest.h>
 

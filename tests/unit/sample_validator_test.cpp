@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "hand/sample_validator.hpp"
 
 namespace vcockpit::hand {

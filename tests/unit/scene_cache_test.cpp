@@ -7,7 +7,7 @@
 
 #include <limits>
 
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "idl/topics/hand_info_convert.hpp"
 #include "idl/topics/pose_convert.hpp"
 #include "image_generator/node/scene_cache.hpp"

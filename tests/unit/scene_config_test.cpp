@@ -18,7 +18,7 @@
 
 #include "common/pose.hpp"
 #include "common/yaml_config.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "physics_node/physics/world.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/test_files.hpp"

@@ -15,7 +15,7 @@
 #include <exception>
 #include <string>
 
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "hand/sample_validator.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/replay_driver.hpp"

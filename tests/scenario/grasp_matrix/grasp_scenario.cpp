@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "glove_driver/glove/gesture_script.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "hand/sample_validator.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/grasp_event_text.hpp"

@@ -1,4 +1,4 @@
-#include "common/dds_participant.hpp"
+#include "dds/dds_participant.hpp"
 
 #include <fastdds/dds/core/status/LivelinessChangedStatus.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>

@@ -1,4 +1,4 @@
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 
 #include <sstream>
 #include <utility>

@@ -16,7 +16,7 @@
 #include <map>
 #include <string>
 
-#include "common/dds_options.hpp"
+#include "dds/dds_options.hpp"
 #include "idl/topics/topic_traits.hpp"
 
 namespace vcockpit {

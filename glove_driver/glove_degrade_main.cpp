@@ -12,7 +12,7 @@
 #include "glove_driver/degrade/degrade.hpp"
 #include "glove_driver/degrade/degraded_log_file.hpp"
 #include "hand/glove_log.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 
 namespace vcockpit::degrade {
 namespace {

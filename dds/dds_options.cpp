@@ -1,4 +1,4 @@
-#include "common/dds_options.hpp"
+#include "dds/dds_options.hpp"
 
 #include <CLI/CLI.hpp>
 
