@@ -42,6 +42,12 @@ struct Cell {
   std::string size;
   std::string degradation;
   std::string name() const { return object + "_" + size + "_" + degradation; }
+  // The cup runs every cell; the other objects' cells beyond the medium hand on the clean and
+  // the harsh gesture are the same code on other shapes: the sanitizer builds leave them out
+  // (ctest label `variant`).
+  bool variant() const {
+    return object != "cup" && !(size == "medium" && (degradation == "clean" || degradation == "harsh"));
+  }
 };
 
 // Every object x size with the clean gesture and the presets `typical` and `harsh`; every
