@@ -55,7 +55,7 @@ ProxyHand::ProxyHand(const Scene& scene, int hand)
       if (row.joint >= 0 && row.joint < kJointCount)
         finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(row.joint)] = true;
   for (int f = 0; f < kFingerCount; ++f) {
-    FingerJointList& list = finger_joint_list_[static_cast<std::size_t>(f)];
+    FingerJoints& list = finger_joint_list_[static_cast<std::size_t>(f)];
     for (int j = 0; j < kJointCount && list.count < kMaxFingerJoints; ++j)
       if (finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(j)]) list.joint[static_cast<std::size_t>(list.count++)] = j;
   }
@@ -339,12 +339,12 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
 void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_goal_rad,
                              ProxyPose& pose) {
   constexpr int kMaxRows = 4;       // the binding contacts that steer the slide
-  constexpr double kProbe_rad = 1e-4;
   constexpr double kDamping_m2 = 1e-8;
   constexpr double kBinding_m = 1e-6;  // a contact this close to its limit binds the slide
   constexpr int kActiveSetPasses = 3;
-  const auto& joints = finger_joint_list_[static_cast<std::size_t>(finger)].joint;
-  const int joint_count = finger_joint_list_[static_cast<std::size_t>(finger)].count;
+  const FingerJoints& finger_joints = finger_joint_list_[static_cast<std::size_t>(finger)];
+  const auto& joints = finger_joints.joint;
+  const int joint_count = finger_joints.count;
   if (joint_count == 0) return;
   // what the share left of the finger's step
   Eigen::Matrix<double, kMaxFingerJoints, 1> rest = Eigen::Matrix<double, kMaxFingerJoints, 1>::Zero();
@@ -356,22 +356,19 @@ void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_g
 
   // the depth each of the finger's contacts gains per radian of each joint, at the held-back pose
   slide_rows_.clear();
+  slide_points_.clear();
   finger_kinematics(hand_, finger, pose.q_rad, slide_links_);
-  for (std::size_t i = 0; i < limits_.size(); ++i)
-    if (limits_[i].finger == finger) slide_rows_.push_back({i, Eigen::Matrix<double, kMaxFingerJoints, 1>::Zero(), 0.0, false});
-  if (slide_rows_.empty()) return;
-  for (int k = 0; k < joint_count; ++k) {
-    JointAngles probe = pose.q_rad;
-    probe[joints[static_cast<std::size_t>(k)]] += kProbe_rad;
-    finger_kinematics(hand_, finger, probe, probe_links_);  // only this finger's links are read
-    for (SlideRow& row : slide_rows_) {
-      const ContactLimit& cl = limits_[row.limit];
-      const auto l = static_cast<std::size_t>(cl.link);
-      const Eigen::Vector3d u_H =
-          probe_links_.X_HL[l] * cl.p_L - slide_links_.X_HL[l] * cl.p_L;
-      row.gradient_m(k) = -cl.contact->n_G.dot(pose.X_GH.linear() * u_H) / kProbe_rad;
-    }
+  for (std::size_t i = 0; i < limits_.size(); ++i) {
+    const ContactLimit& cl = limits_[i];
+    if (cl.finger != finger) continue;
+    slide_rows_.push_back({i, Eigen::Matrix<double, kMaxFingerJoints, 1>::Zero(), 0.0, false});
+    const auto l = static_cast<std::size_t>(cl.link);
+    slide_points_.push_back({l, cl.p_L, slide_links_.X_HL[l] * cl.p_L, cl.contact->n_G});
   }
+  if (slide_rows_.empty()) return;
+  finger_depth_jacobian(hand_, finger, finger_joints, pose.q_rad, pose.X_GH, slide_points_.data(),
+                        slide_points_.size(), probe_links_,
+                        [&](std::size_t i, int k, double d) { slide_rows_[i].gradient_m(k) = d; });
   for (SlideRow& row : slide_rows_) {
     const ContactLimit& cl = limits_[row.limit];
     row.room_m = cl.allowed_m - share * cl.deepened_m;  // how much deeper it may still go
@@ -400,9 +397,7 @@ void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_g
     Eigen::Matrix<double, kMaxRows, kMaxFingerJoints> G = Eigen::Matrix<double, kMaxRows, kMaxFingerJoints>::Zero();
     for (int i = 0; i < active_count; ++i) G.row(i) = active[static_cast<std::size_t>(i)]->gradient_m.transpose();
     const auto Ga = G.topRows(active_count);
-    const Eigen::MatrixXd GGt =
-        Ga * Ga.transpose() + kDamping_m2 * Eigen::MatrixXd::Identity(active_count, active_count);
-    slide = rest - Ga.transpose() * GGt.ldlt().solve(Ga * rest);
+    slide = rest - Ga.transpose() * damped_gram(Ga, kDamping_m2).solve(Ga * rest);
   }
   // ... and as far along it as every contact of the finger allows (first order)
   double along = 1.0;
@@ -449,7 +444,6 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
                                    std::vector<ContactPoint>& hand_static,
                                    ProxyConstraint& result) {
   constexpr int kRows = 3;          // the deepest contacts of a finger that steer its joints
-  constexpr double kProbe_rad = 1e-4;
   constexpr double kDamping_m2 = 1e-6;  // (1 mm/rad)^2: keeps the step small near a singular finger
   constexpr double kMaxBend_rad = 0.05;  // per substep: ~4 mm at a fingertip
   bool moved = false;
@@ -482,33 +476,30 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
     for (const ContactPoint& c : hand_static) consider(c);
     for (const ContactPoint& c : contacts) consider(c);
     if (row_count == 0) continue;
-    const auto& joints = finger_joint_list_[static_cast<std::size_t>(f)].joint;
-    const int joint_count = finger_joint_list_[static_cast<std::size_t>(f)].count;
-    // J(i, k): the depth gained at contact i per radian of joint k (the link is body_b, so
-    // moving its point by u deepens the contact by -n.u)
-    Eigen::Matrix<double, kRows, kMaxFingerJoints> J = Eigen::Matrix<double, kRows, kMaxFingerJoints>::Zero();
-    Eigen::Matrix<double, kRows, 1> excess = Eigen::Matrix<double, kRows, 1>::Zero();
-    for (int k = 0; k < joint_count; ++k) {
-      ProxyPose probe = pose;
-      probe.q_rad[joints[k]] += kProbe_rad;
-      // only finger f's links are read
-      finger_kinematics(hand_, static_cast<Finger>(f), probe.q_rad, probe_links_);
-      for (int i = 0; i < row_count; ++i) {
-        const ContactPoint& c = *rows[static_cast<std::size_t>(i)];
-        const auto l = static_cast<std::size_t>(link_of(c.body_b));
-        const Eigen::Vector3d p_H = links.X_HL[l] * (X_GL[l].inverse() * c.p_G);
-        const Eigen::Vector3d u_H = probe_links_.X_HL[l] * (links.X_HL[l].inverse() * p_H) - p_H;
-        J(i, k) = -c.n_G.dot(pose.X_GH.linear() * u_H) / kProbe_rad;
-      }
+    const FingerJoints& finger_joints = finger_joint_list_[static_cast<std::size_t>(f)];
+    const auto& joints = finger_joints.joint;
+    const int joint_count = finger_joints.count;
+    // J(i, k): the depth gained at contact i per radian of joint k
+    std::array<FingerPoint, kRows> points;
+    for (int i = 0; i < row_count; ++i) {
+      const ContactPoint& c = *rows[static_cast<std::size_t>(i)];
+      const auto l = static_cast<std::size_t>(link_of(c.body_b));
+      const Eigen::Vector3d p_H = links.X_HL[l] * (X_GL[l].inverse() * c.p_G);
+      points[static_cast<std::size_t>(i)] = {l, links.X_HL[l].inverse() * p_H, p_H, c.n_G};
     }
+    Eigen::Matrix<double, kRows, kMaxFingerJoints> J = Eigen::Matrix<double, kRows, kMaxFingerJoints>::Zero();
+    finger_depth_jacobian(hand_, static_cast<Finger>(f), finger_joints, pose.q_rad, pose.X_GH,
+                          points.data(), static_cast<std::size_t>(row_count), probe_links_,
+                          [&](std::size_t i, int k, double d) {
+                            J(static_cast<Eigen::Index>(i), k) = d;
+                          });
+    Eigen::Matrix<double, kRows, 1> excess = Eigen::Matrix<double, kRows, 1>::Zero();
     for (int i = 0; i < row_count; ++i) {
       const ContactPoint& c = *rows[static_cast<std::size_t>(i)];
       excess(i) = c.depth_m - target_of(c);
     }
     const auto Jr = J.topLeftCorner(row_count, joint_count);
-    const Eigen::MatrixXd JJt = Jr * Jr.transpose() +
-                                kDamping_m2 * Eigen::MatrixXd::Identity(row_count, row_count);
-    Eigen::VectorXd dq = -Jr.transpose() * JJt.ldlt().solve(excess.head(row_count));
+    Eigen::VectorXd dq = -Jr.transpose() * damped_gram(Jr, kDamping_m2).solve(excess.head(row_count));
     // a first-order step, trusted only so far: near a singular finger (a contact close to a
     // joint's axis) it would swing a phalanx through the object it is leaving
     const double largest_rad = dq.cwiseAbs().maxCoeff();

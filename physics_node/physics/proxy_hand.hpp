@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "physics_node/physics/contact.hpp"
+#include "physics_node/physics/finger_jacobian.hpp"
 #include "physics_node/physics/hand_names.hpp"
 #include "physics_node/physics/scene.hpp"
 
@@ -206,12 +207,7 @@ class ProxyHand {
   };
   std::vector<GripBalance> grip_balance_;  // per object
   std::array<std::array<bool, kJointCount>, kFingerCount> finger_joints_{};  // joints moving a finger
-  static constexpr int kMaxFingerJoints = 6;
-  struct FingerJointList {  // the same, as indices in order
-    std::array<int, kMaxFingerJoints> joint{};
-    int count = 0;
-  };
-  std::array<FingerJointList, kFingerCount> finger_joint_list_{};
+  std::array<FingerJoints, kFingerCount> finger_joint_list_{};  // the same, as indices in order
 
   // scratch
   struct Plane {
@@ -238,6 +234,7 @@ class ProxyHand {
     bool active;        // in the slide's active set: projected off
   };
   std::vector<SlideRow> slide_rows_;
+  std::vector<FingerPoint> slide_points_;  // the rows' contact points, for the Jacobian
   HandLinkPoses slide_links_;
 };
 
