@@ -2,10 +2,11 @@
 // Several hands' glove samples replayed on one timeline: the offline runner's loop, shared with
 // the grasp study (bench/study) so that a trial is replayed exactly as `physics_node --offline`
 // replays a log. One ReplayDriver per hand (replay_driver.hpp); the earliest first sample is world
-// time 0. Before each step each hand takes its samples up to the first at or past the step's end
-// (its look-ahead); a hand whose samples start later joins when the world reaches its first
-// sample, and one whose samples have ended holds its last (and loses the glove after the
-// timeout, as a live glove that stopped would).
+// time 0. Each hand's samples go through a HandFeed (hand_feed.hpp: the stepping rule the
+// lockstep node shares): before each step each hand takes its samples up to the first at or
+// past the step's end (its look-ahead); a hand whose samples start later joins when the world
+// reaches its first sample, and one whose samples have ended holds its last (and loses the glove
+// after the timeout, as a live glove that stopped would).
 
 #include <cstddef>
 #include <cstdint>
@@ -13,6 +14,7 @@
 
 #include "hand/glove_sample.hpp"
 #include "hand/input_counts.hpp"
+#include "physics_node/io/hand_feed.hpp"
 #include "physics_node/io/input_timing.hpp"
 #include "physics_node/io/replay_driver.hpp"
 #include "physics_node/physics/world.hpp"
@@ -52,17 +54,12 @@ class HandTimeline {
   const hand::InputCounts& counts(std::size_t k) const { return drivers_[k].counts(); }
 
  private:
-  // takes hand k's samples up to the first at or past world time `until_ns` (the world's
-  // present for a hand not begun: it begins there, not before)
-  void take_samples(std::size_t k, int64_t until_ns);
-
   physics::World& world_;
-  const std::vector<HandSamples>& hands_;
   int64_t end_ns_;
   bool past_samples_;
   int64_t step_ns_;
   std::vector<ReplayDriver> drivers_;
-  std::vector<std::size_t> next_;
+  std::vector<HandFeed> feeds_;
 };
 
 }  // namespace vcockpit::physics_io

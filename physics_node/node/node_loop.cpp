@@ -16,6 +16,7 @@
 #include "physics_node/io/grasp_event_text.hpp"
 #include "physics_node/io/hand_input.hpp"
 #include "physics_node/io/hand_motion_peak.hpp"
+#include "physics_node/io/hand_feed.hpp"
 #include "physics_node/io/input_follower.hpp"
 #include "physics_node/io/world_checkpoint.hpp"
 #include "physics_node/io/replay_driver.hpp"
@@ -60,13 +61,8 @@ struct HandChannel {
   bool have_input = false;
   physics::HandInput input;
   // lockstep: samples received and not yet given to the replay driver (it takes each as the
-  // world reaches it, as the offline runner feeds a log), from `next` on
-  struct Pending {
-    hand::GloveSample sample;
-    int64_t source_stamp_ns;
-  };
-  std::vector<Pending> pending;
-  std::size_t next = 0;
+  // world reaches it, by the offline runner's rule)
+  physics_io::HandFeed feed;
   bool arrived_frozen = false;  // lockstep: samples came while time was frozen
 };
 
@@ -294,9 +290,8 @@ class Node {
   // only its newest (the glove's present) for when time goes on.
   void hold_frozen_lockstep() {
     for (HandChannel& ch : hands_) {
-      if (ch.next == ch.pending.size()) continue;
-      ch.pending.erase(ch.pending.begin(), ch.pending.end() - 1);
-      ch.next = 0;
+      if (!ch.feed.has_queued()) continue;
+      ch.feed.keep_newest_only();
       ch.arrived_frozen = true;
     }
   }
@@ -308,13 +303,13 @@ class Node {
     bool any = false;
     int64_t origin_ns = 0;
     for (HandChannel& ch : hands_) {
-      if (!ch.arrived_frozen || ch.next == ch.pending.size()) continue;
-      const int64_t t_ns = ch.pending[ch.next].sample.t_ns;
+      if (!ch.arrived_frozen || !ch.feed.has_queued()) continue;
+      const int64_t t_ns = ch.feed.front().t_ns;
       origin_ns = any ? std::max(origin_ns, t_ns) : t_ns;
       any = true;
     }
     for (HandChannel& ch : hands_) {
-      if (!ch.arrived_frozen || ch.next == ch.pending.size()) continue;
+      if (!ch.arrived_frozen || !ch.feed.has_queued()) continue;
       ch.replay.restart();
       ch.replay.set_origin(origin_ns);
       ch.arrived_frozen = false;
@@ -615,33 +610,21 @@ int Node::run_lockstep() {
           if (&other != &ch && other.replay.has_sample()) begun = &other;
         if (begun != nullptr && !ch.replay.has_sample() && ch.received == 1)
           ch.replay.set_origin(begun->replay.source_time_at_world_zero() + world_.time_ns());
-        ch.pending.erase(ch.pending.begin() + static_cast<std::ptrdiff_t>(ch.next), ch.pending.end());
+        ch.feed.drop_queued();
       }
-      if (ch.next == ch.pending.size()) {
-        ch.pending.clear();
-        ch.next = 0;
-      }
-      ch.pending.push_back({s, message_.source_stamp_ns()});
+      ch.feed.queue(s, message_.source_stamp_ns());
     });
     take_sim_commands();
     if (sim_.frozen()) hold_frozen_lockstep();
-    // Step as the offline runner does: before each step, each hand takes its samples up to the
-    // first at or past the step's end; the step waits until every hand that has begun (and
-    // every --lockstep-hands hand) has one.
+    // Step as the offline runner does (HandFeed's rule): before each step, each hand takes its
+    // samples up to the first at or past the step's end; the step waits until every hand that
+    // has begun (and every --lockstep-hands hand) has one, as more samples may still come.
     while (!sim_.frozen()) {
       const int64_t step_end_ns = world_.time_ns() + step_ns;
       bool ready = true;
       bool any = false;
       for (HandChannel& ch : hands_) {
-        while (ch.next < ch.pending.size() &&
-               (!ch.replay.has_sample() || ch.replay.newest_world_ns() < step_end_ns)) {
-          const HandChannel::Pending& p = ch.pending[ch.next];
-          if (!ch.replay.has_sample() && ch.replay.started() &&
-              ch.replay.world_time_of(p.sample) > world_.time_ns())
-            break;  // begins later on the shared timeline
-          ch.replay.push(p.sample, p.source_stamp_ns);
-          ++ch.next;
-        }
+        ch.feed.take_until(ch.replay, step_end_ns, world_.time_ns());
         if (!ch.replay.has_sample()) {
           ready = ready && !ch.expected;
           continue;

@@ -1,0 +1,36 @@
+#include "physics_node/io/hand_feed.hpp"
+
+namespace vcockpit::physics_io {
+
+void HandFeed::queue(const hand::GloveSample& sample, int64_t source_stamp_ns) {
+  if (next_ == queued_.size()) {  // all taken: start the queue over (no growth in a long run)
+    queued_.clear();
+    next_ = 0;
+  }
+  queued_.push_back({sample, source_stamp_ns});
+}
+
+void HandFeed::drop_queued() {
+  queued_.erase(queued_.begin() + static_cast<std::ptrdiff_t>(next_), queued_.end());
+}
+
+void HandFeed::keep_newest_only() {
+  if (!has_queued()) return;
+  queued_.erase(queued_.begin(), queued_.end() - 1);
+  next_ = 0;
+}
+
+void HandFeed::take_until(ReplayDriver& driver, int64_t until_ns, int64_t world_now_ns,
+                          int64_t end_ns) {
+  while (has_queued() && (!driver.has_sample() || driver.newest_world_ns() < until_ns)) {
+    const Queued& q = queued_[next_];
+    // begins later on the shared timeline
+    if (!driver.has_sample() && driver.started() && driver.world_time_of(q.sample) > world_now_ns)
+      break;
+    if (driver.has_sample() && driver.newest_world_ns() > end_ns) break;  // past the end already
+    driver.push(q.sample, q.source_stamp_ns);
+    ++next_;
+  }
+}
+
+}  // namespace vcockpit::physics_io
