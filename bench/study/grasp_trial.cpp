@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "glove_driver/glove/gesture_script.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "hand/sample_validator.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/hand_timeline.hpp"
@@ -86,7 +86,7 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
     const int side = study_object.hands[h].left ? 1 : 0;
     std::vector<hand::GloveSample> samples = vary_approach(
         glove::script_samples(source_dir + "/config/gestures/" + study_object.hands[h].script, model),
-        variation, side, study_object.approach_end_s, model);
+        variation, side, study_object.offset_gone_s(), study_object.approach_end_s, model);
     if (h == 0) closed = closed_span_ns(samples);
     const auto rows = degrade::degrade(std::move(samples), model, degrade_spec(variation));
     hand::SampleValidator validator(model);

@@ -78,13 +78,15 @@ std::vector<ControlChange> knob_changes() {
 }  // namespace
 
 const std::vector<StudyObject>& study_objects() {
-  // place_G and approach_end_s from each script's keyframes (its comments say where it sets the
-  // object down); the heavy bar is lifted 10 cm and set down where it lay
+  // place_G, approach_end_s and arrive_s from each script's keyframes (its comments say where it
+  // sets the object down); the heavy bar is lifted 10 cm and set down where it lay. The checklist's
+  // hand is beside the board's edge, at the board's height, at 1.4 s, and slides in under and over
+  // it until 2.0 s; its grip closes from 2.2 s.
   static const std::vector<StudyObject> kObjects = {
       {"cup", {{"cup_pick_place.yaml"}}, {0.36, -0.43, 0.75}, 2.0, {}, {}},
       {"ball", {{"ball_pick_place.yaml"}}, {0.58, -0.44, 0.73}, 2.1, {}, {}},
       {"flashlight", {{"flashlight_pick_place.yaml"}}, {0.565, -0.30, 0.718}, 2.1, {}, {}},
-      {"checklist", {{"checklist_pick_place.yaml"}}, {0.31, -0.228, 0.704}, 2.2, {}, {}},
+      {"checklist", {{"checklist_pick_place.yaml"}}, {0.31, -0.228, 0.704}, 2.2, {}, {}, 1.4},
       {"heavy_bar",
        {{"two_hand_lift_right.yaml"}, {"two_hand_lift_left.yaml", true}},
        {0.72, 0.0, 1.096},

@@ -70,12 +70,18 @@ struct StudyObject {
   std::vector<HandScript> hands;  // one hand, or two for a two-handed lift
   Eigen::Vector3d place_G;        // where the gesture sets the object's centre down (m, world)
   // when the script's hand has reached the object and its grip starts to close (s): the trial's
-  // approach varies before it
+  // aperture varies before it
   double approach_end_s = 0.0;
   // A control case: the controls its gesture grasps, and the changes it makes, in order (a
   // trial succeeds when it makes exactly these).
   std::vector<std::string> controls;
   std::vector<ControlChange> changes;
+  // when the script's hand is beside the object (s): the trial's approach path is offset before
+  // it and not after (0: approach_end_s). Where a script slides the hand in along a surface
+  // before the grip closes (the checklist's edge), a person guides that last slide by sight with
+  // the hand a centimetre from the object, as the script does.
+  double arrive_s = 0.0;
+  double offset_gone_s() const { return arrive_s > 0.0 ? arrive_s : approach_end_s; }
   bool is_control() const { return !controls.empty(); }
 };
 

@@ -94,20 +94,19 @@ degrade::DegradeSpec degrade_spec(const TrialVariation& v) {
 }
 
 std::vector<hand::GloveSample> vary_approach(std::vector<hand::GloveSample> samples,
-                                             const TrialVariation& v, int side,
-                                             double approach_end_s,
-                                             const hand::HandModel& hand) {
+                                             const TrialVariation& v, int side, double arrive_s,
+                                             double approach_end_s, const hand::HandModel& hand) {
   if (samples.empty()) return samples;
   const int64_t t0_ns = samples.front().t_ns;
   const Eigen::Matrix3d R_MG = hand.tracker.X_GM.linear().transpose();
   const Eigen::Vector3d offset_M = R_MG * v.approach_offset_G[side];
-  const double rise_end_s = 0.75 * approach_end_s;
+  const double rise_end_s = 0.75 * arrive_s;
   for (hand::GloveSample& s : samples) {
     const double t_s = static_cast<double>(s.t_ns - t0_ns) * 1e-9;
     // the offset: up over the first three quarters of the reach, down over the last
     const double w = t_s < rise_end_s ? min_jerk(t_s / rise_end_s)
                                       : 1.0 - min_jerk((t_s - rise_end_s) /
-                                                       (approach_end_s - rise_end_s));
+                                                       (arrive_s - rise_end_s));
     s.p_MT_m += w * offset_M;
     // the aperture: fully varied until the hand arrives, back to the script's by the grip's end
     const double a = 1.0 + (v.aperture_scale - 1.0) *

@@ -3,8 +3,8 @@
 // when a person repeats it, drawn from a seed (the same seed, the same trial on every machine):
 //   approach      the hand comes at the object from another direction and height: its path is
 //                 offset by up to 2.5 cm sideways and 0-2 cm up, the offset growing over the reach
-//                 and gone when the hand arrives (approach_end_s), so the last part of the reach
-//                 comes in from that side;
+//                 and gone when the hand arrives beside the object (arrive_s), so the last part
+//                 of the reach comes in from that side;
 //   aperture      the hand opens wider or less wide on the way: the flexion joints of the
 //                 approach x 0.85-1.15, back to the script's by the end of the closing;
 //   closing       the grip closes in 0.3-0.8 s (degrade's grip_closure);
@@ -42,11 +42,11 @@ TrialVariation plain_variation();
 // The degrade spec of the variation (its presets, its closing time, its seed).
 degrade::DegradeSpec degrade_spec(const TrialVariation& v);
 
-// The script's samples with the approach and aperture varied (hand `side`: 0 right, 1 left).
-// The closing time and the degradation are applied afterwards, by degrade().
+// The script's samples with the approach and aperture varied (hand `side`: 0 right, 1 left):
+// the path's offset is gone at arrive_s, the aperture back to the script's a closing span after
+// approach_end_s. The closing time and the degradation are applied afterwards, by degrade().
 std::vector<hand::GloveSample> vary_approach(std::vector<hand::GloveSample> samples,
-                                             const TrialVariation& v, int side,
-                                             double approach_end_s,
-                                             const hand::HandModel& hand);
+                                             const TrialVariation& v, int side, double arrive_s,
+                                             double approach_end_s, const hand::HandModel& hand);
 
 }  // namespace vcockpit::study

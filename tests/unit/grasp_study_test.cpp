@@ -12,7 +12,7 @@
 #include "bench/study/grasp_trial.hpp"
 #include "bench/study/study_cases.hpp"
 #include "bench/study/trial_variation.hpp"
-#include "hand/hand_yaml.hpp"
+#include "hand/config/hand_yaml.hpp"
 #include "physics_node/physics/scene.hpp"
 
 namespace vcockpit::study {
@@ -106,7 +106,7 @@ TEST(StudyVariation, TheApproachIsOffsetOnTheWayAndNotWhereTheHandArrives) {
   v.approach_offset_G[0] = {0.02, -0.01, 0.015};
   v.aperture_scale = 0.9;
   const double approach_end_s = 2.0;
-  const auto varied = vary_approach(samples, v, 0, approach_end_s, hand);
+  const auto varied = vary_approach(samples, v, 0, approach_end_s, approach_end_s, hand);
   const auto offset_G = [&](std::size_t k) {
     return hand.tracker.X_GM.linear() * (varied[k].p_MT_m - samples[k].p_MT_m);
   };
@@ -117,6 +117,17 @@ TEST(StudyVariation, TheApproachIsOffsetOnTheWayAndNotWhereTheHandArrives) {
   const auto pip = static_cast<int>(hand::Joint::kIndexPip);
   EXPECT_NEAR(varied[100].joints_rad[pip], 0.45, 1e-12);  // the approach: x 0.9
   EXPECT_NEAR(varied[290].joints_rad[pip], 0.5, 1e-12);   // the grip closed: the script's
+
+  // a hand beside the object at 1.2 s, sliding in until its grip closes at 2.0 s: no offset on
+  // the slide, the aperture as before
+  const auto slid = vary_approach(samples, v, 0, 1.2, approach_end_s, hand);
+  const auto slid_offset_G = [&](std::size_t k) {
+    return hand.tracker.X_GM.linear() * (slid[k].p_MT_m - samples[k].p_MT_m);
+  };
+  EXPECT_LT((slid_offset_G(90) - v.approach_offset_G[0]).norm(), 1e-9);  // largest at 0.75 x 1.2 s
+  EXPECT_LT(slid_offset_G(120).norm(), 1e-12);
+  EXPECT_LT(slid_offset_G(160).norm(), 1e-12);
+  EXPECT_NEAR(slid[100].joints_rad[pip], 0.45, 1e-12);
 }
 
 // One trial end to end: the cup's gesture as scripted, under the project's rule and under the
