@@ -21,7 +21,12 @@ Pass, all of:
     in the second half may be at most 1.25x the first half's plus 1 a second (0.1 % of the 1 kHz
     steps). A leak or a loop that slows over time makes late steps accelerate; a busy or small
     machine makes them at a steady rate, which the ratio and the allowance absorb (the count
-    itself is not bounded: it depends on the machine, not on the run's length);
+    itself is not bounded: it depends on the machine, not on the run's length). A physics node
+    late on more than 10 % of its steps in the first half is starved of CPU (2 cores for five
+    processes, one rendering): its late steps then follow the scheduler, not the run (measured:
+    296-715 a second from one 10 s sample to the next, and a 2-minute soak failed the ratio with
+    nothing changed), so they are reported and not judged; the CPU check below still catches a
+    loop whose work grows;
   - CPU: per process, the mean over the last quarter of the run may be at most 1.25x the mean
     over the first quarter after warm-up plus 5 points (of one core): a reader whose work grows
     with the run's length (it once did: Fast DDS walking an ever wider hole in a keep-last
@@ -44,6 +49,7 @@ QOS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "config", "
 WARMUP_FRACTION, WARMUP_MIN_S = 0.2, 30.0
 RSS_GROWTH_MAX = 0.05
 LATE_RATIO, LATE_ALLOWANCE_PER_S = 1.25, 1.0
+STARVED_LATE_SHARE = 0.10  # of the steps: beyond it late steps measure the machine
 CPU_RATIO, CPU_ALLOWANCE_PCT = 1.25, 5.0
 
 
@@ -340,7 +346,13 @@ def evaluate(rows, names, run_s):
         mid = min(late[1:-1], key=lambda p: abs(p[0] - mid_t))
         rate1 = (mid[1] - late[0][1]) / (mid[0] - late[0][0])  # late steps a second
         rate2 = (late[-1][1] - mid[1]) / (late[-1][0] - mid[0])
-        if rate2 > LATE_RATIO * rate1 + LATE_ALLOWANCE_PER_S:
+        step_hz = [h for h in (num(r, "physics_step_hz") for r in post) if h]
+        starved = bool(step_hz) and rate1 > STARVED_LATE_SHARE * statistics.mean(step_hz)
+        if starved:
+            print(f"soak: late steps not judged: {rate1:.1f}/s in the first half after warm-up, "
+                  f"{rate2:.1f}/s in the second, over {100 * STARVED_LATE_SHARE:.0f} % of the "
+                  f"{statistics.mean(step_hz):.0f} steps a second (the physics node is starved of CPU)")
+        elif rate2 > LATE_RATIO * rate1 + LATE_ALLOWANCE_PER_S:
             failures.append(f"late steps accelerate: {rate1:.1f}/s in the first half after warm-up, "
                             f"{rate2:.1f}/s in the second (allowed {LATE_RATIO * rate1 + LATE_ALLOWANCE_PER_S:.1f}/s)")
     else:
