@@ -77,8 +77,10 @@ void merge_by_pair(const std::vector<const std::vector<ContactPoint>*>& lists,
 }  // namespace
 
 const char* stage_name(Stage stage) {
-  static constexpr const char* kNames[] = {"hand_kinematics", "broadphase", "narrowphase",
-                                           "forces", "grasp", "integrate"};
+  static constexpr const char* kNames[] = {"substep_choice", "hand_kinematics", "broadphase",
+                                           "narrowphase", "proxy_hand", "forces", "integrate",
+                                           "body_check", "grasp"};
+  static_assert(std::size(kNames) == kStageCount, "a name per stage");
   return kNames[static_cast<int>(stage)];
 }
 
@@ -90,7 +92,8 @@ World::World(Scene scene)
       grasp_tracker_(scene_.grasp, scene_.step_s, scene_.gravity_mps2, scene_.hand_material.mu_s),
       body_check_(scene_),
       object_count_(static_cast<int>(scene_.objects.size())),
-      step_ns_(std::llround(scene_.step_s * 1e9)) {
+      step_ns_(std::llround(scene_.step_s * 1e9)),
+      controls_(scene_, state_) {
   if (scene_.contact.max_substeps < 1 || !(scene_.step_s > 0.0))
     throw std::invalid_argument("World: the step and max_substeps must be positive");
   const std::size_t hand_count = scene_.hands.size();
@@ -139,41 +142,8 @@ World::World(Scene scene)
     for (HandState& hs : state_.hands) hs.grasp[i] = grasp_tracker_.initial_hold(o);
     I_O_inv_[i] = o.dynamic ? Eigen::Matrix3d(o.I_O.inverse()) : Eigen::Matrix3d::Zero();
   }
-  const int control_count = static_cast<int>(scene_.controls.size());
-  state_.controls.resize(control_count);
-  control_inertia_.resize(control_count);
-  control_grasp_joint_.resize(control_count);
-  control_push_link_.assign(control_count, -1);
-  control_push_hand_.assign(control_count, -1);
-  control_push_N_.assign(control_count, 0.0);
-  control_touched_.assign(control_count, 0);
-  control_commanded_.assign(control_count, -1);
-  control_at_rest_.assign(control_count, 0);
-  control_push_Q_.assign(control_count, 0.0);
-  for (int ci = 0; ci < control_count; ++ci) {
-    const ControlSpec& c = scene_.controls[ci];
-    VCOCKPIT_ASSERT(c.body >= 0 && c.body < object_count_ && scene_.objects[c.body].control == ci &&
-                        scene_.objects[c.body].dynamic && !c.positions.empty(),
-                    "a control moves a dynamic object of its own and has positions");
-    const ObjectSpec& o = scene_.objects[c.body];
-    control_inertia_[ci] = joint_inertia(c, o.mass_kg, o.I_O);
-    GraspJoint& joint = control_grasp_joint_[ci];
-    joint.revolute = c.joint == JointKind::kRevolute;
-    joint.axis_G = joint_axis_G(c);
-    joint.origin_G = joint_origin_G(c);
-    ControlState& s = state_.controls[ci];
-    s.q = c.q_initial;
-    // the position nearest the initial coordinate, then the one it is in (no event)
-    double nearest = std::abs(c.positions[0].q - s.q);
-    for (std::size_t p = 1; p < c.positions.size(); ++p) {
-      if (std::abs(c.positions[p].q - s.q) < nearest) {
-        nearest = std::abs(c.positions[p].q - s.q);
-        s.position = static_cast<int>(p);
-      }
-    }
-    if (c.latching) s.position = 0;
-    update_position(c, s);
-    place_control(ci);
+  controls_.start();
+  for (const ControlSpec& c : scene_.controls) {
     X_GO_[c.body] = state_.bodies[c.body].X_GO;
     X_GO_before_[c.body] = X_GO_[c.body];
   }
@@ -246,9 +216,7 @@ void World::restore(const WorldState& state) {
   // the last step's observations belong to the world the state came from
   applied_.clear();
   events_.clear();
-  control_events_.clear();
-  std::fill(control_at_rest_.begin(), control_at_rest_.end(), 0);
-  std::fill(control_commanded_.begin(), control_commanded_.end(), -1);
+  controls_.forget_step();
   stage_times_ = StageTimes{};
   penetration_ = PenetrationStats{};
   body_check_.clear_new_faults();
@@ -259,7 +227,6 @@ void World::reset_objects(const WorldState& saved) {
                       saved.controls.size() == state_.controls.size(),
                   "a world state of another scene (object or control count)");
   events_.clear();
-  control_events_.clear();
   applied_.clear();
   const int64_t t_ns = state_.time_ns;
   for (std::size_t h = 0; h < hands_.size(); ++h) {
@@ -286,26 +253,8 @@ void World::reset_objects(const WorldState& saved) {
     body.holders = 0;
     body.held_by = kNotHeld;
   }
-  for (std::size_t ci = 0; ci < state_.controls.size(); ++ci) {
-    const int from = state_.controls[ci].position;
-    ControlState& c = state_.controls[ci];
-    c = saved.controls[ci];
-    c.push_hand = -1;
-    c.push_link = -1;
-    c.push_direction = 0;
-    if (c.position != from) {
-      ControlEvent e;
-      e.t_ns = t_ns;
-      e.control = static_cast<int>(ci);
-      e.from = from;
-      e.to = c.position;
-      e.cause = ControlCause::kCommanded;
-      control_events_.push_back(e);
-    }
-  }
+  controls_.reset_to(saved.controls, t_ns);
   state_.anchors.clear();
-  std::fill(control_at_rest_.begin(), control_at_rest_.end(), 0);
-  std::fill(control_commanded_.begin(), control_commanded_.end(), -1);
 }
 
 void World::set_hand_input(const HandInput& input, int hand) {
@@ -326,28 +275,7 @@ void World::set_hand_input(const HandInput& input, int hand) {
 void World::step() {
   stage_times_ = StageTimes{};
   events_.clear();
-  control_events_.clear();
-  for (int ci = 0; ci < static_cast<int>(control_commanded_.size()); ++ci) {
-    const int position = control_commanded_[ci];
-    if (position < 0) continue;
-    control_commanded_[ci] = -1;
-    const ControlSpec& c = scene_.controls[ci];
-    ControlState& s = state_.controls[ci];
-    if (state_.bodies[c.body].held()) continue;  // a hand took it meanwhile
-    if (c.latching) {
-      s.latched = position == 1;
-      s.q = spring_rest(c, s);
-    } else {
-      s.q = c.positions[static_cast<std::size_t>(position)].q;
-    }
-    s.qd = 0.0;
-    s.push_hand = -1;
-    s.push_link = -1;
-    s.push_direction = 0;
-    place_control(ci);
-    control_at_rest_[ci] = 0;
-    note_control_position(ci, ControlCause::kCommanded, -1, -1);
-  }
+  controls_.begin_step();
   body_check_.clear_new_faults();
   std::copy(state_.bodies.begin(), state_.bodies.end(), start_bodies_.begin());
   // a held object and the hand move together: their contacts matter to the grasp test only,
@@ -366,7 +294,7 @@ void World::step() {
     }
   }
   {
-    StageTimer timer(stage_times_, Stage::kBroadphase);
+    StageTimer timer(stage_times_, Stage::kSubstepChoice);
     state_.substeps = choose_substeps(any_held);
   }
   VCOCKPIT_ASSERT(state_.substeps >= 1 && state_.substeps <= scene_.contact.max_substeps,
@@ -393,7 +321,7 @@ void World::step() {
   state_.time_ns += step_ns_;
   ++state_.steps;
   {
-    StageTimer timer(stage_times_, Stage::kIntegrate);
+    StageTimer timer(stage_times_, Stage::kBodyCheck);
     body_check_.check(state_.bodies, start_bodies_, state_.time_ns);
   }
   grasp_stage();
@@ -425,7 +353,7 @@ void World::substep(double dt_s, double alpha, int remaining, bool skip_held_han
     collision_.compute_contacts(contacts_, has_proxy() ? &hand_static_ : nullptr);
   }
   if (has_proxy()) {
-    StageTimer timer(stage_times_, Stage::kHandKinematics);
+    StageTimer timer(stage_times_, Stage::kProxyHand);
     constrain_proxies(dt_s);
   }
   {
@@ -438,7 +366,7 @@ void World::substep(double dt_s, double alpha, int remaining, bool skip_held_han
     KeptPairs kept;
     if (skip_held_hand_pairs) kept = {&held_mask_, object_count_};
     forces_.apply(contacts_, contact_bodies_, dt_s, F_G_, M_G_, applied_, state_.anchors, kept);
-    if (!scene_.controls.empty()) find_control_pushers();
+    if (!controls_.empty()) controls_.find_pushers(applied_, collision_);
   }
   {
     StageTimer timer(stage_times_, Stage::kIntegrate);
@@ -626,8 +554,10 @@ void World::move_held_objects(double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
     BodyState& body = state_.bodies[i];
     if (!body.held()) continue;
-    if (scene_.objects[i].control >= 0) {
-      move_held_control(scene_.objects[i].control, dt_s);
+    if (const int control = scene_.objects[i].control; control >= 0) {
+      // eq. 29 restricted to the joint
+      const int hand = holder_of(body);
+      controls_.move_held(control, hand, hand_state(hand).X_GH, X_HO(i, hand).translation(), dt_s);
       continue;
     }
     X_GO_before_[i] = body.X_GO;
@@ -695,166 +625,11 @@ void World::integrate(double dt_s) {
     const Eigen::Vector3d F = total_force_G(F_G_[i], o.mass_kg, scene_.gravity_mps2);  // eq. 18
     integrate_body(body, F, M_G_[i], o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
   }
-  if (!scene_.controls.empty()) integrate_controls(dt_s);
+  if (!controls_.empty()) controls_.integrate(F_G_, M_G_, dt_s);
 }
 
 bool World::command_control(int control, int position) {
-  if (control < 0 || control >= static_cast<int>(scene_.controls.size())) return false;
-  const ControlSpec& c = scene_.controls[control];
-  if (position < 0 || position >= static_cast<int>(c.positions.size())) return false;
-  if (state_.bodies[c.body].held()) return false;
-  control_commanded_[control] = position;
-  return true;
-}
-
-void World::integrate_controls(double dt_s) {
-  for (int ci = 0; ci < static_cast<int>(scene_.controls.size()); ++ci) {
-    const ControlSpec& c = scene_.controls[ci];
-    BodyState& body = state_.bodies[c.body];
-    if (body.held()) continue;  // moved with the hand (move_held_control)
-    const ObjectSpec& o = scene_.objects[c.body];
-    // a control its last substep left where it was, at rest, with nothing touching it now, stays
-    // there exactly (the same inputs give the same step): most of a cockpit's controls, always
-    const bool untouched = F_G_[c.body].isZero(0.0) && M_G_[c.body].isZero(0.0);
-    if (untouched && control_at_rest_[ci] != 0) continue;
-    // eqs. 18-19 on the body, gravity included, projected onto the joint
-    const Eigen::Vector3d F_G = total_force_G(F_G_[c.body], o.mass_kg, scene_.gravity_mps2);
-    const double Q = generalised_force(c, body.X_GO.translation(), F_G, M_G_[c.body]);
-    ControlState& s = state_.controls[ci];
-    const double q_before = s.q;
-    integrate_control(c, control_inertia_[ci], Q, dt_s, 0u, s);
-    control_at_rest_[ci] = untouched && s.q == q_before && s.qd == 0.0 ? 1 : 0;
-    if (s.q != q_before || s.qd != 0.0 || body.v_G.squaredNorm() + body.w_G.squaredNorm() != 0.0)
-      place_control(ci);
-    // pushed: the hand's force drives the motion (a button that springs back out against a
-    // withdrawing fingertip is returned by its spring), or drove it and the control goes on the
-    // same way (a toggle snapping over once the finger has pushed it past its centre)
-    if (control_push_link_[ci] >= 0 && control_push_Q_[ci] * s.qd > 0.0) {
-      s.push_hand = control_push_hand_[ci];
-      s.push_link = control_push_link_[ci];
-      s.push_direction = s.qd > 0.0 ? 1 : -1;
-    } else if (s.push_direction * s.qd <= 0.0) {
-      s.push_hand = -1;
-      s.push_link = -1;
-      s.push_direction = 0;
-    }
-    if (s.push_direction != 0) {
-      note_control_position(ci, ControlCause::kPushed, hand_id(s.push_hand), s.push_link);
-    } else {
-      note_control_position(ci, control_touched_[ci] != 0 ? ControlCause::kObject
-                                                          : ControlCause::kMechanism,
-                            -1, -1);
-    }
-  }
-}
-
-// eq. 29 restricted to the joint: the coordinate the hand's motion since the grasp asks for,
-// as far as the travel and the gates (open only while the hand has lifted the lever) let it go
-void World::move_held_control(int control, double dt_s) {
-  const ControlSpec& c = scene_.controls[control];
-  ControlState& s = state_.controls[control];
-  const int hand = holder_of(state_.bodies[c.body]);
-  const Eigen::Isometry3d& X_GH = hand_state(hand).X_GH;
-  const Eigen::Vector3d p_held_H = X_HO(c.body, hand).translation();
-  const double lift_m = grasped_lift_m(c, s, X_GH, p_held_H);
-  uint32_t gates_open = 0;
-  for (std::size_t g = 0; g < c.gates.size(); ++g)
-    if (lift_m >= c.gates[g].lift_m) gates_open |= 1u << g;
-  const double q = reachable_q(c, s.q, grasped_q(c, s, X_GH, p_held_H), gates_open);
-  s.qd = (q - s.q) / dt_s;
-  s.q = q;
-  s.push_hand = -1;
-  s.push_link = -1;
-  s.push_direction = 0;
-  place_control(control);
-  control_at_rest_[control] = 0;
-  note_control_position(control, ControlCause::kGrasped, hand_id(hand), -1);
-}
-
-void World::place_control(int control) {
-  const ControlSpec& c = scene_.controls[control];
-  const ControlState& s = state_.controls[control];
-  BodyState& body = state_.bodies[c.body];
-  body.X_GO = control_body_pose(c, s.q);
-  const Eigen::Vector3d a = joint_axis_G(c);
-  if (c.joint == JointKind::kPrismatic) {
-    body.v_G = s.qd * a;
-    body.w_G.setZero();
-  } else {
-    body.w_G = s.qd * a;
-    body.v_G = body.w_G.cross(body.X_GO.translation() - joint_origin_G(c));
-  }
-}
-
-void World::note_control_position(int control, ControlCause cause, int hand_id, int link) {
-  ControlState& s = state_.controls[control];
-  const int from = s.position;
-  if (!update_position(scene_.controls[control], s)) return;
-  ControlEvent e;
-  e.t_ns = state_.time_ns + step_ns_;  // the end of the step it happens in
-  e.control = control;
-  e.from = from;
-  e.to = s.position;
-  e.cause = cause;
-  e.hand_id = hand_id;
-  e.link = link;
-  control_events_.push_back(e);
-}
-
-// who pushes each control in this substep: the hand link with the largest normal force on its
-// body, or another object
-void World::find_control_pushers() {
-  std::fill(control_push_link_.begin(), control_push_link_.end(), -1);
-  std::fill(control_push_hand_.begin(), control_push_hand_.end(), -1);
-  std::fill(control_push_N_.begin(), control_push_N_.end(), 0.0);
-  std::fill(control_touched_.begin(), control_touched_.end(), 0);
-  std::fill(control_push_Q_.begin(), control_push_Q_.end(), 0.0);
-  for (const AppliedContact& a : applied_) {
-    const int body_a = a.contact.body_a;
-    const int body_b = a.contact.body_b;
-    for (const auto& [body, other] : {std::pair{body_a, body_b}, std::pair{body_b, body_a}}) {
-      if (body >= object_count_) continue;
-      const int ci = scene_.objects[body].control;
-      if (ci < 0) continue;
-      if (collision_.is_hand_body(other)) {
-        if (a.normal_N > control_push_N_[ci]) {
-          control_push_N_[ci] = a.normal_N;
-          control_push_link_[ci] = static_cast<int>(collision_.link_of_body(other));
-          control_push_hand_[ci] = collision_.hand_of_body(other);
-        }
-        // the hand's generalised force on the control: its contact force at the contact point
-        const Eigen::Vector3d F_G = body == body_b ? a.F_on_b_G : Eigen::Vector3d(-a.F_on_b_G);
-        const ControlSpec& c = scene_.controls[ci];
-        control_push_Q_[ci] +=
-            c.joint == JointKind::kPrismatic
-                ? joint_axis_G(c).dot(F_G)
-                : joint_axis_G(c).dot((a.contact.p_G - joint_origin_G(c)).cross(F_G));
-      } else {
-        control_touched_[ci] = 1;
-      }
-    }
-  }
-}
-
-// A grasp of a control takes the hand's pose and the coordinate as the projection's reference; a
-// release leaves the control with the hand's velocity along its joint.
-void World::controls_after_grasp_stage() {
-  for (const GraspEvent& e : events_) {
-    const int ci = scene_.objects[e.object].control;
-    if (ci < 0) continue;
-    const ControlSpec& c = scene_.controls[ci];
-    ControlState& s = state_.controls[ci];
-    const BodyState& body = state_.bodies[c.body];
-    if (e.grasp) {
-      s.X_GH_grasp = hand_state(hand_index(e.hand_id)).X_GH;
-      s.q_grasp = s.q;
-    } else if (!body.held()) {  // (handed over: the other hand's grasp follows)
-      const Eigen::Vector3d a = joint_axis_G(c);
-      s.qd = c.joint == JointKind::kPrismatic ? a.dot(body.v_G) : a.dot(body.w_G);
-      place_control(ci);
-      control_at_rest_[ci] = 0;
-    }
-  }
+  return controls_.command(control, position);
 }
 
 void World::grasp_stage() {
@@ -882,7 +657,7 @@ void World::grasp_stage() {
       on.tracked_links_near = on.grip_known ? tracked_links_near(static_cast<int>(h), object, hold) : 0u;
     }
     grasp_tracker_.update_hands(object, o, on_object_.data(), on_object_.size(), state_.bodies[object],
-                                events_, o.control >= 0 ? &control_grasp_joint_[o.control] : nullptr);
+                                events_, controls_.grasp_joint_of(object));
   };
   const auto clear_hand_contacts = [&] {
     for (HandSim& sim : hands_) sim.on_object.clear();
@@ -927,7 +702,7 @@ void World::grasp_stage() {
         grasp_tracker_.record_held_pose(state_.hands[h].grasp[o], body);
   }
   name_holders();
-  if (!scene_.controls.empty()) controls_after_grasp_stage();
+  if (!controls_.empty()) controls_.after_grasp(events_);
 }
 
 void World::name_holders() {

@@ -1,9 +1,11 @@
 #pragma once
-// One world step (paper §4, Box2D's b2World_Step in spirit), in named, timed stages:
-//   hand kinematics -> broadphase -> narrowphase -> virtual forces -> (grasp) -> motion
-// repeated over substeps short enough for the stiffest contact that can happen within the step
-// (dt_sub <= safety sqrt(m/k) over the pairs whose boxes, grown by how far they can move, meet),
-// then the grasp test on the last substep's contacts: attach (eqs. 28-29) or release.
+// One world step (paper §4, Box2D's b2World_Step in spirit), in named, timed stages: the
+// substep count, chosen short enough for the stiffest contact that can happen within the step
+// (dt_sub <= safety sqrt(m/k) over the pairs whose boxes, grown by how far they can move, meet);
+// then over each substep
+//   hand kinematics -> broadphase -> narrowphase -> proxy hand -> virtual forces -> motion
+// then the body check, and the grasp test on the last substep's contacts: attach (eqs. 28-29)
+// or release. The world orchestrates; each stage is a system of its own file.
 //
 // Deterministic: fixed steps, no clock in the results (stage timings are observations only),
 // every container iterated in a fixed order. The same scene and inputs give bit-identical states.
@@ -13,8 +15,9 @@
 // of the world is per-step scratch. state() / restore() take and put back that state.
 //
 // The stages live in their own files: substep_choice (how many substeps), collision and
-// manifold_clipper (contacts), contact_forces with normal_force / friction_force /
-// contact_sums (eqs. 11-19), integrator (eqs. 20-25), grasp and grasp_tracker (eqs. 28-31).
+// manifold_clipper (contacts), proxy_hand (the hand that stops at surfaces), contact_forces with
+// normal_force / friction_force / contact_sums (eqs. 11-19), integrator (eqs. 20-25),
+// control_system (the cockpit's controls), body_check, grasp and grasp_tracker (eqs. 28-31).
 
 #include <Eigen/Geometry>
 
@@ -28,6 +31,7 @@
 #include "physics_node/physics/broadphase.hpp"
 #include "physics_node/physics/collision.hpp"
 #include "physics_node/physics/contact_forces.hpp"
+#include "physics_node/physics/control_system.hpp"
 #include "physics_node/physics/grasp.hpp"
 #include "physics_node/physics/grasp_tracker.hpp"
 #include "physics_node/physics/proxy_hand.hpp"
@@ -37,8 +41,10 @@
 
 namespace vcockpit::physics {
 
+// In the order a step runs them; each is timed where it runs and nowhere else.
 enum class Stage : uint8_t {
-  kHandKinematics, kBroadphase, kNarrowphase, kForces, kGrasp, kIntegrate, kCount
+  kSubstepChoice, kHandKinematics, kBroadphase, kNarrowphase, kProxyHand, kForces, kIntegrate,
+  kBodyCheck, kGrasp, kCount
 };
 constexpr int kStageCount = static_cast<int>(Stage::kCount);
 const char* stage_name(Stage stage);
@@ -125,7 +131,7 @@ class World {
 
   // Observations of the last step (empty after a restore until the next step).
   const std::vector<GraspEvent>& step_events() const { return events_; }
-  const std::vector<ControlEvent>& control_events() const { return control_events_; }
+  const std::vector<ControlEvent>& control_events() const { return controls_.events(); }
   const std::vector<AppliedContact>& contacts() const { return applied_; }
   const StageTimes& stage_times() const { return stage_times_; }
   // over every hand
@@ -190,15 +196,6 @@ class World {
   void integrate(double dt_s);
   void grasp_stage();
   void name_holders();  // BodyState::held_by from holders
-  // controls (control.hpp): the free motion of each one not held, the held ones projected from
-  // the hand, the pose and velocity of a control's body from its coordinate, and its discrete
-  // position's change as an event
-  void integrate_controls(double dt_s);
-  void move_held_control(int control, double dt_s);
-  void place_control(int control);
-  void note_control_position(int control, ControlCause cause, int hand_id, int link);
-  void find_control_pushers();
-  void controls_after_grasp_stage();
   int holder_of(const BodyState& body) const;  // the first hand holding it, or -1
 
   // the model and the stages: built once; what they keep between steps (sweep orders, work
@@ -213,10 +210,9 @@ class World {
   int object_count_;
   int64_t step_ns_;
   std::vector<Eigen::Matrix3d> I_O_inv_;  // inverse body-frame inertia, dynamic objects
-  std::vector<double> control_inertia_;    // per control: its body's inertia along the joint
-  std::vector<GraspJoint> control_grasp_joint_;  // per control: its joint, for the grasp test
 
   WorldState state_;
+  ControlSystem controls_;  // moves state_'s controls (after state_: it keeps a reference)
 
   // scratch: rebuilt every step or substep before it is read
   std::vector<Eigen::Isometry3d> X_GO_;         // collision input, all objects
@@ -236,14 +232,6 @@ class World {
   // observations of the last step
   std::vector<AppliedContact> applied_;
   std::vector<GraspEvent> events_;
-  std::vector<ControlEvent> control_events_;
-  std::vector<int> control_push_link_;    // per control, this substep: the hand link pushing it hardest
-  std::vector<int> control_push_hand_;    // ... and its hand
-  std::vector<double> control_push_N_;    // ... and its normal force
-  std::vector<double> control_push_Q_;    // ... and the hands' generalised force on it
-  std::vector<uint8_t> control_touched_;  // ... touched by another object
-  std::vector<int> control_commanded_;    // per control: the position commanded since the last step, -1
-  std::vector<uint8_t> control_at_rest_;  // per control: its last free substep changed nothing
   StageTimes stage_times_;
   PenetrationStats penetration_;
 };

@@ -226,7 +226,7 @@ TEST(RunOutputs, ASummaryWithNonFiniteFiguresParsesAndCountsThem) {
   s.simulated_s = 0.01;
   s.penetration_max_m = kInf;
   s.stage_total_s.assign(physics::kStageCount, 0.0);
-  s.stage_total_s[2] = kNaN;
+  s.stage_total_s[static_cast<int>(physics::Stage::kNarrowphase)] = kNaN;
   s.non_finite_refused = 5;  // from the other two files
   const std::string path = make_temp_dir("run_outputs_test") + "/summary.json";
   CapturedLog log;
