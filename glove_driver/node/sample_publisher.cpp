@@ -5,6 +5,7 @@
 #include "common/clock.hpp"
 #include "common/signals.hpp"
 #include "idl/topics/hand_sample_convert.hpp"
+#include "idl/topics/node_status_convert.hpp"
 
 namespace vcockpit::glove {
 
@@ -95,19 +96,7 @@ void SamplePublisher::publish_status(cockpit::NodeState state, int64_t now_ns) {
                                    : 0.0);
   status.published(published_);
   status.received(c.accepted);
-  status.rejected(c.rejected());
-  status.rejected_nonfinite(c.rejected_nonfinite);
-  status.rejected_out_of_range(c.rejected_out_of_range);
-  status.rejected_stale(c.rejected_stale);
-  status.clamped(c.clamped);
-  status.missing_columns(c.missing_columns);
-  status.intervals(c.intervals);
-  status.intervals_interpolated(c.intervals_interpolated);
-  status.gaps_bridged(c.gaps_bridged);
-  status.gaps_not_bridged(c.gaps_not_bridged);
-  status.intervals_late(c.intervals_late);
-  status.longest_interval_s(static_cast<double>(c.longest_interval_ns) * 1e-9);
-  status.glove_lost(c.glove_lost);
+  set_input_counts(c, status);
   status.input_delay_ms(0.0);
   status.input_alive(true);
   status.detail(std::string(options_.lockstep ? "lockstep" : "stream") + ", " +
