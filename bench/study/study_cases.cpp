@@ -79,24 +79,27 @@ std::vector<ControlChange> knob_changes() {
 
 const std::vector<StudyObject>& study_objects() {
   // place_G, approach_end_s and arrive_s from each script's keyframes (its comments say where it
-  // sets the object down); the heavy bar is lifted 10 cm and set down where it lay. The checklist's
-  // hand is beside the board's edge, at the board's height, at 1.4 s, and slides in under and over
-  // it until 2.0 s; its grip closes from 2.2 s.
+  // sets the object down); the heavy bar is lifted 10 cm and set down where it lay. arrive_s is
+  // the keyframe that puts the hand at the object, before it moves round, onto or in to it: 10 cm
+  // over the cup, the ball, the flashlight and the bar; beside the checklist's edge at the
+  // board's height (it then slides in under and over the board until 2.0 s); 4.7 cm back from
+  // the knobs, aimed at them; over the levers.
   static const std::vector<StudyObject> kObjects = {
-      {"cup", {{"cup_pick_place.yaml"}}, {0.36, -0.43, 0.75}, 2.0, {}, {}},
-      {"ball", {{"ball_pick_place.yaml"}}, {0.58, -0.44, 0.73}, 2.1, {}, {}},
-      {"flashlight", {{"flashlight_pick_place.yaml"}}, {0.565, -0.30, 0.718}, 2.1, {}, {}},
+      {"cup", {{"cup_pick_place.yaml"}}, {0.36, -0.43, 0.75}, 2.0, {}, {}, 1.0},
+      {"ball", {{"ball_pick_place.yaml"}}, {0.58, -0.44, 0.73}, 2.1, {}, {}, 1.1},
+      {"flashlight", {{"flashlight_pick_place.yaml"}}, {0.565, -0.30, 0.718}, 2.1, {}, {}, 1.1},
       {"checklist", {{"checklist_pick_place.yaml"}}, {0.31, -0.228, 0.704}, 2.2, {}, {}, 1.4},
       {"heavy_bar",
        {{"two_hand_lift_right.yaml"}, {"two_hand_lift_left.yaml", true}},
        {0.72, 0.0, 1.096},
        2.2,
        {},
-       {}},
+       {},
+       1.2},
       // the grasped controls: what their gestures do (tests/scenario/control_logs_test.cpp pins
       // the same changes for the bundled logs)
       {"knobs", {{"panel_knobs.yaml"}}, Eigen::Vector3d::Zero(), 1.9, {"nav_mode", "heading_bug"},
-       knob_changes()},
+       knob_changes(), 1.0},
       {"levers", {{"pedestal_levers.yaml"}}, Eigen::Vector3d::Zero(), 4.0, {"throttle", "flaps"},
        {{"throttle", "idle", "cutoff"},
         {"throttle", "cutoff", "idle"},
@@ -105,7 +108,8 @@ const std::vector<StudyObject>& study_objects() {
         {"flaps", "up", "approach"},
         {"flaps", "approach", "landing"},
         {"flaps", "landing", "approach"},
-        {"flaps", "approach", "up"}}},
+        {"flaps", "approach", "up"}},
+       3.2},
   };
   return kObjects;
 }

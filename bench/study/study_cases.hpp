@@ -76,10 +76,11 @@ struct StudyObject {
   // trial succeeds when it makes exactly these).
   std::vector<std::string> controls;
   std::vector<ControlChange> changes;
-  // when the script's hand is beside the object (s): the trial's approach path is offset before
-  // it and not after (0: approach_end_s). Where a script slides the hand in along a surface
-  // before the grip closes (the checklist's edge), a person guides that last slide by sight with
-  // the hand a centimetre from the object, as the script does.
+  // when the script's hand is at the object, before it moves round, onto or in to it (s): the
+  // trial's approach path is offset before it and not after (0: approach_end_s). A person
+  // reaches from any side, but guides the last few centimetres round a cup, onto a knob or
+  // along a board's edge by sight, clear of the object as the script is: an offset kept into
+  // them (up to 2.5 cm) put a small hand's thumb on the cup's rim, pressing it over.
   double arrive_s = 0.0;
   double offset_gone_s() const { return arrive_s > 0.0 ? arrive_s : approach_end_s; }
   bool is_control() const { return !controls.empty(); }
