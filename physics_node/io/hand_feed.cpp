@@ -3,8 +3,13 @@
 namespace vcockpit::physics_io {
 
 void HandFeed::queue(const hand::GloveSample& sample, int64_t source_stamp_ns) {
-  if (next_ == queued_.size()) {  // all taken: start the queue over (no growth in a long run)
+  // what was taken is let go: all of it when the queue ran dry, else once it is the larger part
+  // (a source that stays ahead of the world never lets the queue run dry: no growth in a long run)
+  if (next_ == queued_.size()) {
     queued_.clear();
+    next_ = 0;
+  } else if (next_ >= 64 && next_ * 2 >= queued_.size()) {
+    queued_.erase(queued_.begin(), queued_.begin() + static_cast<std::ptrdiff_t>(next_));
     next_ = 0;
   }
   queued_.push_back({sample, source_stamp_ns});

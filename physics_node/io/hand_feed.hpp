@@ -21,6 +21,11 @@ class HandFeed {
   // Queues a sample (newer than those queued); source_stamp_ns goes with it to the driver.
   void queue(const hand::GloveSample& sample, int64_t source_stamp_ns = 0);
   bool has_queued() const { return next_ < queued_.size(); }
+  // Samples queued and not taken yet.
+  std::size_t queued_count() const { return queued_.size() - next_; }
+  // Samples stored: the queued ones and taken ones not let go yet (at most about twice the
+  // queued ones: a long run does not grow it).
+  std::size_t stored_count() const { return queued_.size(); }
   // The oldest queued sample not taken yet (has_queued() first).
   const hand::GloveSample& front() const { return queued_[next_].sample; }
   // A new source: what the old one sent and was not taken is dropped.

@@ -56,8 +56,14 @@ class HandChannels {
   // latencies to `stats`. No allocation.
   template <class OnSample>
   void drain(LoopStats& stats, OnSample on_sample) {
+    drain_while(stats, on_sample, [] { return true; });
+  }
+  // The same, while `more()` says so: what is left waits in DDS (lockstep: a reliable keep-all
+  // reader that is not taken from holds its writer back).
+  template <class OnSample, class More>
+  void drain_while(LoopStats& stats, OnSample on_sample, More more) {
     dds::SampleInfo info;
-    while (reader_.take(message_, &info)) {
+    while (more() && reader_.take(message_, &info)) {
       const int64_t take_ns = monotonic_now_ns();
       HandChannel* ch = accept(info);
       if (ch == nullptr) continue;
@@ -65,6 +71,12 @@ class HandChannels {
       ch->last_sample_wall_ns = take_ns;
       on_sample(*ch, sample_, new_source_, take_ns);
     }
+  }
+  // Lockstep: some hand has at least `count` samples queued that the world has not taken.
+  bool any_feed_holds(std::size_t count) const {
+    for (const HandChannel& ch : channels_)
+      if (ch.feed.queued_count() >= count) return true;
+    return false;
   }
   // Lockstep: waits up to `timeout_ns` for samples; false when none came.
   bool wait_for_data(int64_t timeout_ns) { return reader_.wait_for_data(timeout_ns); }

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -22,6 +23,12 @@
 
 namespace vcockpit::physics_node {
 namespace {
+
+// Lockstep: samples a hand may have queued ahead of the world before the node stops taking more
+// (256 ms of a 1 kHz glove; the world needs one past each step's end), and the wall time it
+// steps between looks at its input, commands and stop.
+constexpr std::size_t kLockstepFeedBound = 256;
+constexpr int64_t kLockstepSliceNs = 10'000'000;
 
 // The node: the world and its pieces (input, stepping, status; publishing and the instructor's
 // commands), and the two modes' loops, which differ only in their pacing.
@@ -191,21 +198,34 @@ int Node::run_lockstep() {
   start_clock();
   int64_t last_publish_ns = 0;
   const int64_t step_ns = std::llround(world_.scene().step_s * 1e9);
+  bool waiting = true;  // the world waits for input (or time is frozen)
   while (!should_stop(monotonic_now_ns())) {
-    const bool idle = !hands_.wait_for_data(20'000'000);
-    hands_.drain(stats_, [&](HandChannel& ch, const hand::GloveSample& s, bool new_source, int64_t) {
-      lockstep_.queue(ch, s, new_source, hands_.source_stamp_ns());
-    });
+    const bool idle = waiting && !hands_.wait_for_data(20'000'000);
+    // a world with samples to step takes no more while a hand has kLockstepFeedBound queued: the
+    // rest waits in DDS and holds the glove driver's writes back, so a world slower than its
+    // glove is never seconds of samples behind (nor is a restarted driver's first sample)
+    hands_.drain_while(
+        stats_,
+        [&](HandChannel& ch, const hand::GloveSample& s, bool new_source, int64_t) {
+          lockstep_.queue(ch, s, new_source, hands_.source_stamp_ns());
+        },
+        [&] { return waiting || !hands_.any_feed_holds(kLockstepFeedBound); });
     take_sim_commands();
     if (sim_.frozen()) lockstep_.hold_frozen();
-    // every step the input allows, as the offline runner steps
-    while (!sim_.frozen()) {
+    // every step the input allows, as the offline runner steps, for one slice of wall time: new
+    // samples (a new source), commands and a stop are seen between slices
+    waiting = sim_.frozen();
+    const int64_t slice_end_ns = monotonic_now_ns() + kLockstepSliceNs;
+    while (!sim_.frozen() && monotonic_now_ns() < slice_end_ns) {
       const int64_t step_end_ns = world_.time_ns() + step_ns;
       bool any = false;
       const bool ready = lockstep_.take_for_step(step_end_ns, any);
       // the offline runner's first row: the hands set by their first samples, before any step
       if (any) stepper_.start_recording_once();
-      if (!ready) break;
+      if (!ready) {
+        waiting = true;
+        break;
+      }
       lockstep_.set_inputs(step_end_ns);
       stepper_.step(stats_);
       dirty = true;

@@ -2,18 +2,22 @@
 // everything: a 33 Hz stream moves the hand over the whole interval between stamps (every step
 // on the straight line, at the recorded speed, never in one step); a gap over the max gap holds
 // the hand; a gap over the glove timeout loses the glove until the next sample; the counts say
-// so; --max-gap 0 is the old behaviour (each sample taken in one step and held).
+// so; --max-gap 0 is the old behaviour (each sample taken in one step and held). The HandFeed
+// in front of it (hand_feed.hpp) takes a source that stays ahead in order, one step at a time,
+// without growing.
 
 #include "physics_node/io/replay_driver.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <vector>
 
 #include "hand/tracker.hpp"
 #include "physics_node/config/scene_config.hpp"
+#include "physics_node/io/hand_feed.hpp"
 #include "physics_node/io/hand_motion_peak.hpp"
 
 namespace vcockpit::physics_io {
@@ -190,6 +194,36 @@ TEST(ReplayDriver, ARestartedSourceStartsAtTheWorldsPresentWithNoIntervalFromThe
   const Eigen::Isometry3d X_GH = hand::X_GH_from_sample(hand, s);
   EXPECT_LT((world.state().hands[0].to.X_GH.translation() - X_GH.translation()).norm(), 1e-12);
   EXPECT_EQ(driver.counts().intervals, 10u);
+}
+
+// A lockstep glove driver stays ahead of its world: the feed always holds samples the world has
+// not reached. Each step takes them in order up to the one at its end and no further, and what
+// was taken is let go although the queue never runs dry.
+TEST(HandFeed, ASourceThatStaysAheadIsTakenInOrderAndItsStoreDoesNotGrow) {
+  physics::World world(cockpit());
+  const hand::HandModel& hand = world.scene().hands[0];
+  ReplayDriver driver(world, hand);
+  HandFeed feed;
+  const int64_t step_ns = std::llround(world.scene().step_s * 1e9);
+  constexpr std::size_t kLead = 100;
+  int64_t next_t_ns = 0;
+  for (std::size_t k = 0; k < kLead; ++k, next_t_ns += step_ns) feed.queue(truth(hand, next_t_ns));
+  std::size_t most_stored = 0;
+  for (int n = 0; n < 5000; ++n) {
+    feed.queue(truth(hand, next_t_ns));
+    next_t_ns += step_ns;
+    const int64_t end_ns = world.time_ns() + step_ns;
+    feed.take_until(driver, end_ns, world.time_ns());
+    ASSERT_EQ(driver.newest_world_ns(), end_ns) << "step " << n;
+    ASSERT_EQ(feed.queued_count(), kLead - 1) << "step " << n;
+    driver.input_for_step_ending(end_ns);
+    world.step();
+    const Eigen::Isometry3d X_GH = hand::X_GH_from_sample(hand, truth(hand, world.time_ns()));
+    ASSERT_LT((world.state().hands[0].to.X_GH.translation() - X_GH.translation()).norm(), 1e-9)
+        << "step " << n;
+    most_stored = std::max(most_stored, feed.stored_count());
+  }
+  EXPECT_LE(most_stored, 2 * kLead + 64) << "the samples taken were kept";
 }
 
 TEST(ReplayDriver, AMaxGapLongerThanTheGloveTimeoutIsRefused) {
