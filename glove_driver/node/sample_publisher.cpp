@@ -72,7 +72,11 @@ void SamplePublisher::tick(int64_t now_ns) {
 
 bool SamplePublisher::finish() {
   bool ok = true;
-  if (options_.lockstep && published_ > 0) {
+  if (options_.lockstep && published_ > 0 && shutdown_requested()) {
+    // stopped (Ctrl-C, the rig stopping): the node holds back what it has not stepped to (its
+    // reader is full), so waiting for every acknowledgement would outlast the launcher's stop
+    writer_.wait_for_acknowledgments(500'000'000);
+  } else if (options_.lockstep && published_ > 0) {
     ok = writer_.wait_for_acknowledgments(seconds_to_ns(options_.match_timeout_s));
     if (!ok) spdlog::error("lockstep: subscribers did not acknowledge every sample");
   } else if (published_ > 0) {
