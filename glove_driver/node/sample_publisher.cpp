@@ -72,16 +72,16 @@ void SamplePublisher::tick(int64_t now_ns) {
 
 bool SamplePublisher::finish() {
   bool ok = true;
-  if (options_.lockstep && published_ > 0 && shutdown_requested()) {
-    // stopped (Ctrl-C, the rig stopping): the node holds back what it has not stepped to (its
-    // reader is full), so waiting for every acknowledgement would outlast the launcher's stop
-    writer_.wait_for_acknowledgments(500'000'000);
-  } else if (options_.lockstep && published_ > 0) {
+  // a lockstep replay that ran to its end waits for every acknowledgement; one stopped (Ctrl-C,
+  // the rig stopping) does not: the node holds back what it has not stepped to (its reader is
+  // full), and waiting for that would outlast the launcher's stop
+  if (options_.lockstep && published_ > 0 && !shutdown_requested()) {
     ok = writer_.wait_for_acknowledgments(seconds_to_ns(options_.match_timeout_s));
     if (!ok) spdlog::error("lockstep: subscribers did not acknowledge every sample");
   } else if (published_ > 0) {
-    // a reliable reader (a recorder) may still be having the last samples repaired: a moment
-    // for that, never long enough to hold up a stop (best-effort readers acknowledge nothing)
+    // a reliable reader (a recorder, a lockstep node) may still be having the last samples
+    // repaired: a moment for that, never long enough to hold up a stop (best-effort readers
+    // acknowledge nothing)
     writer_.wait_for_acknowledgments(500'000'000);
   }
   publish_status(cockpit::STOPPING, monotonic_now_ns());
