@@ -262,13 +262,15 @@ void World::set_hand_input(const HandInput& input, int hand) {
   HandSim& sim = hands_[static_cast<std::size_t>(hand)];
   HandState& hs = state_.hands[static_cast<std::size_t>(hand)];
   hs.to = input;
+  // the tracked hand is this input's from now on: one observed before (a read between steps, as
+  // the physics node publishes) must not reach the step
+  sim.tracked_observed = false;
   if (!hs.active) {
     hs.from = input;  // first sample: no sweep from nowhere
     hs.active = true;
     place_hand(hand, input.X_GH, input.q_rad);
     sim.X_GL_before = hs.X_GL;
     sim.proxy_prev_links_valid = false;
-    sim.tracked_observed = false;
   }
 }
 
@@ -282,7 +284,10 @@ void World::step() {
   // which reads the last substep's, so the substeps before it leave them out (their friction
   // anchors carry over) -- but for a proxy hand, whose fingers stop at the held object's surface
   bool any_held = false;
-  for (HandSim& sim : hands_) sim.holds_any = false;
+  for (HandSim& sim : hands_) {
+    sim.holds_any = false;
+    sim.tracked_observed = false;  // observed in this step, never before it
+  }
   for (int i = 0; i < object_count_; ++i) {
     const BodyState& body = state_.bodies[i];
     held_mask_[i] = body.held() ? 1 : 0;

@@ -97,8 +97,9 @@ class World {
   const std::array<Eigen::Isometry3d, kLinkCount>& X_GL(int hand = 0) const {
     return hand_state(hand).X_GL;
   }
-  // The tracked hand's links at the end of the last step, and how far the farthest link origin
-  // or fingertip of the proxy is from them (m; 0 without a proxy).
+  // The tracked hand's links (of the input last set: at the end of the last step until the next
+  // input is set), and how far the farthest link origin or fingertip of the proxy is from them
+  // (m; 0 without a proxy). Computed on demand; a read between steps changes no step.
   bool has_proxy() const { return !hands_.empty() && hands_[0].proxy.has_value(); }
   const std::array<Eigen::Isometry3d, kLinkCount>& tracked_X_GL(int hand = 0) const {
     observe_tracked_hand(hand);
