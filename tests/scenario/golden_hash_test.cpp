@@ -40,10 +40,7 @@ Replayed replay(const std::string& scene_file, const std::string& log_file, bool
   auto step = [&] {
     world.step();
     if (read_between) {
-      for (int h = 0; h < world.hand_count(); ++h) {
-        volatile double offset_m = world.tracked_offset_m(h);
-        (void)offset_m;
-      }
+      for (int h = 0; h < world.hand_count(); ++h) (void)world.tracked_offset_m(h);
     }
     for (const auto& e : world.step_events())
       if (e.grasp && out.hash_at_grasp == 0) out.hash_at_grasp = physics::hash_world_state(world.state());
