@@ -16,8 +16,8 @@ namespace vcockpit::physics_io {
 namespace {
 
 constexpr char kMagic[8] = {'V', 'C', 'K', 'P', 'O', 'I', 'N', 'T'};
-// 2: GraspHold::opposed_fingers and palm_opposed
-constexpr uint64_t kVersion = 2;
+// 2: GraspHold::opposed_fingers and palm_opposed; 3: GraspHold::grip_tightest_rad
+constexpr uint64_t kVersion = 3;
 constexpr uint64_t kFrozenFlag = 1;
 // anchors are per touching pair: far more than any scene makes, far less than a corrupt length
 constexpr uint64_t kMaxVarCount = 1u << 16;

@@ -207,10 +207,28 @@ Residuals GraspTracker::two_hand_residuals(const HandOnObject& a, const HandOnOb
 
 GraspReason GraspTracker::held_verdict(const HandOnObject& h, const GraspCheck& check) const {
   if (!h.hand.tracking) return GraspReason::kGloveLost;
+  note_tightest_grip(h);
   if (hand_opened(h.hand, *h.hold)) return GraspReason::kHandOpened;
   if (params_.hold_rule == HoldRule::kContactTest) return check.verdict;
   // (a hand whose tracked grip is not known has nothing that says it let go)
-  return h.grip_known ? tracked_grip_verdict(h) : GraspReason::kStableGrasp;
+  const GraspReason grip = h.grip_known ? tracked_grip_verdict(h) : GraspReason::kStableGrasp;
+  // The thumb or the fingers leave the surface as the hand opens, often before the flexion has
+  // fallen by a share of the grasp's (a fist closes on past the grasp; a real one round a bar
+  // had opened 29 deg from its tightest when its thumb left): the hand opening is the reason,
+  // once the glove has opened from its tightest grip by release_opening_deg. With the glove
+  // still closed, the hand left the object (it was pulled away, or the object was held back).
+  const bool left = grip == GraspReason::kThumbLeft || grip == GraspReason::kFingersLeft;
+  if (left && grip_flexion(h.hand, *h.hold).from_tightest_rad > deg_to_rad(params_.release_opening_deg))
+    return GraspReason::kHandOpened;
+  return grip;
+}
+
+void GraspTracker::note_tightest_grip(const HandOnObject& h) {
+  if (h.hand.tracked_q_rad == nullptr) return;
+  for (int f = 0; f < kFingerCount; ++f) {
+    double& tightest_rad = h.hold->grip_tightest_rad[static_cast<std::size_t>(f)];
+    tightest_rad = std::max(tightest_rad, finger_flexion_rad(*h.hand.tracked_q_rad, static_cast<Finger>(f)));
+  }
 }
 
 GraspReason GraspTracker::tracked_grip_verdict(const HandOnObject& h) const {
@@ -323,11 +341,14 @@ GraspTracker::GripFlexion GraspTracker::grip_flexion(const HandNow& hand, const 
     if ((opening_fingers & (1u << f)) == 0) continue;
     const double at_grasp_rad = hold.grip_flexion_rad[static_cast<std::size_t>(f)];
     out.at_grasp_rad += at_grasp_rad;
-    out.opening_rad += at_grasp_rad - finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f));
+    const double now_rad = finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f));
+    out.opening_rad += at_grasp_rad - now_rad;
+    out.from_tightest_rad += hold.grip_tightest_rad[static_cast<std::size_t>(f)] - now_rad;
     ++fingers;
   }
   out.at_grasp_rad /= fingers;
   out.opening_rad /= fingers;
+  out.from_tightest_rad /= fingers;
   return out;
 }
 
@@ -352,10 +373,12 @@ void GraspTracker::attach(int object, const GraspCheck& check, const HandNow& ha
   hold.palm_opposed = check.palm_opposes;
   hold.resting_links = 0;
   hold.hand_clearing = false;
-  for (int f = 0; f < kFingerCount; ++f)
+  for (int f = 0; f < kFingerCount; ++f) {
     hold.grip_flexion_rad[static_cast<std::size_t>(f)] =
         hand.tracked_q_rad != nullptr ? finger_flexion_rad(*hand.tracked_q_rad, static_cast<Finger>(f))
                                       : 0.0;
+    hold.grip_tightest_rad[static_cast<std::size_t>(f)] = hold.grip_flexion_rad[static_cast<std::size_t>(f)];
+  }
   body.holders |= hand.holder_bit;
   if (body.held_by == kNotHeld) body.held_by = hand.hand_id;
   events.push_back(event(object, true, GraspReason::kStableGrasp, check, hand, other_hand_id));

@@ -71,6 +71,9 @@ struct GraspHold {
   // the tracked fingers that gripped it (bit f) and each one's flexion at the grasp (rad)
   uint8_t grip_fingers = 0;
   std::array<double, kFingerCount> grip_flexion_rad{};
+  // ... and each one's greatest flexion since (rad): a grasp is taken while the hand is still
+  // closing, and the grip it opens from is the tightest it closed to
+  std::array<double, kFingerCount> grip_tightest_rad{};
   // the fingers opposed to the thumb (or the palm, palm_opposed) at the grasp (bit f): the grip
   // the tracked hand must keep (hold_rule kTrackedGrip)
   uint8_t opposed_fingers = 0;
@@ -177,6 +180,8 @@ class GraspTracker {
   // The verdict of a held hand's own rules this step (glove lost and hand opened first), and
   // whether it has failed long enough to let go.
   GraspReason held_verdict(const HandOnObject& h, const GraspCheck& check) const;
+  // Raises each finger's grip_tightest_rad to the glove's flexion now.
+  static void note_tightest_grip(const HandOnObject& h);
   bool failed_long_enough(const HandOnObject& h, GraspReason verdict) const;
   // Eqs. 30-31 over both hands' contacts, less what their static friction could still add: the
   // force and torque residuals that the contacts' friction cones (at their normal forces now)
@@ -203,6 +208,7 @@ class GraspTracker {
   struct GripFlexion {
     double at_grasp_rad = 0.0;
     double opening_rad = 0.0;
+    double from_tightest_rad = 0.0;  // how far they have opened from the tightest since
   };
   static GripFlexion grip_flexion(const HandNow& hand, const GraspHold& hold);
   // The glove opened from its grip: by release_opening_share of the grasp's flexion and by at

@@ -128,6 +128,8 @@ struct GraspParams {
   // angles, averaged over those fingers), and by at least release_opening_deg (a grip of nearly
   // straight fingers would otherwise let go at a tracker's jitter): the pilot's own hand opening,
   // which the proxy's fingers, resting on the object's surface, do not show. share 0: off.
+  // A release for the tracked thumb or fingers leaving (release_gap_m) is named the hand opening
+  // too when they have opened by release_opening_deg from the tightest they closed to since.
   double release_opening_share = 0.2;
   double release_opening_deg = 15.0;
   // kTrackedGrip: let go when the tracked thumb (or the opposing palm), or every finger that was

@@ -56,6 +56,8 @@ void grasp_hold(V& v, Hold& g) {
   v.num(g.grip_fingers);
   for (auto& q : g.grip_flexion_rad)
     v.num(q);
+  for (auto& q : g.grip_tightest_rad)
+    v.num(q);
   v.num(g.opposed_fingers);
   v.num(g.palm_opposed);
   v.num(g.resting_links);

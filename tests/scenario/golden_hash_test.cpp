@@ -61,13 +61,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0xa532f61a4696c971") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0x58ae99d5decd1a7f") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0xa3ea785e43287388") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x456b2ffc79386914") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x9db03eff4cc7585d") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0x9f61300298d81d9d") << "final state";
 }
 
 // A world read between its steps (the physics node publishes the tracked hand there) steps as

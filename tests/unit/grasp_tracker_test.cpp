@@ -385,6 +385,32 @@ TEST(GraspTrackerGrip, TheThumbLeavingLetsGoAfterTheReleaseDelay) {
   EXPECT_EQ(events[0].t_ns, 531'000'000) << "failing since 501 ms: 30 ms later";
 }
 
+// A fist grasps while still closing and closes on past the grasp. When it opens, its thumb leaves
+// the object before the flexion falls by a share of the grasp's: the reason is the hand opening
+// once the glove has opened by release_opening_deg from its tightest, not before.
+TEST(GraspTrackerGrip, TheThumbLeavingAsTheGloveOpensFromItsTightestIsTheHandOpening) {
+  const auto set_fingers_rad = [](GripRig& rig, double mcp_rad) {
+    for (hand::Joint j : {hand::Joint::kIndexMcp, hand::Joint::kMiddleMcp, hand::Joint::kRingMcp})
+      rig.glove_q_rad[static_cast<std::size_t>(j)] = mcp_rad;
+  };
+  const uint32_t no_thumb =
+      GripRig::links({Link::kIndexDistal, Link::kMiddleMiddle, Link::kRingDistal});
+  for (const double opened_deg : {10.0, 20.0}) {
+    SCOPED_TRACE(opened_deg);
+    GripRig rig;
+    set_fingers_rad(rig, 1.0);  // grasped at 57 deg
+    ASSERT_EQ(rig.run_until(0.1, fist_grip(), kWholeFist).size(), 1u);
+    set_fingers_rad(rig, 1.4);  // closes on to 80 deg
+    EXPECT_TRUE(rig.run_until(0.5, holding(), kWholeFist).empty());
+    // opens: still closer than at the grasp, so well short of the share of the grasp's flexion
+    set_fingers_rad(rig, 1.4 - opened_deg * M_PI / 180.0);
+    const auto events = rig.run_until(0.6, holding(), no_thumb);
+    ASSERT_EQ(events.size(), 1u);
+    EXPECT_EQ(events[0].reason, opened_deg > 15.0 ? GraspReason::kHandOpened : GraspReason::kThumbLeft)
+        << "release_opening_deg 15 from the tightest";
+  }
+}
+
 // The wrapping ring finger was not opposed at the grasp: it alone does not keep the hold.
 TEST(GraspTrackerGrip, EveryOpposedFingerLeavingLetsGo) {
   GripRig rig;
