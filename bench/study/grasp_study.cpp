@@ -246,7 +246,7 @@ int run(int argc, char** argv) {
   if (!timeline_dir.empty()) {
     std::filesystem::create_directories(timeline_dir);
     for (std::size_t r = 0; r < compared; ++r) {
-      std::string csv = "t_s,links,residual_force_N,residual_torque_Nm,held,verdict,x_m,y_m,z_m,events\n";
+      std::string csv = "t_s,links,residual_force_N,residual_torque_Nm,held,verdict,x_m,y_m,z_m,touching,events\n";
       run_trial(source_dir, objects[timeline_of], rules[r], variation_of(timeline_of, timeline_index),
                 [&](const TimelineRow& row) {
                   char line[200];
@@ -254,7 +254,7 @@ int run(int argc, char** argv) {
                                 row.links, row.residual_force_N, row.residual_torque_Nm,
                                 row.held ? 1 : 0, row.verdict.c_str(), row.x_m, row.y_m, row.z_m);
                   csv += line;
-                  csv += "\"" + row.events + "\"\n";
+                  csv += "\"" + row.touching + "\",\"" + row.events + "\"\n";
                 });
       write_atomically(timeline_dir + "/timeline_" + rules[r].name + ".csv", csv);
     }

@@ -117,6 +117,7 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
   int64_t drop_watch_until_ns = -1;  // a release being watched for a fall
   double drop_from_z_m = 0.0;
   std::vector<physics::HandContact> first_hand;
+  std::vector<int> touching_links;  // hand bodies touching the target this step (timeline)
   std::string pending_events;  // for the timeline's next row
 
   auto step = [&] {
@@ -174,6 +175,7 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
     double hand_deepest_m = 0.0, object_deepest_m = 0.0;
     bool hand_touch = false, object_touch = false;
     first_hand.clear();
+    touching_links.clear();
     for (const auto& a : world.contacts()) {
       const auto& c = a.contact;
       // a target is always body_a against a hand link (the objects come first)
@@ -188,6 +190,7 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
         hand_touch = true;
         hand_deepest_m = std::max(hand_deepest_m, c.depth_m);
         const int body_in_hands = other - static_cast<int>(object_count);
+        if (target == object) touching_links.push_back(body_in_hands);
         if (target == object && body_in_hands < hand::kLinkCount) {  // the first hand's link
           physics::HandContact hc;
           hc.link = static_cast<physics::Link>(body_in_hands);
@@ -227,6 +230,13 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
       row.x_m = body.X_GO.translation().x();
       row.y_m = body.X_GO.translation().y();
       row.z_m = z_m;
+      std::sort(touching_links.begin(), touching_links.end());
+      touching_links.erase(std::unique(touching_links.begin(), touching_links.end()), touching_links.end());
+      for (const int l : touching_links) {
+        if (!row.touching.empty()) row.touching += "; ";
+        row.touching += "h" + std::to_string(l / hand::kLinkCount) + " " +
+                        std::string(hand::link_name(static_cast<hand::Link>(l % hand::kLinkCount)));
+      }
       row.events = std::move(pending_events);
       pending_events.clear();
       timeline(row);

@@ -71,6 +71,7 @@ struct TimelineRow {
   double x_m = 0.0;  // the object's position (world frame)
   double y_m = 0.0;
   double z_m = 0.0;
+  std::string touching;  // the hand links touching the target ("h0 thumb_distal; h1 palm")
   std::string events;  // the target's grasp events since the last row ("grasp h0; release h1: why")
 };
 
