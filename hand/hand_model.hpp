@@ -62,6 +62,9 @@ struct HandModel {
   std::array<Capsule, kLinkCount> capsules{};  // per phalanx; the palm entry is unused
   Eigen::Isometry3d X_HP = Eigen::Isometry3d::Identity();  // palm box centre in H
   Eigen::Vector3d palm_size_m = Eigen::Vector3d::Zero();    // palm box full extents
+  // Where a hand tracker's palm joint lies in H (hand.yaml palm.tracking_point; by default the
+  // palm box's centre): retargeting's anchor, which a calibration measures (hand/tracking/).
+  Eigen::Vector3d p_H_palm_joint = Eigen::Vector3d::Zero();
   TrackerConfig tracker;
 
   JointAngles rest_pose() const;

@@ -100,7 +100,7 @@ HandCalibration estimate_hand(const HandModel& model, const std::vector<JointsFr
 
 HandModel calibrated(const HandModel& model, const HandCalibration& c) {
   HandModel out = model;
-  if (c.palm_measured) out.X_HP.translation() = c.palm_H;
+  if (c.palm_measured) out.p_H_palm_joint = c.palm_H;
   HandLinkPoses rest;
   forward_kinematics(model, model.rest_pose(), rest);
   for (int f = 0; f < kFingerCount; ++f) {

@@ -24,7 +24,7 @@ struct HandCalibration {
   std::array<bool, kFingerCount> bones_measured{};
   std::array<Eigen::Vector3d, kFingerCount> knuckle_H{};
   std::array<bool, kFingerCount> knuckle_measured{};
-  Eigen::Vector3d palm_H = Eigen::Vector3d::Zero();  // the palm joint, in H: the palm box's centre
+  Eigen::Vector3d palm_H = Eigen::Vector3d::Zero();  // the tracker's palm joint, in H
   bool palm_measured = false;
   int steady_frames = 0;
 };
@@ -33,7 +33,9 @@ struct HandCalibration {
 HandCalibration estimate_hand(const HandModel& model, const std::vector<JointsFrame>& frames_G);
 
 // The model with the calibration's bone lengths (the chain rows' `a` after each phalanx's tag,
-// and its capsule), knuckles (each chain's base moved by its knuckle's change) and palm centre.
+// and its capsule), knuckles (each chain's base moved by its knuckle's change) and the tracker's
+// palm joint (HandModel::p_H_palm_joint; the palm's collision box stays: a tracker's palm point
+// is not its centre, Leap's lies 2 cm nearer the knuckles).
 HandModel calibrated(const HandModel& model, const HandCalibration& calibration);
 
 }  // namespace vcockpit::hand::tracking

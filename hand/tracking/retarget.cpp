@@ -10,6 +10,8 @@
 namespace vcockpit::hand::tracking {
 namespace {
 
+// a step smaller than this (0.006 deg) ends a finger's fit: well below the trackers' noise
+constexpr double kConverged_rad = 1e-4;
 constexpr int kPointCount = 3;  // a finger's joints beyond its knuckle and its tip
 constexpr int kMaxParams = 4;
 constexpr int kResiduals = 3 * kPointCount + kMaxParams;
@@ -80,7 +82,7 @@ bool Retargeter::place_palm(const JointsFrame& frame) {
   // the model's palm points in H and the tracked joint each matches; the palm's own points (its
   // centre, the thumb's base, the wrist) make the fit a plane, not the knuckles' line
   const std::array<std::pair<Eigen::Vector3d, PalmPoint>, 7> points = {{
-      {model_.X_HP.translation(), {XrJoint::kPalm, 1.0}},
+      {model_.p_H_palm_joint, {XrJoint::kPalm, 1.0}},
       {origin(Link::kIndexProximal), {XrJoint::kIndexProximal, 1.0}},
       {origin(Link::kMiddleProximal), {XrJoint::kMiddleProximal, 1.0}},
       {origin(Link::kRingProximal), {XrJoint::kRingProximal, 1.0}},
@@ -238,7 +240,7 @@ void Retargeter::fit_finger(Finger finger, const JointsFrame& frame, const Eigen
       }
       lambda *= 10.0;
     }
-    if (!improved || step_norm < 1e-7) break;
+    if (!improved || step_norm < kConverged_rad) break;
   }
   result_.q_rad = q;
 }

@@ -3,8 +3,8 @@
 // so a hand-tracking recording or a live tracker drives the rig as a glove does.
 //
 // Each frame, in the hand's world frame G:
-//   1. the hand frame H from the palm: a weighted Kabsch fit of the model's palm points (palm
-//      centre, the four knuckles, the thumb's base, the wrist) to the tracked ones that are valid
+//   1. the hand frame H from the palm: a weighted Kabsch fit of the model's palm points (the
+//      tracker's palm joint, HandModel::p_H_palm_joint; the four knuckles, the thumb's base, the wrist) to the tracked ones that are valid
 //      (at least three). It needs no joint orientation, so a tracker that gives positions only
 //      (MediaPipe's landmarks) works the same; a model of the other side's hand is refused.
 //   2. each finger's channels by damped Gauss-Newton (Levenberg-Marquardt) on the positions of

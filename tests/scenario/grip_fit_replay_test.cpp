@@ -21,7 +21,10 @@
 #include <string>
 
 #include "hand/glove_log.hpp"
+#include "hand/config/calibrated_hand_yaml.hpp"
 #include "hand/config/hand_yaml.hpp"
+#include "hand/tracking/joints_replay.hpp"
+#include "hand/tracking/leapjs_import.hpp"
 #include "physics_node/config/grip_scene_yaml.hpp"
 #include "physics_node/fit/grip_choice.hpp"
 #include "tests/scenario/real_grip/real_grip_run.hpp"
@@ -36,17 +39,21 @@ std::string source_dir() {
 
 class GripFitReplay : public ::testing::Test {
  protected:
+  // the log and its hand: the converted Leap log on the project's hand, unless a test sets them
   std::string log_path_ = source_dir() + "/tests/data/real/leap_grab.csv";
-  hand::HandModel model_ = load_hand_model(source_dir() + "/config/hand.yaml");
-  hand::GloveLog log_ = hand::read_glove_log(log_path_, model_);
+  std::string hand_path_ = source_dir() + "/config/hand.yaml";
+  hand::HandModel model_;
+  hand::GloveLog log_;
 
   void fit_and_replay(const char* name, const char* stem, const physics::Shape& shape) {
+    model_ = load_hand_model(hand_path_);
+    log_ = hand::read_glove_log(log_path_, model_);
     ASSERT_FALSE(model_.left);  // the Leap log is a right hand, as config/hand.yaml
     GripSceneSpec base;
     base.object_name = "object";
     base.shape = shape;
     base.mass_kg = 0.06;
-    base.hand_path = source_dir() + "/config/hand.yaml";
+    base.hand_path = hand_path_;
     base.cockpit_path = source_dir() + "/config/cockpit.yaml";
     const std::string path = test::make_temp_dir("grip_fit_replay") + "/" + stem + ".yaml";
 
@@ -102,6 +109,38 @@ class GripFitReplay : public ::testing::Test {
     EXPECT_EQ(run.end_s, chosen.run.end_s);
   }
 };
+
+// The same recording taken from Leap's own JSON (tests/data/real/leap/grab.json) the way a user
+// takes it: imported (hand_import), its hand calibrated on it and retargeted (hand_retarget).
+// Nothing is trimmed: the opening hand sweeps through the object's place before it closes.
+class RetargetedGripFitReplay : public GripFitReplay {
+ protected:
+  void SetUp() override {
+    const std::string dir = test::make_temp_dir("retargeted_grip_fit");
+    const hand::tracking::LeapImport in =
+        hand::tracking::import_leapjs(source_dir() + "/tests/data/real/leap/grab.json");
+    const hand::tracking::JointsReplay replay = hand::tracking::replay_joints(
+        in.frames, hand::tracking::JointsSpace::kXr, load_hand_model(source_dir() + "/config/hand.yaml"),
+        true, Eigen::Vector3d(0.36, -0.35, 0.84));
+    const hand::tracking::ReplayedHand& right = replay.hands[0];
+    ASSERT_TRUE(right.present);
+    ASSERT_EQ(right.samples.size(), in.frames.size()) << "every palm placed";
+    hand_path_ = dir + "/hand_grab.yaml";
+    log_path_ = dir + "/grab.csv";
+    write_calibrated_hand_yaml(source_dir() + "/config/hand.yaml", right.model, hand_path_, {"test"});
+    hand::write_glove_log(log_path_, right.samples, false, {"retargeted from grab.json"});
+  }
+};
+
+TEST_F(RetargetedGripFitReplay, A3cmBarIsHeldUntilTheHandOpens) {
+  fit_and_replay("retargeted, 3 cm bar", "bar", physics::Shape::cylinder(0.015, 0.12));
+}
+TEST_F(RetargetedGripFitReplay, A4cmCylinderIsHeldUntilTheHandOpens) {
+  fit_and_replay("retargeted, 4 cm cylinder", "cylinder", physics::Shape::cylinder(0.02, 0.12));
+}
+TEST_F(RetargetedGripFitReplay, A5cmBallIsHeldUntilTheHandOpens) {
+  fit_and_replay("retargeted, 5 cm ball", "ball", physics::Shape::sphere(0.025));
+}
 
 TEST_F(GripFitReplay, A3cmBarIsHeldUntilTheHandOpens) {
   fit_and_replay("3 cm bar", "bar", physics::Shape::cylinder(0.015, 0.12));

@@ -36,7 +36,7 @@ JointsFrame frame_of(const HandModel& model, const JointAngles& q, const Eigen::
     f[j].valid = true;
     f[j].p_m = X_GH * p_H;
   };
-  set(XrJoint::kPalm, model.X_HP.translation());
+  set(XrJoint::kPalm, model.p_H_palm_joint);
   set(XrJoint::kWrist, Eigen::Vector3d::Zero());
   for (int finger = 0; finger < kFingerCount; ++finger) {
     const XrFingerChain chain = xr_finger_chain(finger);
@@ -163,7 +163,7 @@ TEST(HandCalibration, ALargerHandIsMeasuredAndThenFitted) {
     chain.X_HB.translation() *= 1.15;
     for (auto& row : chain.rows) row.a_m *= 1.15;
   }
-  user.X_HP.translation() *= 1.15;
+  user.p_H_palm_joint *= 1.15;
   std::vector<JointsFrame> frames;
   for (int i = 0; i < 50; ++i) {
     JointAngles q = model.rest_pose();
