@@ -152,6 +152,7 @@ def main():
                        if rig_novideo.get("wall_s") else 0.0)
     rig_drop = 100.0 * (1.0 - rig_fps / rig_novideo_fps) if rig_novideo_fps > 0 else 0.0
     offline = load(out_dir, "offline/summary.json")
+    retarget = load(out_dir, "retarget.json")
     rows, fk = physics_rows(gbench)
     follow = input_rows(out_dir)
 
@@ -183,6 +184,10 @@ def main():
          "met": rig_drop < 5.0},
         {"target": "glove-to-frame latency p99 under 20 ms",
          "measured": f"p99 {e2e['p99']:.1f} ms", "met": e2e["p99"] < 20.0},
+        {"target": "hand-tracking retargeting, both hands, p99 under 0.2 ms per frame",
+         "measured": f"p50 {retarget['all']['p50_us']:.0f} us, p99 {retarget['all']['p99_us']:.0f} us "
+                     f"(two-handed three-claps p99 {retarget['three-claps']['p99_us']:.0f} us)",
+         "met": retarget["all"]["p99_us"] < 200.0 and retarget["three-claps"]["p99_us"] < 200.0},
         {"target": "offline runner at 50x real time or better",
          "measured": f"{offline['realtime_factor']:.1f}x", "met": offline["realtime_factor"] >= 50.0},
     ]
@@ -207,6 +212,7 @@ def main():
                                                  "substeps_per_step", "substeps_mean",
                                                  "stage_wall_s")},
         "hand_input_in_time": follow,
+        "retarget_per_frame": retarget,
         "targets": targets,
     }
     tmp = json_path + ".partial"
@@ -333,6 +339,18 @@ def main():
               f"time** ({offline.get('substeps_mean', offline['substeps_per_step']):.1f} substeps "
               f"per step on average, at most {offline['substeps_per_step']}). Wall time by stage (s): "
               + ", ".join(f"{k} {v:.3f}" for k, v in st.items()) + ".\n")
+    md.append("## Hand tracking: retargeting time per frame\n")
+    md.append("`bench/bench_retarget`: every frame of the six real Leap recordings "
+              "(`tests/data/real/leap/`), each calibrated on itself, retargeted to the hand model "
+              "(`hand/tracking/retarget.hpp`), the frame's hands one after the other; five passes.\n")
+    md.append("| recording | frames | p50 (us) | p99 (us) | max (us) |")
+    md.append("|---|---|---|---|---|")
+    for name, r in retarget.items():
+        if name == "all":
+            continue
+        md.append(f"| {name} | {r['frames']} | {r['p50_us']:.1f} | {r['p99_us']:.1f} | {r['max_us']:.1f} |")
+    md.append(f"| all | | {retarget['all']['p50_us']:.1f} | {retarget['all']['p99_us']:.1f} | |")
+    md.append("")
     md.append("## Hand input in time\n")
     md.append("The bundled gesture (`config/gestures/reach_grasp_lift_release.yaml`) played by "
               "`glove_driver --source synthetic --rate-hz R`. **Real time**: `physics_node` at 1 "
