@@ -1,5 +1,6 @@
 // hand_import: a hand tracker's recording into a hand-joints log (hand/tracking/joints_log.hpp),
-// which the rig replays. Formats: LeapJS playback JSON (Leap Motion's recorder).
+// which the rig replays. Formats: LeapJS playback JSON (Leap Motion's recorder), MediaPipe Hands
+// world landmarks (the hand landmarker's JSON, with each frame's time).
 
 #include <CLI/CLI.hpp>
 
@@ -8,6 +9,7 @@
 
 #include "hand/tracking/joints_log.hpp"
 #include "hand/tracking/leapjs_import.hpp"
+#include "hand/tracking/mediapipe_import.hpp"
 
 namespace vcockpit::hand::tracking {
 namespace {
@@ -22,18 +24,36 @@ int run(const Flags& f) {
   std::error_code ec;
   if (std::filesystem::equivalent(f.in_path, f.out_path, ec))
     throw CLI::ValidationError("--out must not be the input file");
-  const LeapImport in = import_leapjs(f.in_path);
+  std::vector<JointsFrame> frames;
+  int source_frames = 0, without_hands = 0, out_of_order = 0;
+  std::string what;
+  if (f.from == "leapjs") {
+    LeapImport in = import_leapjs(f.in_path);
+    frames = std::move(in.frames);
+    source_frames = in.source_frames;
+    without_hands = in.frames_without_hands;
+    out_of_order = in.frames_out_of_order;
+    what = std::string("LeapJS playback") +
+           (in.protocol_version > 0 ? ", protocol " + std::to_string(in.protocol_version) : std::string()) +
+           "): mm -> m, t = timestamp - first; wrist and finger metacarpals not tracked";
+  } else {
+    MediaPipeImport in = import_mediapipe(f.in_path);
+    frames = std::move(in.frames);
+    source_frames = in.source_frames;
+    without_hands = in.frames_without_hands;
+    out_of_order = in.frames_out_of_order;
+    what = "MediaPipe world landmarks): (x, -y, -z), about the hand's centre; palm and finger "
+           "metacarpals not tracked";
+  }
   int rows[2] = {0, 0};
-  for (const JointsFrame& frame : in.frames) ++rows[frame.left_hand ? 1 : 0];
+  for (const JointsFrame& frame : frames) ++rows[frame.left_hand ? 1 : 0];
   std::vector<std::string> comments = {
-      "imported from " + std::filesystem::path(f.in_path).filename().string() + " (LeapJS playback" +
-      (in.protocol_version > 0 ? ", protocol " + std::to_string(in.protocol_version) : std::string()) +
-      "): mm -> m, t = timestamp - first; wrist and finger metacarpals not tracked"};
-  write_joints_log(f.out_path, JointsSpace::kXr, in.frames, comments);
+      "imported from " + std::filesystem::path(f.in_path).filename().string() + " (" + what};
+  write_joints_log(f.out_path, JointsSpace::kXr, frames, comments);
   std::printf("%s: %zu rows (%d right, %d left) from %d frames; %d frames without hands, %d out of "
               "order (skipped)\n",
-              f.out_path.c_str(), in.frames.size(), rows[0], rows[1], in.source_frames,
-              in.frames_without_hands, in.frames_out_of_order);
+              f.out_path.c_str(), frames.size(), rows[0], rows[1], source_frames, without_hands,
+              out_of_order);
   return 0;
 }
 
@@ -45,7 +65,7 @@ int main(int argc, char** argv) {
   CLI::App app("hand_import: a hand tracker's recording into a hand-joints log");
   Flags flags;
   app.add_option("--from", flags.from, "the recording's format")
-      ->check(CLI::IsMember({"leapjs"}))
+      ->check(CLI::IsMember({"leapjs", "mediapipe"}))
       ->capture_default_str();
   app.add_option("input", flags.in_path, "the recording")->required()->check(CLI::ExistingFile);
   app.add_option("--out", flags.out_path, "the hand-joints log to write (atomically)")->required();

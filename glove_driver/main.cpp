@@ -12,11 +12,13 @@
 #include "common/signals.hpp"
 #include "common/yaml_config.hpp"
 #include "hand/glove_log.hpp"
+#include "glove_driver/glove/joints_input.hpp"
 #include "glove_driver/glove/sample_source.hpp"
 #include "glove_driver/node/recorder.hpp"
 #include "glove_driver/node/replay_commands.hpp"
 #include "glove_driver/node/sample_publisher.hpp"
 #include "common/terminal_progress.hpp"
+#include "common/cli_finite.hpp"
 #include "hand/config/hand_yaml.hpp"
 
 namespace vcockpit::glove {
@@ -47,16 +49,28 @@ struct Flags {
   double idle_timeout_s = 0.0;
   double max_gap_s = 0.25;
   std::string log_level = "info";
+  bool calibrate = false;
+  std::vector<double> palm_at = {0.36, -0.35, 0.84};
 };
 
 void add_flags(CLI::App& app, Flags& f) {
   add_dds_flags(app, f.dds);
-  app.add_option("--source", f.source, "where samples come from: synthetic or replay")
-      ->check(CLI::IsMember({"synthetic", "replay"}));
+  app.add_option("--source", f.source,
+                 "where samples come from: synthetic, replay (a glove log) or joints (a hand-joints "
+                 "log, retargeted to the hand)")
+      ->check(CLI::IsMember({"synthetic", "replay", "joints"}));
   app.add_option("--script", f.script_path, "gesture script YAML (--source synthetic)")
       ->check(CLI::ExistingFile);
-  app.add_option("--log", f.log_path, "glove log CSV to replay (--source replay)")
+  app.add_option("--log", f.log_path,
+                 "glove log CSV to replay (--source replay), or hand-joints log (--source joints)")
       ->check(CLI::ExistingFile);
+  app.add_flag("--calibrate", f.calibrate,
+               "--source joints: measure the hand on the recording and retarget on that hand");
+  app.add_option("--palm-at", f.palm_at,
+                 "--source joints: where the recording's mean palm goes in the cockpit (m)")
+      ->expected(3)
+      ->check(kFinite)
+      ->capture_default_str();
   app.add_option("--record", f.record_path,
                  "record cockpit/hand_sample to this glove log (instead of publishing)");
   app.add_option("--side", f.side,
@@ -67,7 +81,8 @@ void add_flags(CLI::App& app, Flags& f) {
                  "name on cockpit/node_status (a second glove driver, for the other hand, needs "
                  "its own)")
       ->capture_default_str();
-  app.add_option("--hand-config", f.hand_config, "hand model YAML (joint limits, rest pose, tracker)")
+  app.add_option("--hand-config,--hand-file", f.hand_config,
+                 "hand model YAML (joint limits, rest pose, tracker)")
       ->check(CLI::ExistingFile)
       ->capture_default_str();
   app.add_option("--hand-id", f.hand_id, "hand id on the topic: 0 right, 1 left (default: the "
@@ -187,13 +202,13 @@ int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Sour
 int run(const Flags& f) {
   const bool recording = !f.record_path.empty();
   if (recording == !f.source.empty()) {
-    throw CLI::ValidationError("give either --source synthetic|replay or --record FILE");
+    throw CLI::ValidationError("give either --source synthetic|replay|joints or --record FILE");
   }
   if (f.source == "synthetic" && f.script_path.empty()) {
     throw CLI::ValidationError("--source synthetic needs --script FILE");
   }
-  if (f.source == "replay" && f.log_path.empty()) {
-    throw CLI::ValidationError("--source replay needs --log FILE");
+  if ((f.source == "replay" || f.source == "joints") && f.log_path.empty()) {
+    throw CLI::ValidationError("--source " + f.source + " needs --log FILE");
   }
   hand::HandModel hand = load_hand_model(f.hand_config);
   if (!f.side.empty() && (f.side == "left") != hand.left) hand = hand::mirrored(hand);
@@ -220,6 +235,22 @@ int run(const Flags& f) {
                  ns_to_seconds(log.samples.back().t_ns - log.samples.front().t_ns));
     source = std::make_unique<ReplaySource>(
         std::move(log), ReplayOptions{f.rate, f.loop, f.start_offset_s});
+  } else if (f.source == "joints") {
+    JointsInputOptions joints;
+    if (!f.side.empty()) joints.left_hand = f.side == "left";
+    joints.calibrate = f.calibrate;
+    joints.palm_G = Eigen::Vector3d(f.palm_at[0], f.palm_at[1], f.palm_at[2]);
+    JointsInput input = joints_input(f.log_path, hand.left ? hand::mirrored(hand) : hand, joints);
+    left = input.log.left_hand;
+    hand = input.hand;
+    spdlog::info("{}: {} samples of the {} hand retargeted{}, {:.3f} s; fingertip error p50 {:.1f} "
+                 "mm, p99 {:.1f} mm; {} frames without a placeable palm",
+                 f.log_path, input.log.samples.size(), left ? "left" : "right",
+                 f.calibrate ? " on the hand calibrated on it" : "",
+                 ns_to_seconds(input.log.samples.back().t_ns - input.log.samples.front().t_ns),
+                 input.tip_error_p50_m * 1e3, input.tip_error_p99_m * 1e3, input.unplaced_frames);
+    source = std::make_unique<ReplaySource>(std::move(input.log),
+                                            ReplayOptions{f.rate, f.loop, f.start_offset_s});
   } else {
     GestureScript script = GestureScript::load(f.script_path, hand);
     const double rate_hz = f.rate_hz.value_or(script.rate_hz());

@@ -9,7 +9,10 @@
 #include <fstream>
 #include <thread>
 
+#include "glove_driver/glove/joints_input.hpp"
 #include "hand/glove_log.hpp"
+#include "hand/tracking/joints_log.hpp"
+#include "hand/tracking/leapjs_import.hpp"
 #include "idl/topics/hand_sample_convert.hpp"
 #include "hand/sample_validator.hpp"
 #include "hand/config/hand_yaml.hpp"
@@ -172,6 +175,54 @@ TEST_F(GloveDriverTest, BadFlagsAndInputsAreClearErrors) {
   auto [code5, out5] = run({"--source", "replay", "--log", bad_log, "--domain", "999"});
   EXPECT_NE(code5, 0);
   EXPECT_NE(out5.find("--domain"), std::string::npos) << out5;
+
+  // a hand-joints log of both hands needs --side (a driver per hand); a glove log is not one
+  const std::string claps = dir + "/claps.csv";
+  hand::tracking::write_joints_log(
+      claps, hand::tracking::JointsSpace::kXr,
+      hand::tracking::import_leapjs(source_dir() + "/tests/data/real/leap/three-claps.json").frames, {});
+  auto [code6, out6] = run({"--source", "joints", "--log", claps});
+  EXPECT_NE(code6, 0);
+  EXPECT_NE(out6.find("both hands: give --side"), std::string::npos) << out6;
+  auto [code7, out7] = run({"--source", "joints", "--log", bad_log});
+  EXPECT_NE(code7, 0);
+  EXPECT_NE(out7.find("bad.csv:1: not a hand joints log"), std::string::npos) << out7;
+}
+
+// --source joints: the real Leap "grab", imported, retargeted by the driver on a hand calibrated
+// on it, published in lockstep and recorded: every frame arrives, as the library retargets it.
+TEST_F(GloveDriverTest, AHandJointsLogIsRetargetedAndPublishedFrameByFrame) {
+  const std::string dir = make_temp_dir("glove_driver_joints");
+  const auto in = hand::tracking::import_leapjs(source_dir() + "/tests/data/real/leap/grab.json");
+  const std::string joints = dir + "/grab_joints.csv";
+  hand::tracking::write_joints_log(joints, hand::tracking::JointsSpace::kXr, in.frames, {});
+  const std::string recorded = dir + "/recorded.csv";
+  {
+    ChildProcess recorder({glove_driver(), "--record", recorded, "--lockstep", "--count",
+                           std::to_string(in.frames.size())},
+                          env_, dir + "/record.log");
+    ChildProcess driver({glove_driver(), "--source", "joints", "--log", joints, "--calibrate",
+                         "--palm-at", "0.36", "-0.35", "0.84", "--lockstep", "--rate", "0"},
+                        env_, dir + "/driver.log");
+    ASSERT_EQ(driver.wait(60 * kSecond), 0) << read_text(dir + "/driver.log");
+    ASSERT_EQ(recorder.wait(30 * kSecond), 0) << read_text(dir + "/record.log");
+  }
+  EXPECT_NE(read_text(dir + "/driver.log").find("374 samples of the right hand retargeted on the hand calibrated on it"),
+            std::string::npos)
+      << read_text(dir + "/driver.log");
+  glove::JointsInputOptions options;
+  options.calibrate = true;
+  const glove::JointsInput expected = glove::joints_input(joints, hand_, options);
+  const hand::GloveLog got = hand::read_glove_log(recorded, expected.hand);
+  ASSERT_EQ(got.samples.size(), expected.log.samples.size());
+  for (std::size_t i = 0; i < got.samples.size(); ++i) {
+    const hand::GloveSample& a = got.samples[i];
+    const hand::GloveSample& b = expected.log.samples[i];
+    ASSERT_LT((a.p_MT_m - b.p_MT_m).norm(), 1e-9) << i;
+    ASSERT_LT(a.q_MT.angularDistance(b.q_MT), 1e-9) << i;
+    for (int j = 0; j < hand::kJointCount; ++j)
+      ASSERT_NEAR(a.joints_rad[static_cast<std::size_t>(j)], b.joints_rad[static_cast<std::size_t>(j)], 1e-9) << i;
+  }
 }
 
 }  // namespace
