@@ -157,6 +157,8 @@ HandModel mirrored(const HandModel& model) {
   out.X_HP = mirror_pose(model.X_HP);
   out.p_H_palm_joint = Eigen::Vector3d(model.p_H_palm_joint.x(), -model.p_H_palm_joint.y(),
                                        model.p_H_palm_joint.z());
+  out.p_H_wrist_joint = Eigen::Vector3d(model.p_H_wrist_joint.x(), -model.p_H_wrist_joint.y(),
+                                        model.p_H_wrist_joint.z());
   for (FingerChain& chain : out.fingers) {
     chain.X_HB = mirror_pose(chain.X_HB);
     for (DhRow& row : chain.rows)

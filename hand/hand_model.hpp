@@ -65,6 +65,8 @@ struct HandModel {
   // Where a hand tracker's palm joint lies in H (hand.yaml palm.tracking_point; by default the
   // palm box's centre): retargeting's anchor, which a calibration measures (hand/tracking/).
   Eigen::Vector3d p_H_palm_joint = Eigen::Vector3d::Zero();
+  // ... and its wrist joint (palm.wrist_tracking_point; by default H's origin).
+  Eigen::Vector3d p_H_wrist_joint = Eigen::Vector3d::Zero();
   TrackerConfig tracker;
 
   JointAngles rest_pose() const;

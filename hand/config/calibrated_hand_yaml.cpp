@@ -26,6 +26,7 @@ void write_calibrated_hand_yaml(const std::string& source_yaml, const hand::Hand
   const hand::HandModel right = hand.left ? hand::mirrored(hand) : hand;
   root["side"] = hand.left ? "left" : "right";
   root["palm"]["tracking_point"] = flow_vector(right.p_H_palm_joint);
+  root["palm"]["wrist_tracking_point"] = flow_vector(right.p_H_wrist_joint);
   static const char* kFingers[hand::kFingerCount] = {"thumb", "index", "middle", "ring", "little"};
   for (int f = 0; f < hand::kFingerCount; ++f) {
     const hand::FingerChain& chain = right.fingers[static_cast<std::size_t>(f)];

@@ -111,13 +111,17 @@ void parse_joints(const ConfigNode& node,
 }
 
 void parse_palm(const ConfigNode& node, HandModel& model) {
-  node.expect_keys({"position", "rpy_deg", "size", "tracking_point"});
+  node.expect_keys({"position", "rpy_deg", "size", "tracking_point", "wrist_tracking_point"});
   model.X_HP =
       pose_from_position_rpy_deg(node["position"].as_doubles<3>(), node["rpy_deg"].as_doubles<3>());
   model.p_H_palm_joint = model.X_HP.translation();
   if (const auto point = node.find("tracking_point")) {
     const auto p = point->as_doubles<3>();
     model.p_H_palm_joint = Eigen::Vector3d(p[0], p[1], p[2]);
+  }
+  if (const auto point = node.find("wrist_tracking_point")) {
+    const auto p = point->as_doubles<3>();
+    model.p_H_wrist_joint = Eigen::Vector3d(p[0], p[1], p[2]);
   }
   const ConfigNode size = node["size"];
   const auto size_m = size.as_doubles<3>();

@@ -93,6 +93,7 @@ HandCalibration estimate_hand(const HandModel& model, const std::vector<JointsFr
       c.palm_measured = true;
       c.palm_H = {median(palm[0]), median(palm[1]), median(palm[2])};
     }
+
     now = calibrated(model, c);
   }
   return c;
@@ -101,6 +102,7 @@ HandCalibration estimate_hand(const HandModel& model, const std::vector<JointsFr
 HandModel calibrated(const HandModel& model, const HandCalibration& c) {
   HandModel out = model;
   if (c.palm_measured) out.p_H_palm_joint = c.palm_H;
+
   HandLinkPoses rest;
   forward_kinematics(model, model.rest_pose(), rest);
   for (int f = 0; f < kFingerCount; ++f) {

@@ -88,7 +88,7 @@ bool Retargeter::place_palm(const JointsFrame& frame) {
       {origin(Link::kRingProximal), {XrJoint::kRingProximal, 1.0}},
       {origin(Link::kLittleProximal), {XrJoint::kLittleProximal, 1.0}},
       {origin(Link::kThumbProximal), {XrJoint::kThumbMetacarpal, 0.5}},
-      {Eigen::Vector3d::Zero(), {XrJoint::kWrist, 0.5}},
+      {model_.p_H_wrist_joint, {XrJoint::kWrist, 0.5}},
   }};
   double total = 0.0;
   int count = 0;

@@ -21,6 +21,7 @@ TEST(CalibratedHandYaml, TheWrittenFileLoadsAsTheCalibratedHandOnEitherSide) {
     SCOPED_TRACE(left ? "left" : "right");
     hand::HandModel hand = right;
     hand.p_H_palm_joint += Eigen::Vector3d(0.020, -0.001, 0.002);
+    hand.p_H_wrist_joint = Eigen::Vector3d(-0.01, 0.003, -0.012);
     for (auto& chain : hand.fingers) {
       chain.X_HB.translation() *= 1.1;
       for (auto& row : chain.rows) row.a_m *= 1.12;
@@ -31,6 +32,7 @@ TEST(CalibratedHandYaml, TheWrittenFileLoadsAsTheCalibratedHandOnEitherSide) {
     const hand::HandModel back = load_hand_model(path);
     EXPECT_EQ(back.left, left);
     EXPECT_LT((back.p_H_palm_joint - hand.p_H_palm_joint).norm(), 1e-8);
+    EXPECT_LT((back.p_H_wrist_joint - hand.p_H_wrist_joint).norm(), 1e-8);
     EXPECT_LT((back.X_HP.translation() - hand.X_HP.translation()).norm(), 1e-12) << "the box stays";
     for (int f = 0; f < hand::kFingerCount; ++f) {
       const auto& a = hand.fingers[static_cast<std::size_t>(f)];

@@ -37,7 +37,7 @@ JointsFrame frame_of(const HandModel& model, const JointAngles& q, const Eigen::
     f[j].p_m = X_GH * p_H;
   };
   set(XrJoint::kPalm, model.p_H_palm_joint);
-  set(XrJoint::kWrist, Eigen::Vector3d::Zero());
+  set(XrJoint::kWrist, model.p_H_wrist_joint);
   for (int finger = 0; finger < kFingerCount; ++finger) {
     const XrFingerChain chain = xr_finger_chain(finger);
     const auto links = finger_links(static_cast<Finger>(finger));
@@ -213,6 +213,7 @@ TEST(RetargetRealLeap, EveryRecordingsTipsAreFittedWithin5mmAtTheMedianOnceCalib
       std::printf("%-17s %s: %zu tips, error p50 %.1f mm, p99 %.1f mm\n", name, s == 1 ? "left " : "right",
                   errors.size(), p50 * 1e3, p99 * 1e3);
       EXPECT_LT(p50, 0.005);
+      EXPECT_LT(p99, 0.035) << "where Leap's hand bends beyond the model's ranges (29 mm today)";
     }
   }
 }
