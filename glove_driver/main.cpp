@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "common/clock.hpp"
 #include "common/logging.hpp"
@@ -17,6 +18,7 @@
 #include "glove_driver/node/recorder.hpp"
 #include "glove_driver/node/replay_commands.hpp"
 #include "glove_driver/node/sample_publisher.hpp"
+#include "glove_driver/node/tracked_joints_publisher.hpp"
 #include "common/terminal_progress.hpp"
 #include "common/cli_finite.hpp"
 #include "hand/config/hand_yaml.hpp"
@@ -137,6 +139,8 @@ int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Sour
                   const PublisherOptions& options, bool hold_at_end, int64_t start_at_ns,
                   bool join_timeline) {
   SamplePublisher publisher(participant, hand, options);
+  std::optional<TrackedJointsPublisher> joints_publisher;
+  if (source.has_tracked_joints()) joints_publisher.emplace(participant, options.hand_id, options.lockstep);
   publisher.add_load_counts(source.load_counts());
   ReplayCommands commands(participant, options.node_name);
   if (!publisher.wait_for_readers()) return shutdown_requested() ? 0 : 1;
@@ -185,6 +189,8 @@ int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Sour
     }
     if (due_ns > 0) sleep_until_ns(start_ns + due_ns);
     publisher.publish(sample);
+    if (joints_publisher && source.tracked_joints() != nullptr)
+      joints_publisher->publish(*source.tracked_joints(), sample.t_ns);
     const int64_t now_ns = monotonic_now_ns();
     publisher.tick(now_ns);
     const double wall_s = ns_to_seconds(now_ns - run_start_ns);
@@ -249,7 +255,7 @@ int run(const Flags& f) {
                  f.calibrate ? " on the hand calibrated on it" : "",
                  ns_to_seconds(input.log.samples.back().t_ns - input.log.samples.front().t_ns),
                  input.tip_error_p50_m * 1e3, input.tip_error_p99_m * 1e3, input.unplaced_frames);
-    source = std::make_unique<ReplaySource>(std::move(input.log),
+    source = std::make_unique<JointsSource>(std::move(input),
                                             ReplayOptions{f.rate, f.loop, f.start_offset_s});
   } else {
     GestureScript script = GestureScript::load(f.script_path, hand);

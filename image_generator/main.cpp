@@ -51,6 +51,9 @@ int main(int argc, char** argv) {
                  "the simulated hand")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_flag("--tracked-joints", options.show_tracked_joints,
+               "draw what a hand tracker saw (cockpit/tracked_joints, from glove_driver --source "
+               "joints) as small dots beside each hand");
   app.add_option("--node-name", options.node_name, "name on cockpit/node_status")
       ->capture_default_str();
   std::string video_view = "left";

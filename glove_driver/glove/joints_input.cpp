@@ -33,6 +33,7 @@ JointsInput joints_input(const std::string& path, const hand::HandModel& right,
   out.log.path = path;
   out.log.left_hand = left;
   out.log.samples = replayed.samples;
+  out.frames_G = replayed.frames_G;
   out.hand = replayed.model;
   out.tip_error_p50_m = replayed.tip_error_p50_m;
   out.tip_error_p99_m = replayed.tip_error_p99_m;

@@ -9,7 +9,9 @@
 #include <string>
 
 #include "hand/glove_log.hpp"
+#include "glove_driver/glove/sample_source.hpp"
 #include "hand/hand_model.hpp"
+#include "hand/tracking/joints_log.hpp"
 
 namespace vcockpit::glove {
 
@@ -21,6 +23,7 @@ struct JointsInputOptions {
 
 struct JointsInput {
   hand::GloveLog log;                  // the retargeted samples, as a replayed glove log
+  std::vector<hand::tracking::JointsFrame> frames_G;  // each sample's frame, in G
   hand::HandModel hand;                // the hand they were retargeted on
   double tip_error_p50_m = -1.0;
   double tip_error_p99_m = -1.0;
@@ -31,5 +34,20 @@ struct JointsInput {
 // log, or no frame of the hand) and std::invalid_argument (the side is missing or ambiguous).
 JointsInput joints_input(const std::string& path, const hand::HandModel& right,
                          const JointsInputOptions& options);
+
+// The retargeted samples replayed (a ReplaySource), each with the tracker's joints it came from.
+class JointsSource : public ReplaySource {
+ public:
+  JointsSource(JointsInput input, const ReplayOptions& options)
+      : ReplaySource(std::move(input.log), options), frames_G_(std::move(input.frames_G)) {}
+  bool has_tracked_joints() const override { return true; }
+  const hand::tracking::JointsFrame* tracked_joints() const override {
+    const std::size_t i = cursor().last_index();
+    return i < frames_G_.size() ? &frames_G_[i] : nullptr;
+  }
+
+ private:
+  std::vector<hand::tracking::JointsFrame> frames_G_;
+};
 
 }  // namespace vcockpit::glove

@@ -23,6 +23,7 @@ ReplayCursor::ReplayCursor(const std::vector<hand::GloveSample>& samples, const 
                                 " s)");
   }
   index_ = first_;
+  last_index_ = first_;
   // one pass spans the played samples plus one sample interval, so a loop keeps the spacing
   const int64_t span = samples.back().t_ns - samples[first_].t_ns;
   const int64_t step = samples.size() - first_ > 1 ? samples[first_ + 1].t_ns - samples[first_].t_ns
@@ -44,6 +45,7 @@ bool ReplayCursor::next(hand::GloveSample& out, int64_t& due_ns) {
     index_ = first_;
     offset_ns_ += pass_ns_;
   }
+  last_index_ = index_;
   const hand::GloveSample& s = samples_[index_++];
   position_ns_ = s.t_ns - samples_[first_].t_ns;
   const int64_t elapsed_ns = position_ns_ + offset_ns_;

@@ -34,6 +34,8 @@ class ReplayCursor {
   void restart();
 
   std::size_t first_index() const { return first_; }
+  // The index in the log of the sample next() gave last (before any: first_index()).
+  std::size_t last_index() const { return last_index_; }
   int64_t pass_duration_ns() const { return pass_ns_; }  // log time of one pass
   int passes_done() const { return pass_; }
   // Log time replayed so far in this pass, for progress lines.
@@ -44,6 +46,7 @@ class ReplayCursor {
   ReplayOptions options_;
   std::size_t first_ = 0;
   std::size_t index_ = 0;
+  std::size_t last_index_ = 0;
   int pass_ = 0;
   int64_t pass_ns_ = 0;
   int64_t step_ns_ = 0;           // the first two played samples' interval

@@ -8,6 +8,7 @@
 #include "glove_driver/glove/gesture_script.hpp"
 #include "glove_driver/glove/replay_cursor.hpp"
 #include "hand/glove_log.hpp"
+#include "hand/tracking/joints_log.hpp"
 
 namespace vcockpit::glove {
 
@@ -23,6 +24,10 @@ class Source {
   // Starts over from the beginning, time going on (an instructor's restart), if it can.
   virtual bool can_restart() const { return false; }
   virtual void restart() {}
+  // A hand-tracking source: the tracker's joints (in the world) the last sample was retargeted
+  // from; null for a glove's samples.
+  virtual bool has_tracked_joints() const { return false; }
+  virtual const hand::tracking::JointsFrame* tracked_joints() const { return nullptr; }
 };
 
 class ReplaySource : public Source {
@@ -35,6 +40,9 @@ class ReplaySource : public Source {
   hand::InputCounts load_counts() const override { return log_.counts; }
   bool can_restart() const override { return true; }
   void restart() override { cursor_.restart(); }
+
+ protected:
+  const ReplayCursor& cursor() const { return cursor_; }
 
  private:
   hand::GloveLog log_;

@@ -46,6 +46,7 @@ JointsReplay replay_joints(const std::vector<JointsFrame>& frames, JointsSpace s
         continue;
       }
       hand.samples.push_back(retarget.glove_sample(f.t_ns));
+      hand.frames_G.push_back(f);
       for (double e : r.tip_error_m)
         if (e >= 0.0) hand.tip_error_m.push_back(e);
     }

@@ -28,6 +28,7 @@ struct ReplayedHand {
   HandModel model;                     // the hand it was retargeted on (calibrated or not)
   std::optional<HandCalibration> calibration;
   std::vector<GloveSample> samples;    // one per frame whose palm was placed
+  std::vector<JointsFrame> frames_G;   // ... and that frame, in G
   int unplaced_frames = 0;             // frames whose palm could not be placed (left out)
   std::vector<double> tip_error_m;     // every tracked tip's error, sorted
   double tip_error_p50_m = -1.0;

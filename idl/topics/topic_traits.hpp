@@ -19,6 +19,7 @@ struct TopicTraits;
 
 VCOCKPIT_TOPIC(HandSample, "cockpit/hand_sample");
 VCOCKPIT_TOPIC(HandState, "cockpit/hand_state");
+VCOCKPIT_TOPIC(TrackedJoints, "cockpit/tracked_joints");
 VCOCKPIT_TOPIC(HandInfo, "cockpit/hand_info");
 VCOCKPIT_TOPIC(ObjectInfo, "cockpit/object_info");
 VCOCKPIT_TOPIC(ObjectState, "cockpit/object_state");

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "common/clock.hpp"
 #include "common/json_file.hpp"
@@ -54,6 +55,9 @@ class ImageGenerator {
         hmd_(hmd.hmd),
         participant_(participant) {
     cache_.set_ghost_threshold_m(options.ghost_threshold_m);
+    cache_.set_show_tracked_joints(options.show_tracked_joints);
+    if (options.show_tracked_joints)
+      joints_reader_.emplace(participant.make_reader<cockpit::TrackedJoints>("stream"));
   }
 
   int run();
@@ -64,6 +68,8 @@ class ImageGenerator {
     while (state_reader_.take(state_)) cache_.on_state(state_);
     while (hand_info_reader_.take(hand_info_)) on_hand_info();
     while (hand_reader_.take(hand_)) cache_.on_hand(hand_);
+    if (joints_reader_)
+      while (joints_reader_->take(joints_)) cache_.on_tracked_joints(joints_);
     while (head_reader_.take(head_)) X_GHead_ = to_eigen(head_.X_GHead());
     while (control_info_reader_.take(control_info_)) cache_.on_control_info(control_info_);
     while (control_reader_.take(control_)) cache_.on_control_state(control_);
@@ -83,6 +89,7 @@ class ImageGenerator {
   Reader<cockpit::HandInfo> hand_info_reader_;
   Reader<cockpit::ObjectState> state_reader_;
   Reader<cockpit::HandState> hand_reader_;
+  std::optional<Reader<cockpit::TrackedJoints>> joints_reader_;  // with show_tracked_joints
   Reader<cockpit::HeadPose> head_reader_;
   Reader<cockpit::ControlInfo> control_info_reader_;
   Reader<cockpit::ControlState> control_reader_;
@@ -99,6 +106,7 @@ class ImageGenerator {
   cockpit::HandInfo hand_info_;
   cockpit::ObjectState state_;
   cockpit::HandState hand_;
+  cockpit::TrackedJoints joints_;
   cockpit::HeadPose head_;
   cockpit::ControlInfo control_info_;
   cockpit::ControlState control_;

@@ -27,6 +27,7 @@ struct IgOptions {
   std::string node_name = "image_generator";
   std::string stats_out;         // JSON file of the run's frame rate and render times; empty: none
   double ghost_threshold_m = SceneCache::kDefaultGhostThreshold_m;  // tracked-hand ghost
+  bool show_tracked_joints = false;  // cockpit/tracked_joints as dots beside each hand
   // The run's video (video_recorder.hpp): OUT/rig.mp4 say; empty: none. An existing file is not
   // overwritten (a restarted image generator writes rig-2.mp4 beside it).
   std::string video_path;

@@ -105,6 +105,27 @@ void SceneCache::on_hand(const cockpit::HandState& hand) {
   newest_sim_time_ns_ = std::max(newest_sim_time_ns_, hand.sim_time_ns());
 }
 
+bool SceneCache::on_tracked_joints(const cockpit::TrackedJoints& joints) {
+  if (joints.hand_id() >= kHandSlots) {
+    ++hand_messages_refused_;
+    return false;
+  }
+  Hand& h = hands_[joints.hand_id()];
+  std::array<Eigen::Vector3d, 26> p_G{};
+  for (std::size_t j = 0; j < p_G.size(); ++j) {
+    p_G[j] = to_eigen(joints.p_G_m()[j]);
+    if (joints.valid()[j] && !p_G[j].allFinite()) {
+      ++hand_messages_refused_;
+      return false;
+    }
+  }
+  h.p_G_joint = p_G;
+  for (std::size_t j = 0; j < p_G.size(); ++j) h.joint_valid[j] = joints.valid()[j];
+  h.joints_time_ns = joints.sample_time_ns();
+  h.have_joints = true;
+  return true;
+}
+
 int SceneCache::hand_without_info() const {
   for (int id = 0; id < kHandSlots; ++id) {
     if (hands_[id].have_state && !hands_[id].have_info) return id;
@@ -203,6 +224,24 @@ void SceneCache::append_hand(const Hand& hand, int64_t display_ns,
     out.push_back(phalanx);
   }
   append_ghost(hand, tracked, out);
+  append_tracked_joints(hand, out);
+}
+
+// What the hand tracker saw: a small dot per tracked joint, beside the hand fitted to them, so a
+// user sees how well the fit follows (hand/tracking/retarget.hpp).
+void SceneCache::append_tracked_joints(const Hand& hand, std::vector<render::Instance>& out) const {
+  if (!show_tracked_joints_ || !hand.have_joints) return;
+  const int64_t age_ns = hand.state.sample_time_ns() - hand.joints_time_ns;
+  if (age_ns > kTrackedJointsAge_ns || age_ns < -kTrackedJointsAge_ns) return;
+  for (std::size_t j = 0; j < hand.p_G_joint.size(); ++j) {
+    if (!hand.joint_valid[j]) continue;
+    render::Instance dot;
+    dot.primitive = render::Primitive::kSphere;
+    dot.X_GO = Eigen::Isometry3d(Eigen::Translation3d(hand.p_G_joint[j]));
+    dot.size_m = Eigen::Vector3d(kJointDotRadius_m, 0, 0);
+    dot.rgba = kJointDot;
+    out.push_back(dot);
+  }
 }
 
 // The tracked hand, where it differs from the drawn one by more than the threshold: a thin pale

@@ -34,6 +34,14 @@ class SceneCache {
   // not finite. A later info for the same hand replaces the geometry.
   bool on_hand_info(const cockpit::HandInfo& info);
   void on_hand(const cockpit::HandState& hand);
+  // A hand tracker's joints (cockpit/tracked_joints); false (and counted with the refused hand
+  // messages) for a hand_id beyond 1 or a valid joint not finite.
+  bool on_tracked_joints(const cockpit::TrackedJoints& joints);
+  // Draw each hand's tracked joints as small dots beside it (off by default), while they are of
+  // the hand's sample time within kTrackedJointsAge_ns.
+  void set_show_tracked_joints(bool show) { show_tracked_joints_ = show; }
+  static constexpr int64_t kTrackedJointsAge_ns = 100'000'000;
+  static constexpr double kJointDotRadius_m = 0.004;
 
   bool has_objects() const { return !objects_.empty(); }
   std::size_t object_count() const { return objects_.size(); }
@@ -95,6 +103,10 @@ class SceneCache {
     hand::HandModel geometry;  // capsules and palm box only (from_hand_info)
     cockpit::HandState state;
     HandPredictor predictor;
+    bool have_joints = false;
+    int64_t joints_time_ns = 0;
+    std::array<bool, 26> joint_valid{};
+    std::array<Eigen::Vector3d, 26> p_G_joint{};
   };
 
   void append_objects(std::vector<render::Instance>& out, bool fixed) const;
@@ -102,11 +114,14 @@ class SceneCache {
   void append_hand(const Hand& hand, int64_t display_ns, std::vector<render::Instance>& out) const;
   void append_ghost(const Hand& hand, const LinkPoses& tracked,
                     std::vector<render::Instance>& out) const;
+  void append_tracked_joints(const Hand& hand, std::vector<render::Instance>& out) const;
 
   static constexpr float kUnlitScale = 0.35f;  // a light that is off, against its colour
   static constexpr double kGhostRadiusScale = 0.3;  // the ghost's bones against the drawn radii
   static constexpr std::array<float, 4> kGhost = {0.80f, 0.86f, 0.95f, 1.0f};
   double ghost_threshold_m_ = kDefaultGhostThreshold_m;
+  static constexpr std::array<float, 4> kJointDot = {0.10f, 0.85f, 0.95f, 1.0f};
+  bool show_tracked_joints_ = false;
 
   std::map<uint32_t, Object> objects_;  // by object id: drawn in id order
   std::map<uint32_t, ControlLights> control_lights_;  // by control id: the objects it lights

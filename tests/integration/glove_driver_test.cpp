@@ -4,12 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <thread>
 
+#include "dds/dds_options.hpp"
+#include "dds/dds_participant.hpp"
 #include "glove_driver/glove/joints_input.hpp"
+#include "idl/topics/pose_convert.hpp"
 #include "hand/glove_log.hpp"
 #include "hand/tracking/joints_log.hpp"
 #include "hand/tracking/leapjs_import.hpp"
@@ -222,6 +226,51 @@ TEST_F(GloveDriverTest, AHandJointsLogIsRetargetedAndPublishedFrameByFrame) {
     ASSERT_LT(a.q_MT.angularDistance(b.q_MT), 1e-9) << i;
     for (int j = 0; j < hand::kJointCount; ++j)
       ASSERT_NEAR(a.joints_rad[static_cast<std::size_t>(j)], b.joints_rad[static_cast<std::size_t>(j)], 1e-9) << i;
+  }
+}
+
+// ... and beside each sample, on cockpit/tracked_joints, the tracker's joints it came from (in the
+// world, as placed): from the moment the reader matched, every one, to the last frame.
+TEST_F(GloveDriverTest, TheTrackersJointsGoOutWithEachRetargetedSample) {
+  const std::string dir = make_temp_dir("glove_driver_tracked_joints");
+  const auto in = hand::tracking::import_leapjs(source_dir() + "/tests/data/real/leap/grab.json");
+  const std::string joints = dir + "/grab_joints.csv";
+  hand::tracking::write_joints_log(joints, hand::tracking::JointsSpace::kXr, in.frames, {});
+  glove::JointsInputOptions options;
+  const glove::JointsInput expected = glove::joints_input(joints, hand_, options);
+
+  DdsParticipant participant(resolve_dds_options(DdsFlags{}), "glove_driver_test");
+  auto reader = participant.make_reader<cockpit::TrackedJoints>("reliable");
+  ChildProcess recorder({glove_driver(), "--record", dir + "/recorded.csv", "--lockstep", "--count",
+                         std::to_string(in.frames.size())},
+                        env_, dir + "/record.log");
+  ChildProcess driver({glove_driver(), "--source", "joints", "--log", joints, "--lockstep"}, env_,
+                      dir + "/driver.log");
+  std::vector<cockpit::TrackedJoints> got;
+  cockpit::TrackedJoints message;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (std::chrono::steady_clock::now() < deadline &&
+         (got.empty() || got.back().sample_time_ns() != expected.log.samples.back().t_ns)) {
+    reader.wait_for_data(100'000'000);
+    while (reader.take(message)) got.push_back(message);
+  }
+  ASSERT_EQ(driver.wait(60 * kSecond), 0) << read_text(dir + "/driver.log");
+  ASSERT_EQ(recorder.wait(30 * kSecond), 0) << read_text(dir + "/record.log");
+  ASSERT_FALSE(got.empty()) << "no tracked joints arrived";
+  std::printf("%zu of %zu frames' joints received (from the match on)\n", got.size(), in.frames.size());
+  // a contiguous run of the log's frames, ending at its last
+  const std::size_t first = expected.log.samples.size() - got.size();
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    const std::size_t i = first + k;
+    ASSERT_EQ(got[k].sample_time_ns(), expected.log.samples[i].t_ns) << k;
+    EXPECT_EQ(got[k].hand_id(), 0u);
+    for (std::size_t j = 0; j < 26; ++j) {
+      const auto& joint = expected.frames_G[i].joints[j];
+      ASSERT_EQ(got[k].valid()[j], joint.valid) << i << " " << j;
+      if (joint.valid) {
+        ASSERT_LT((to_eigen(got[k].p_G_m()[j]) - joint.p_m).norm(), 1e-12) << i << " " << j;
+      }
+    }
   }
 }
 
