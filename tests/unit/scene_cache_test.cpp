@@ -187,6 +187,46 @@ TEST(SceneCache, TheTrackedHandIsAGhostOnlyWhenItIsAwayFromTheDrawnOne) {
   EXPECT_EQ(out.size(), kHandInstances) << "a larger threshold: no ghost at 5 cm";
 }
 
+// A hand tracker's joints are drawn as dots beside the hand when asked, only the tracked ones,
+// only while they are of the hand's time; a bad message is refused.
+TEST(SceneCache, TrackedJointsAreDotsBesideTheirHandWhenShown) {
+  SceneCache cache;
+  ASSERT_TRUE(cache.on_hand_info(to_hand_info(shipped_hand(), 1)));
+  cockpit::HandState state = hand_state(1, 1'000'000);
+  state.sample_time_ns(5'000'000'000);
+  cache.on_hand(state);
+  cockpit::TrackedJoints joints;
+  joints.hand_id(1);
+  joints.sample_time_ns(5'000'000'000);
+  for (std::size_t j = 0; j < 26; ++j) {
+    joints.valid()[j] = j != 1;  // the wrist not tracked
+    joints.p_G_m()[j] = to_idl(Eigen::Vector3d(0.3, 0.1, 1.0 + 0.01 * static_cast<double>(j)));
+  }
+  ASSERT_TRUE(cache.on_tracked_joints(joints));
+  std::vector<render::Instance> out;
+  cache.build(out);
+  EXPECT_EQ(out.size(), kHandInstances) << "not shown unless asked";
+
+  cache.set_show_tracked_joints(true);
+  cache.build(out);
+  ASSERT_EQ(out.size(), kHandInstances + 25) << "a dot per tracked joint";
+  const render::Instance& tip = out.back();  // the little fingertip, the last joint
+  EXPECT_EQ(tip.primitive, render::Primitive::kSphere);
+  EXPECT_EQ(tip.size_m.x(), SceneCache::kJointDotRadius_m);
+  EXPECT_NEAR(tip.X_GO.translation().z(), 1.25, 1e-12);
+
+  state.sample_time_ns(5'000'000'000 + 2 * SceneCache::kTrackedJointsAge_ns);
+  cache.on_hand(state);
+  cache.build(out);
+  EXPECT_EQ(out.size(), kHandInstances) << "joints of another moment are not drawn";
+
+  joints.p_G_m()[3] = to_idl(Eigen::Vector3d(std::numeric_limits<double>::quiet_NaN(), 0, 0));
+  EXPECT_FALSE(cache.on_tracked_joints(joints));
+  joints.hand_id(2);
+  EXPECT_FALSE(cache.on_tracked_joints(joints));
+  EXPECT_EQ(cache.hand_messages_refused(), 2u);
+}
+
 TEST(SceneCache, MalformedHandMessagesAreRefused) {
   SceneCache cache;
   cockpit::HandInfo bad_id = to_hand_info(shipped_hand(), 2);
