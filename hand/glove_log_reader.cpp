@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "common/pose.hpp"
+#include "hand/csv_line.hpp"
 #include "hand/glove_log.hpp"
 
 namespace vcockpit::hand {
@@ -20,22 +21,6 @@ struct Column {
   double to_rad = 1.0;  // unit factor for angles
   int joint = -1;
 };
-
-std::string trim(const std::string& s) {
-  const auto begin = s.find_first_not_of(" \t\r");
-  if (begin == std::string::npos) return "";
-  const auto end = s.find_last_not_of(" \t\r");
-  return s.substr(begin, end - begin + 1);
-}
-
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string field;
-  while (std::getline(ss, field, ',')) out.push_back(trim(field));
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
-}
 
 // Splits "thumb_mcp_deg" into base name and unit factor; false if no known unit suffix.
 bool split_unit(const std::string& name, std::string& base, double& to_rad) {

@@ -4,6 +4,7 @@
 #include <map>
 #include <sstream>
 
+#include "hand/csv_line.hpp"
 #include "hand/glove_sample.hpp"
 #include "hand/tracking/joints_log.hpp"
 
@@ -14,25 +15,6 @@ namespace {
 enum Part { kValid, kX, kY, kZ, kQw, kQx, kQy, kQz, kRadius, kPartCount };
 constexpr const char* kPartSuffix[kPartCount] = {"_valid", "_x_m",  "_y_m",  "_z_m",     "_qw",
                                                   "_qx",    "_qy",   "_qz",   "_radius_m"};
-
-std::string trim(const std::string& s) {
-  const auto begin = s.find_first_not_of(" \t\r");
-  if (begin == std::string::npos) return "";
-  const auto end = s.find_last_not_of(" \t\r");
-  return s.substr(begin, end - begin + 1);
-}
-
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    out.push_back(trim(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return out;
-}
 
 class Reader {
  public:
