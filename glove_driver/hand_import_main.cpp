@@ -24,36 +24,28 @@ int run(const Flags& f) {
   std::error_code ec;
   if (std::filesystem::equivalent(f.in_path, f.out_path, ec))
     throw CLI::ValidationError("--out must not be the input file");
-  std::vector<JointsFrame> frames;
-  int source_frames = 0, without_hands = 0, out_of_order = 0;
+  TrackerImport in;
   std::string what;
   if (f.from == "leapjs") {
-    LeapImport in = import_leapjs(f.in_path);
-    frames = std::move(in.frames);
-    source_frames = in.source_frames;
-    without_hands = in.frames_without_hands;
-    out_of_order = in.frames_out_of_order;
+    LeapImport leap = import_leapjs(f.in_path);
     what = std::string("LeapJS playback") +
-           (in.protocol_version > 0 ? ", protocol " + std::to_string(in.protocol_version) : std::string()) +
+           (leap.protocol_version > 0 ? ", protocol " + std::to_string(leap.protocol_version) : std::string()) +
            "): mm -> m, t = timestamp - first; wrist and finger metacarpals not tracked";
+    in = std::move(leap);
   } else {
-    MediaPipeImport in = import_mediapipe(f.in_path);
-    frames = std::move(in.frames);
-    source_frames = in.source_frames;
-    without_hands = in.frames_without_hands;
-    out_of_order = in.frames_out_of_order;
+    in = import_mediapipe(f.in_path);
     what = "MediaPipe world landmarks): (x, -y, -z), about the hand's centre; palm and finger "
            "metacarpals not tracked";
   }
   int rows[2] = {0, 0};
-  for (const JointsFrame& frame : frames) ++rows[frame.left_hand ? 1 : 0];
+  for (const JointsFrame& frame : in.frames) ++rows[frame.left_hand ? 1 : 0];
   std::vector<std::string> comments = {
       "imported from " + std::filesystem::path(f.in_path).filename().string() + " (" + what};
-  write_joints_log(f.out_path, JointsSpace::kXr, frames, comments);
+  write_joints_log(f.out_path, JointsSpace::kXr, in.frames, comments);
   std::printf("%s: %zu rows (%d right, %d left) from %d frames; %d frames without hands, %d out of "
               "order (skipped)\n",
-              f.out_path.c_str(), frames.size(), rows[0], rows[1], source_frames, without_hands,
-              out_of_order);
+              f.out_path.c_str(), in.frames.size(), rows[0], rows[1], in.source_frames,
+              in.frames_without_hands, in.frames_out_of_order);
   return 0;
 }
 

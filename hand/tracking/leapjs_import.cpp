@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <fstream>
+
 
 namespace vcockpit::hand::tracking {
 namespace {
@@ -12,17 +12,10 @@ using nlohmann::json;
 
 class Importer {
  public:
-  explicit Importer(const std::string& path) : path_(path) {}
+  explicit Importer(const std::string& path) : path_(path), errors_(path) {}
 
   LeapImport run() {
-    std::ifstream in(path_, std::ios::binary);
-    if (!in) throw JointsLogError(path_ + ": cannot open file");
-    json doc;
-    try {
-      doc = json::parse(in);
-    } catch (const json::exception& e) {
-      throw JointsLogError(path_ + ": not JSON: " + e.what());
-    }
+    const json doc = read_json_file(path_);
     if (!doc.is_object() || !doc.contains("frames") || !doc["frames"].is_array())
       throw JointsLogError(path_ + ": no 'frames' array: not a LeapJS playback recording");
     if (doc.contains("metadata") && doc["metadata"].is_object()) {
@@ -38,15 +31,9 @@ class Importer {
   }
 
  private:
-  [[noreturn]] void fail(std::size_t frame, const std::string& what) const {
-    throw JointsLogError(path_ + ": frame " + std::to_string(frame) + ": " + what);
-  }
-
+  [[noreturn]] void fail(std::size_t frame, const std::string& what) const { errors_.fail(frame, what); }
   double number(const json& v, std::size_t frame, const std::string& field) const {
-    if (!v.is_number()) fail(frame, "'" + field + "' is not a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(frame, "'" + field + "' is not finite");
-    return x;
+    return errors_.number(v, frame, field);
   }
 
   Eigen::Vector3d vec3(const json& object, const char* key, std::size_t frame, const std::string& owner) const {
@@ -83,12 +70,10 @@ class Importer {
       JointsFrame row;
       row.t_ns = t_ns;
       row.left_hand = side == "left";
-      int64_t& last = last_ns_[row.left_hand ? 1 : 0];
-      if (t_ns <= last) {
+      if (!times_.take(row.left_hand, t_ns)) {
         out_of_order = true;
         continue;
       }
-      last = t_ns;
       read_palm(hand, i, owner, row);
       if (!hand.contains("id")) fail(i, "no '" + owner + ".id'");
       for (std::size_t p = 0; p < pointables.size(); ++p)
@@ -143,9 +128,10 @@ class Importer {
   }
 
   std::string path_;
+  FrameErrors errors_;
   LeapImport out_;
   double first_stamp_us_ = -1.0;
-  std::array<int64_t, 2> last_ns_ = {INT64_MIN, INT64_MIN};
+  HandTimes times_;
 };
 
 }  // namespace

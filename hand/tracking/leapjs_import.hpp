@@ -18,16 +18,12 @@
 #include <string>
 #include <vector>
 
-#include "hand/tracking/joints_log.hpp"
+#include "hand/tracking/tracker_json.hpp"
 
 namespace vcockpit::hand::tracking {
 
-struct LeapImport {
-  std::vector<JointsFrame> frames;  // in time order, a row per hand
-  int source_frames = 0;            // frames in the file
-  int frames_without_hands = 0;
-  int frames_out_of_order = 0;      // time not increasing: skipped
-  int protocol_version = 0;         // metadata.protocolVersion (0: not given)
+struct LeapImport : TrackerImport {
+  int protocol_version = 0;  // metadata.protocolVersion (0: not given)
 };
 
 // Throws JointsLogError.

@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <fstream>
+
 
 namespace vcockpit::hand::tracking {
 namespace {
@@ -27,17 +27,10 @@ const json* member(const json& object, std::initializer_list<const char*> names)
 
 class Importer {
  public:
-  explicit Importer(const std::string& path) : path_(path) {}
+  explicit Importer(const std::string& path) : path_(path), errors_(path) {}
 
   MediaPipeImport run() {
-    std::ifstream in(path_, std::ios::binary);
-    if (!in) throw JointsLogError(path_ + ": cannot open file");
-    json doc;
-    try {
-      doc = json::parse(in);
-    } catch (const json::exception& e) {
-      throw JointsLogError(path_ + ": not JSON: " + e.what());
-    }
+    const json doc = read_json_file(path_);
     const json* frames = doc.is_array() ? &doc : (doc.is_object() ? member(doc, {"frames"}) : nullptr);
     if (frames == nullptr || !frames->is_array())
       throw JointsLogError(path_ + ": neither a list of frames nor {\"frames\": [...]}");
@@ -48,15 +41,9 @@ class Importer {
   }
 
  private:
-  [[noreturn]] void fail(std::size_t frame, const std::string& what) const {
-    throw JointsLogError(path_ + ": frame " + std::to_string(frame) + ": " + what);
-  }
-
+  [[noreturn]] void fail(std::size_t frame, const std::string& what) const { errors_.fail(frame, what); }
   double number(const json& v, std::size_t frame, const std::string& field) const {
-    if (!v.is_number()) fail(frame, "'" + field + "' is not a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(frame, "'" + field + "' is not finite");
-    return x;
+    return errors_.number(v, frame, field);
   }
 
   void read_frame(const json& f, std::size_t i) {
@@ -88,12 +75,10 @@ class Importer {
       JointsFrame row;
       row.t_ns = t_ns;
       row.left_hand = side_is_left((*sides)[h], i, h);
-      int64_t& last = last_ns_[row.left_hand ? 1 : 0];
-      if (t_ns <= last) {
+      if (!times_.take(row.left_hand, t_ns)) {
         out_of_order = true;
         continue;
       }
-      last = t_ns;
       const json& points = (*hands)[h];
       if (!points.is_array() || points.size() != 21) fail(i, "'" + owner + "' is not 21 landmarks");
       for (std::size_t k = 0; k < 21; ++k) {
@@ -124,9 +109,10 @@ class Importer {
   }
 
   std::string path_;
+  FrameErrors errors_;
   MediaPipeImport out_;
   double first_t_s_ = -1.0;
-  std::array<int64_t, 2> last_ns_ = {INT64_MIN, INT64_MIN};
+  HandTimes times_;
 };
 
 }  // namespace

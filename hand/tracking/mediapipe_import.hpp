@@ -22,16 +22,11 @@
 #include <string>
 #include <vector>
 
-#include "hand/tracking/joints_log.hpp"
+#include "hand/tracking/tracker_json.hpp"
 
 namespace vcockpit::hand::tracking {
 
-struct MediaPipeImport {
-  std::vector<JointsFrame> frames;
-  int source_frames = 0;
-  int frames_without_hands = 0;
-  int frames_out_of_order = 0;
-};
+using MediaPipeImport = TrackerImport;
 
 // Throws JointsLogError.
 MediaPipeImport import_mediapipe(const std::string& path);
