@@ -86,7 +86,12 @@ struct Recording {
       ++other_hands;
       return;
     }
-    if (hand_writers.insert(writer).second) writers_in_order.push_back(writer);
+    if (hand_writers.insert(writer).second) {
+      writers_in_order.push_back(writer);
+      // when the recording really began: a writer found late has sent samples meanwhile
+      spdlog::info("receiving from writer {}: its first sample here is its sample {}",
+                   writers_in_order.size(), info.sample_identity.sequence_number().to64long());
+    }
     hand::GloveSample sample = from_hand_sample(message);
     const hand::GloveSample as_received = sample;
     if (!validator.accept(sample)) return;
