@@ -4,6 +4,7 @@
 #include <time.h>
 
 #include <openxr/openxr_platform.h>
+#include <openxr/openxr_reflection.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -17,22 +18,29 @@
 namespace vcockpit::glove::xr {
 namespace {
 
-std::string result_text(XrInstance instance, XrResult result) {
-  char text[XR_MAX_RESULT_STRING_SIZE] = {};
-  if (instance != XR_NULL_HANDLE && XR_SUCCEEDED(xrResultToString(instance, result, text))) return text;
-  return "XrResult " + std::to_string(static_cast<int>(result));
+// The result's name from the headers (no instance needed: xrCreateInstance's own failures).
+std::string result_text(XrResult result) {
+  switch (result) {
+#define VCOCKPIT_XR_RESULT_NAME(name, number) \
+  case name:                                 \
+    return #name;
+    XR_LIST_ENUM_XrResult(VCOCKPIT_XR_RESULT_NAME)
+#undef VCOCKPIT_XR_RESULT_NAME
+    default:
+      return "XrResult " + std::to_string(static_cast<int>(result));
+  }
 }
 
 std::vector<std::string> instance_extensions() {
   uint32_t count = 0;
   XrResult r = xrEnumerateInstanceExtensionProperties(nullptr, 0, &count, nullptr);
   if (XR_FAILED(r))
-    throw XrError("xrEnumerateInstanceExtensionProperties: " + result_text(XR_NULL_HANDLE, r) +
+    throw XrError("xrEnumerateInstanceExtensionProperties: " + result_text(r) +
                   " (no OpenXR runtime active? XR_RUNTIME_JSON names one)");
   std::vector<XrExtensionProperties> properties(count, xr_struct<XrExtensionProperties>(XR_TYPE_EXTENSION_PROPERTIES));
   r = xrEnumerateInstanceExtensionProperties(nullptr, count, &count, properties.data());
   if (XR_FAILED(r))
-    throw XrError("xrEnumerateInstanceExtensionProperties: " + result_text(XR_NULL_HANDLE, r));
+    throw XrError("xrEnumerateInstanceExtensionProperties: " + result_text(r));
   std::vector<std::string> names;
   for (uint32_t i = 0; i < count; ++i) names.emplace_back(properties[i].extensionName);
   return names;
@@ -83,7 +91,7 @@ F XrHandSession::proc(const char* name) const {
 }
 
 void XrHandSession::check(XrResult result, const char* call) const {
-  if (XR_FAILED(result)) throw XrError(std::string(call) + ": " + result_text(instance_, result));
+  if (XR_FAILED(result)) throw XrError(std::string(call) + ": " + result_text(result));
 }
 
 XrHandSession::XrHandSession(const XrHandSessionOptions& options) {
