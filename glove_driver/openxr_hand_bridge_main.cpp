@@ -16,7 +16,7 @@
 #include "common/clock.hpp"
 #include "common/logging.hpp"
 #include "common/signals.hpp"
-#include "glove_driver/openxr/bridged_hand.hpp"
+#include "glove_driver/node/bridged_hand.hpp"
 #include "glove_driver/openxr/xr_hand_session.hpp"
 #include "hand/config/hand_yaml.hpp"
 #include "hand/tracking/retarget.hpp"

@@ -20,8 +20,8 @@ import sys
 SHARED = ["common", "hand", "hand/tracking", "hand/config", "idl/topics", "dds"]
 # Each node's folders, bottom up; the node's own top folder (its main) last.
 NODES = {
-    "glove_driver": ["glove_driver/degrade", "glove_driver/glove", "glove_driver/node",
-                     "glove_driver"],
+    "glove_driver": ["glove_driver/degrade", "glove_driver/glove", "glove_driver/openxr",
+                     "glove_driver/openxr/replay_runtime", "glove_driver/node", "glove_driver"],
     "physics_node": ["physics_node/physics", "physics_node/io", "physics_node/fit",
                      "physics_node/config", "physics_node/node", "physics_node"],
     "image_generator": ["image_generator/render", "image_generator/node", "image_generator"],
@@ -29,7 +29,8 @@ NODES = {
     "instructor": ["instructor"],
 }
 # No DDS, no IDL types, no YAML: what the offline runner and the tests drive on their own.
-PURE = ["hand", "hand/tracking", "glove_driver/degrade", "physics_node/physics", "physics_node/io",
+PURE = ["hand", "hand/tracking", "glove_driver/degrade", "glove_driver/openxr",
+        "glove_driver/openxr/replay_runtime", "physics_node/physics", "physics_node/io",
         "physics_node/fit", "image_generator/render"]
 PURE_MAY_NOT = re.compile(r"^(fastdds|fastrtps|fastcdr|yaml-cpp)/|^(idl|dds|hand/config)/|"
                           r"^common/yaml_config\.hpp$|^cockpit(PubSubTypes)?\.h$")

@@ -79,6 +79,7 @@ MonitorLog MonitorLog::read(const std::string& path) {
       log.statuses.push_back(s);
     } else if (kind == "hand") {
       SeenHand h;
+      h.id = static_cast<int>(integer(f, "id"));
       h.seq = static_cast<uint64_t>(integer(f, "seq"));
       h.sample_time_ns = integer(f, "sample_time_ns");
       h.source_stamp_ns = integer(f, "source_stamp_ns");

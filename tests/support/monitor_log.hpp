@@ -34,6 +34,7 @@ struct SeenStatus {
 };
 
 struct SeenHand {
+  int id = -1;  // 0 right, 1 left
   uint64_t seq = 0;
   int64_t sample_time_ns = 0;
   int64_t sim_time_ns = 0;

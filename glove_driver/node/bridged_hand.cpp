@@ -1,4 +1,4 @@
-#include "glove_driver/openxr/bridged_hand.hpp"
+#include "glove_driver/node/bridged_hand.hpp"
 
 #include <spdlog/spdlog.h>
 

@@ -1,0 +1,122 @@
+// openxr_hand_bridge as a user runs it: a real recording (three-claps, both hands) imported to a
+// hand-joints log, served by the project's replay runtime behind the Khronos loader (selected
+// with XR_RUNTIME_JSON), Debian's core validation layer on, the bridge calibrating each hand on
+// its first second and publishing to a physics node over loopback DDS.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <string>
+#include <thread>
+
+#include "tests/support/monitor_log.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/process_test.hpp"
+
+namespace vcockpit::test {
+namespace {
+
+class OpenXrBridgeTest : public ProcessTest {
+ protected:
+  void SetUp() override {
+    ProcessTest::SetUp();
+    joints_log_ = dir_ + "/three-claps.csv";
+    ChildProcess import({bin_dir() + "/hand_import", "--from", "leapjs",
+                         source_dir() + "/tests/data/real/leap/three-claps.json", "--out", joints_log_},
+                        env_, dir_ + "/import.log");
+    ASSERT_EQ(import.wait(60 * kSecond), 0) << text("import.log");
+    use_replay_runtime(joints_log_);
+  }
+  // The replay runtime serves `log`; the core validation layer on, its report in the test's dir.
+  void use_replay_runtime(const std::string& log) {
+    env_["XR_RUNTIME_JSON"] = bin_dir() + "/../lib/vcockpit_xr_replay_runtime.json";
+    env_["VCOCKPIT_XR_REPLAY_LOG"] = log;
+    env_["XR_ENABLE_API_LAYERS"] = "XR_APILAYER_LUNARG_core_validation";
+    env_["XR_API_LAYER_PATH"] = "/usr/share/openxr/1/api_layers/explicit.d";
+    env_["XR_CORE_VALIDATION_EXPORT_TYPE"] = "text";
+    env_["XR_CORE_VALIDATION_FILE_NAME"] = dir_ + "/validation.txt";
+  }
+
+  struct HandReport {
+    long located = -1, published = -1;
+    double p50_mm = -1;
+  };
+  // The bridge's closing line for a hand.
+  static HandReport hand_report(const std::string& log, const std::string& side) {
+    std::smatch m;
+    const std::regex line(side + R"( hand: located (\d+) frames, published (\d+) samples.*p50 ([\d.]+) mm)");
+    HandReport r;
+    if (std::regex_search(log, m, line)) {
+      r.located = std::stol(m[1]);
+      r.published = std::stol(m[2]);
+      r.p50_mm = std::stod(m[3]);
+    }
+    return r;
+  }
+
+  std::string joints_log_;
+};
+
+TEST_F(OpenXrBridgeTest, BothHandsReachAPhysicsNodeThroughTheLoaderWithTheValidationLayerOn) {
+  ChildProcess node = start("physics_node", {}, "node.log");
+  ChildProcess monitor = start("test_cockpit_monitor", {"--out", dir_ + "/monitor.txt"}, "monitor.log");
+  ASSERT_TRUE(wait_for_line(dir_ + "/monitor.txt", "status node=physics_node", 60 * kSecond))
+      << text("monitor.log");
+  // the recording's hands are about 20 cm above the device: its origin 20 cm below the console
+  ChildProcess bridge = start("openxr_hand_bridge",
+                              {"--calibrate", "1", "--xr-origin", "0.36", "-0.35", "0.64"}, "bridge.log");
+  ASSERT_EQ(bridge.wait(120 * kSecond), 0) << text("bridge.log");
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_EQ(monitor.stop(), 0);
+  EXPECT_EQ(node.stop(), 0) << text("node.log");
+
+  const std::string log = text("bridge.log");
+  EXPECT_NE(log.find("OpenXR runtime 'vcockpit joints-log replay'"), std::string::npos) << log;
+  EXPECT_NE(log.find("Core Validation output type: text"), std::string::npos) << "the layer is on: " << log;
+  EXPECT_NE(log.find("OpenXR session exiting"), std::string::npos) << "the runtime ended it: " << log;
+  EXPECT_NE(log.find("API layers: 0 errors, 0 warnings"), std::string::npos) << log;
+  EXPECT_EQ(text("validation.txt").find("VALID_ERROR"), std::string::npos) << text("validation.txt");
+  EXPECT_EQ(text("validation.txt").find("VALID_WARNING"), std::string::npos) << text("validation.txt");
+  // 3.7 s of recording at 90 Hz, the first second of each hand measured
+  for (const char* side : {"right", "left"}) {
+    const HandReport r = hand_report(log, side);
+    SCOPED_TRACE(side);
+    EXPECT_GT(r.located, 150) << log;
+    EXPECT_GT(r.published, 50) << log;
+    EXPECT_GE(r.p50_mm, 0.0) << log;
+    EXPECT_LT(r.p50_mm, 5.0) << "calibrated live, the fit follows the tracked tips: " << log;
+  }
+  // the samples reached the physics node: its hand states of both hands, tracking
+  int tracking[2] = {0, 0};
+  for (const SeenHand& h : MonitorLog::read(dir_ + "/monitor.txt").hands)
+    if (h.tracking && (h.id == 0 || h.id == 1)) ++tracking[h.id];
+  EXPECT_GT(tracking[0], 20) << text("node.log");
+  EXPECT_GT(tracking[1], 20) << text("node.log");
+}
+
+TEST_F(OpenXrBridgeTest, CtrlCAsksTheRuntimeToEndTheSessionAndExitsCleanly) {
+  env_["VCOCKPIT_XR_REPLAY_LOOP"] = "1";
+  ChildProcess bridge = start("openxr_hand_bridge", {"--wait-readers", "0"}, "bridge.log");
+  ASSERT_TRUE(wait_for_line(dir_ + "/bridge.log", "OpenXR session focused", 60 * kSecond)) << text("bridge.log");
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_EQ(bridge.stop(), 0) << text("bridge.log");
+  const std::string log = text("bridge.log");
+  EXPECT_NE(log.find("asking the runtime to end the session"), std::string::npos) << log;
+  EXPECT_LT(log.find("OpenXR session stopping"), log.find("OpenXR session exiting")) << log;
+  EXPECT_NE(log.find("API layers: 0 errors"), std::string::npos) << log;
+}
+
+TEST_F(OpenXrBridgeTest, ABadLogIsNamedWithItsLineAndTheBridgeFails) {
+  const std::string bad = dir_ + "/bad.csv";
+  { std::ofstream(bad) << "# vcockpit hand joints log 1\nt_s,hand\n0.0,right\n"; }
+  use_replay_runtime(bad);
+  ChildProcess bridge = start("openxr_hand_bridge", {"--wait-readers", "0"}, "bridge.log");
+  EXPECT_EQ(bridge.wait(60 * kSecond), 1);
+  const std::string log = text("bridge.log");
+  EXPECT_NE(log.find(bad + ":2"), std::string::npos) << "the runtime names the file and line: " << log;
+  EXPECT_NE(log.find("xrCreateInstance: XR_ERROR_"), std::string::npos) << log;
+}
+
+}  // namespace
+}  // namespace vcockpit::test
