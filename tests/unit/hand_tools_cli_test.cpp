@@ -1,6 +1,7 @@
-// hand_import and hand_retarget, the commands: a Leap recording becomes a hand-joints log, then a
-// glove log and a calibrated hand.yaml that load; a two-handed log without --out-left, or a bad
-// input, is a clear error that writes nothing.
+// hand_import, hand_retarget and hand_calibrate, the commands: a Leap recording becomes a
+// hand-joints log, then a glove log and a calibrated hand.yaml that load; hand_calibrate measures
+// both hands of a recording into hand files that fit it better; a two-handed log without
+// --out-left, or a bad input, is a clear error that writes nothing.
 
 #include <gtest/gtest.h>
 
@@ -54,6 +55,39 @@ TEST_F(HandToolsCli, ALeapRecordingBecomesAGloveLogAndACalibratedHand) {
   EXPECT_EQ(log.samples.size(), 374u);
   EXPECT_EQ(log.counts.clamped, 0u) << "the fit stays within the joints' ranges";
   EXPECT_NE(read_text(glove).find("# fingertip error of the fit p50"), std::string::npos);
+}
+
+// The calibrated hands fit their recording closer than the default hand, and retargeting on them
+// gives what the calibrating retarget gives.
+TEST_F(HandToolsCli, HandCalibrateWritesEachHandOfARecordingAsAHandFile) {
+  const std::string claps = dir_ + "/claps.csv";
+  ASSERT_EQ(run("import", {HAND_IMPORT_EXE, source_dir() + "/tests/data/real/leap/three-claps.json",
+                           "--out", claps}),
+            0)
+      << output("import");
+  const std::string right = dir_ + "/right.yaml", left = dir_ + "/left.yaml";
+  ASSERT_EQ(run("calibrate", {HAND_CALIBRATE_EXE, claps, "--out", right, "--out-left", left}), 0)
+      << output("calibrate");
+  EXPECT_TRUE(load_hand_model(left).left);
+  EXPECT_FALSE(load_hand_model(right).left);
+  // "...: right hand, N steady frames, bones of 5 of 5 fingers measured; fingertip error p50 / p99
+  // A / B mm on hand.yaml, C / D mm calibrated"
+  for (const std::string side : {"right", "left"}) {
+    const std::string out = output("calibrate");
+    const std::size_t at = out.find(side + " hand, ");
+    ASSERT_NE(at, std::string::npos) << out;
+    double before_p50 = 0, before_p99 = 0, after_p50 = 0, after_p99 = 0;
+    ASSERT_EQ(std::sscanf(out.c_str() + out.find("p50 / p99 ", at), "p50 / p99 %lf / %lf mm on hand.yaml, %lf / %lf",
+                          &before_p50, &before_p99, &after_p50, &after_p99),
+              4)
+        << out;
+    EXPECT_NE(out.find("bones of 5 of 5 fingers measured", at), std::string::npos) << out;
+    EXPECT_LT(after_p50, 5.0) << side << ": " << out;
+    EXPECT_LT(after_p50, before_p50 / 4) << side << ": " << out;
+  }
+  EXPECT_NE(run("no_left", {HAND_CALIBRATE_EXE, claps, "--out", dir_ + "/only.yaml"}), 0);
+  EXPECT_NE(output("no_left").find("has a left hand: give --out-left"), std::string::npos) << output("no_left");
+  EXPECT_FALSE(fs::exists(dir_ + "/only.yaml"));
 }
 
 TEST_F(HandToolsCli, RefusedRunsWriteNothing) {
