@@ -55,8 +55,9 @@ class RigMonitor {
   double mean_step_rate_hz() const;
   uint64_t late_steps() const;
   // Whether the physics node has taken every sample the named input nodes published, by the last
-  // statuses seen: each of them has reported STOPPING, and the physics node's accepted and
-  // rejected samples add up to what they published. False while any of those is unknown.
+  // statuses seen: each of them has reported STOPPING (its own status, or each of its
+  // "<name>/..." ones: openxr_hand_bridge's hands), and the physics node's accepted and rejected
+  // samples add up to what they published. False while any of those is unknown.
   bool input_consumed(const std::vector<std::string>& input_nodes) const;
   std::string object_name(uint32_t id) const;
   // the last state of every dynamic object, by name

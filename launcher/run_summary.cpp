@@ -29,7 +29,13 @@ RunSummary collect_run_summary(const RigConfig& rig, const std::string& out_dir,
     auto it = statuses.find(node);
     return it == statuses.end() ? 0 : it->second.published();
   };
-  s.samples_replayed = published("glove_driver") + published("glove_driver_left");
+  // what the inputs (the nodes that end the run: glove drivers, the OpenXR bridge) published,
+  // each by its own status or its "<name>/..." ones (openxr_hand_bridge/right, /left)
+  for (const NodeSpec& node : rig.nodes) {
+    if (!node.ends_run) continue;
+    for (const auto& [name, status] : statuses)
+      if (name == node.name || name.rfind(node.name + "/", 0) == 0) s.samples_replayed += status.published();
+  }
   if (auto it = statuses.find("physics_node"); it != statuses.end()) {
     for (const cockpit::HandInputStatus& h : it->second.hands())
       s.hands.push_back({static_cast<int>(h.hand_id()), h.received(), h.glove_lost(), h.grasps(), h.tracking()});
