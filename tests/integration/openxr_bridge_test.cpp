@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <string>
@@ -13,6 +14,7 @@
 #include "tests/support/monitor_log.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/process_test.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace vcockpit::test {
 namespace {
@@ -116,6 +118,40 @@ TEST_F(OpenXrBridgeTest, ABadLogIsNamedWithItsLineAndTheBridgeFails) {
   const std::string log = text("bridge.log");
   EXPECT_NE(log.find(bad + ":2"), std::string::npos) << "the runtime names the file and line: " << log;
   EXPECT_NE(log.find("xrCreateInstance: XR_ERROR_"), std::string::npos) << log;
+}
+
+// config/rig_openxr.yaml as a user runs it without a headset (the replay runtime in the
+// environment): on the test's domain, the recording's origin below the console.
+TEST_F(OpenXrBridgeTest, TheOpenXrRigRunsUntilTheRuntimeEndsTheSession) {
+  std::string rig = read_text(source_dir() + "/config/rig_openxr.yaml");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = rig.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    rig.replace(at, from.size(), to);
+  };
+  replace("domain: 10", "domain: " + env_.at("VCOCKPIT_DOMAIN"));
+  replace("qos: qos.xml", "qos: " + source_dir() + "/config/qos.xml");
+  replace("\"{config}/cockpit.yaml\"", source_dir() + "/config/cockpit.yaml");
+  replace("\"{config}/hmd.yaml\"", source_dir() + "/config/hmd.yaml");
+  replace("--wait-readers, \"1\"]", "--wait-readers, \"1\", --xr-origin, \"0.36\", \"-0.35\", \"0.64\"]");
+  { std::ofstream(dir_ + "/rig.yaml") << rig; }
+  ChildProcess launcher({bin_dir() + "/rig_launcher", dir_ + "/rig.yaml", "--out", dir_ + "/out", "--quiet"},
+                        env_, dir_ + "/launcher.log");
+  ASSERT_EQ(launcher.wait(180 * kSecond), 0) << text("launcher.log");
+  const std::string bridge = read_text(dir_ + "/out/logs/openxr_hand_bridge.log");
+  EXPECT_NE(bridge.find("OpenXR session exiting"), std::string::npos) << bridge;
+  long published = 0;
+  for (const char* side : {"right", "left"}) {
+    const HandReport r = hand_report(bridge, side);
+    EXPECT_GT(r.published, 20) << side << ": " << bridge;
+    published += r.published;
+  }
+  // the summary counts both hands' samples as the run's input
+  const std::string summary = read_text(dir_ + "/out/summary.json");
+  EXPECT_NE(summary.find("\"samples_replayed\": " + std::to_string(published) + ","), std::string::npos)
+      << published << " samples: " << summary;
+  // the rig knew the bridge's two hands' samples were all taken (not its 60 s limit)
+  EXPECT_EQ(text("launcher.log").find("had not taken every sample"), std::string::npos) << text("launcher.log");
 }
 
 }  // namespace
