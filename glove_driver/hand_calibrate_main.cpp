@@ -23,6 +23,14 @@ struct Flags {
 };
 
 int run(const Flags& f) {
+  namespace fs = std::filesystem;
+  const auto same = [](const std::string& a, const std::string& b) {
+    std::error_code ec;
+    return !a.empty() && !b.empty() && (a == b || fs::equivalent(a, b, ec));
+  };
+  if (same(f.out_path, f.out_left_path)) throw CLI::ValidationError("--out and --out-left are the same file");
+  if (same(f.out_path, f.hand_file) || same(f.out_left_path, f.hand_file))
+    throw CLI::ValidationError("an output is the --hand-file it is scaled from: write elsewhere");
   const JointsLog log = read_joints_log(f.in_path);
   const HandModel right = load_hand_model(f.hand_file);
   if (right.left) throw CLI::ValidationError("--hand-file must describe a right hand (side: right)");

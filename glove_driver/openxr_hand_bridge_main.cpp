@@ -84,11 +84,11 @@ void add_flags(CLI::App& app, Flags& f) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_option("--match-timeout", f.match_timeout_s, "seconds to wait for them (then it starts anyway)")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(0.001, 86400.0))
       ->capture_default_str();
   app.add_option("--max-gap", f.max_gap_s,
                  "count intervals between published samples longer than this as gaps")
-      ->check(CLI::NonNegativeNumber)
+      ->check(CLI::Range(0.0, 3600.0))
       ->capture_default_str();
   app.add_option("--node-name", f.node_name, "name on cockpit/node_status (+ /right, /left)")
       ->capture_default_str();
@@ -104,6 +104,8 @@ Eigen::Isometry3d X_G_space(const std::vector<double>& origin, double yaw_deg) {
   X.translation() = Eigen::Vector3d(origin[0], origin[1], origin[2]);
   return X;
 }
+
+constexpr int64_t kExitWait_ns = 5'000'000'000;
 
 int run(const Flags& f) {
   hand::HandModel right = load_hand_model(f.hand_file);
@@ -143,12 +145,19 @@ int run(const Flags& f) {
   const int64_t start_ns = monotonic_now_ns();
   int64_t next_ns = start_ns;
   bool exit_requested = false;
+  int64_t exit_deadline_ns = 0;  // a runtime that does not end the session is left after it
   hand::tracking::JointsFrame frame;
   while (xr.poll()) {
     if (shutdown_requested() && !exit_requested) {
       spdlog::info("stopping: asking the runtime to end the session");
       xr.request_exit();
       exit_requested = true;
+      exit_deadline_ns = monotonic_now_ns() + kExitWait_ns;
+    }
+    if (exit_requested && monotonic_now_ns() > exit_deadline_ns) {
+      spdlog::warn("the OpenXR runtime did not end the session within {} s: leaving it",
+                   ns_to_seconds(kExitWait_ns));
+      break;
     }
     const int64_t now_ns = monotonic_now_ns();
     if (xr.focused()) {

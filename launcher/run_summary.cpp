@@ -29,10 +29,11 @@ RunSummary collect_run_summary(const RigConfig& rig, const std::string& out_dir,
     auto it = statuses.find(node);
     return it == statuses.end() ? 0 : it->second.published();
   };
-  // what the inputs (the nodes that end the run: glove drivers, the OpenXR bridge) published,
-  // each by its own status or its "<name>/..." ones (openxr_hand_bridge/right, /left)
+  // what the inputs published: the nodes that end the run (glove drivers, the OpenXR bridge) and
+  // the glove drivers that do not (a soak's looping ones), each by its own status or its
+  // "<name>/..." ones (openxr_hand_bridge/right, /left)
   for (const NodeSpec& node : rig.nodes) {
-    if (!node.ends_run) continue;
+    if (!node.ends_run && node.name.rfind("glove_driver", 0) != 0) continue;
     for (const auto& [name, status] : statuses)
       if (name == node.name || name.rfind(node.name + "/", 0) == 0) s.samples_replayed += status.published();
   }

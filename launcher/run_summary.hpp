@@ -48,7 +48,7 @@ struct RunSummary {
   std::string ended;  // why the run ended
   bool ok = true;     // no required node died
   double wall_s = 0.0;
-  uint64_t samples_replayed = 0;  // the input nodes' last published counts (ends_run nodes)
+  uint64_t samples_replayed = 0;  // the input nodes' last published counts (ends_run, glove_driver*)
   int grasps = 0;
   int releases = 0;
   std::vector<SeenEvent> events;

@@ -31,7 +31,7 @@ BridgedHand::BridgedHand(DdsParticipant& participant, const hand::HandModel& mod
                          const BridgedHandOptions& options)
     : options_(options),
       model_(std::make_unique<hand::HandModel>(model)),
-      publisher_(participant, model, options.publisher),
+      publisher_(participant, *model_, options.publisher),  // model_ is made first
       joints_publisher_(participant, options.hand_id, options.publisher.lockstep),
       calibrating_(options.calibrate_s > 0.0) {
   if (!calibrating_) start_retargeting();
@@ -49,6 +49,9 @@ void BridgedHand::take(const hand::tracking::JointsFrame& frame_G) {
     if (span_ns < std::llround(options_.calibrate_s * 1e9)) return;
     const hand::tracking::HandCalibration c = hand::tracking::estimate_hand(*model_, calibration_frames_G_);
     *model_ = hand::tracking::calibrated(*model_, c);
+    if (c.steady_frames == 0)
+      spdlog::warn("{} hand: no steady frame in its first {:.1f} s of tracking: the hand file's sizes are kept",
+                   frame_G.left_hand ? "left" : "right", options_.calibrate_s);
     spdlog::info("{} hand calibrated on {} frames ({} steady): bones of {} fingers measured",
                  frame_G.left_hand ? "left" : "right", calibration_frames_G_.size(), c.steady_frames,
                  std::count(c.bones_measured.begin(), c.bones_measured.end(), true));

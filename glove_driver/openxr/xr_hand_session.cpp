@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -225,7 +226,8 @@ bool XrHandSession::poll() {
     check(r, "xrPollEvent");
     if (r == XR_EVENT_UNAVAILABLE) break;
     if (event.type == XR_TYPE_EVENT_DATA_SESSION_STATE_CHANGED) {
-      on_state(reinterpret_cast<const XrEventDataSessionStateChanged&>(event).state);
+      const auto& changed = reinterpret_cast<const XrEventDataSessionStateChanged&>(event);
+      if (changed.session == session_) on_state(changed.state);
     } else if (event.type == XR_TYPE_EVENT_DATA_INSTANCE_LOSS_PENDING) {
       spdlog::warn("OpenXR instance loss pending");
       lost_ = true;

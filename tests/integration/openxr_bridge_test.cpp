@@ -105,6 +105,7 @@ TEST_F(OpenXrBridgeTest, CtrlCAsksTheRuntimeToEndTheSessionAndExitsCleanly) {
   EXPECT_EQ(bridge.stop(), 0) << text("bridge.log");
   const std::string log = text("bridge.log");
   EXPECT_NE(log.find("asking the runtime to end the session"), std::string::npos) << log;
+  ASSERT_NE(log.find("OpenXR session exiting"), std::string::npos) << log;
   EXPECT_LT(log.find("OpenXR session stopping"), log.find("OpenXR session exiting")) << log;
   EXPECT_NE(log.find("API layers: 0 errors"), std::string::npos) << log;
 }
@@ -150,8 +151,17 @@ TEST_F(OpenXrBridgeTest, TheOpenXrRigRunsUntilTheRuntimeEndsTheSession) {
   const std::string summary = read_text(dir_ + "/out/summary.json");
   EXPECT_NE(summary.find("\"samples_replayed\": " + std::to_string(published) + ","), std::string::npos)
       << published << " samples: " << summary;
-  // the rig knew the bridge's two hands' samples were all taken (not its 60 s limit)
-  EXPECT_EQ(text("launcher.log").find("had not taken every sample"), std::string::npos) << text("launcher.log");
+  // the rig knew when the bridge's two hands' samples were all taken (not at its 60 s limit),
+  // unless the stream really lost one (best effort on loopback: rare, and then the limit is right)
+  std::smatch m;
+  long received = 0;
+  const std::string launcher_log = text("launcher.log");
+  for (auto it = launcher_log.cbegin();
+       std::regex_search(it, launcher_log.cend(), m, std::regex(R"(hand +(\d+) samples)")); it = m.suffix().first)
+    received += std::stol(m[1]);
+  if (received >= published) {
+    EXPECT_EQ(launcher_log.find("had not taken every sample"), std::string::npos) << launcher_log;
+  }
 }
 
 }  // namespace

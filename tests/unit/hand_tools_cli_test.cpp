@@ -85,6 +85,15 @@ TEST_F(HandToolsCli, HandCalibrateWritesEachHandOfARecordingAsAHandFile) {
     EXPECT_LT(after_p50, 5.0) << side << ": " << out;
     EXPECT_LT(after_p50, before_p50 / 4) << side << ": " << out;
   }
+  // the hand file it scales is never its output
+  const std::string template_copy = dir_ + "/hand_copy.yaml";
+  fs::copy_file(source_dir() + "/config/hand.yaml", template_copy);
+  const std::string before = read_text(template_copy);
+  EXPECT_NE(run("over", {HAND_CALIBRATE_EXE, claps, "--out", template_copy, "--out-left", left,
+                         "--hand-file", template_copy}),
+            0);
+  EXPECT_NE(output("over").find("is the --hand-file"), std::string::npos) << output("over");
+  EXPECT_EQ(read_text(template_copy), before);
   EXPECT_NE(run("no_left", {HAND_CALIBRATE_EXE, claps, "--out", dir_ + "/only.yaml"}), 0);
   EXPECT_NE(output("no_left").find("has a left hand: give --out-left"), std::string::npos) << output("no_left");
   EXPECT_FALSE(fs::exists(dir_ + "/only.yaml"));

@@ -84,6 +84,28 @@ TEST(JointsTimeline, ALostJointStaysWhereItWasLastSeenAndIsNotValid) {
   EXPECT_TRUE(first[XrJoint::kThumbTip].p_m.isApprox(frames[0][XrJoint::kPalm].p_m));
 }
 
+TEST(JointsTimeline, AJointNeverSeenWhileThePalmIsLostIsWhereThePalmWasLastSeen) {
+  std::vector<JointsFrame> frames = {frame_at(0.0, false), frame_at(0.05, false)};
+  frames[0][XrJoint::kLittleTip].valid = false;  // not seen until after the palm is lost
+  frames[1][XrJoint::kLittleTip].valid = false;
+  frames[1][XrJoint::kPalm].valid = false;
+  const xr_replay::JointsTimeline timeline(frames, 1.0, false);
+  const JointsFrame& second = *timeline.at(false, 50'000'000);
+  EXPECT_TRUE(second[XrJoint::kLittleTip].p_m.isApprox(frames[0][XrJoint::kPalm].p_m))
+      << "not at the tracking space's origin";
+}
+
+TEST(JointsTimeline, AnyElapsedTimeAtAnyRateStaysInRange) {
+  const std::vector<JointsFrame> frames = {frame_at(1.0, false), frame_at(1.1, false)};
+  const xr_replay::JointsTimeline fast(frames, 1000.0, false);
+  EXPECT_TRUE(fast.ended(INT64_MAX));
+  EXPECT_EQ(fast.at(false, INT64_MAX), nullptr);
+  EXPECT_EQ(fast.log_time_ns(INT64_MAX), 1'100'000'001) << "one past the last frame";
+  const xr_replay::JointsTimeline looping(frames, 1000.0, true);
+  EXPECT_GE(looping.log_time_ns(INT64_MAX), 1'000'000'000);
+  EXPECT_LT(looping.log_time_ns(INT64_MAX), 1'200'000'000);
+}
+
 TEST(XrJointLocations, APositionCountsOnlyWhenValidAndTrackedAndOrientationLikewise) {
   std::vector<XrHandJointLocationEXT> locations(XR_HAND_JOINT_COUNT_EXT);
   for (int j = 0; j < XR_HAND_JOINT_COUNT_EXT; ++j) {
@@ -196,6 +218,54 @@ TEST_F(ThroughTheLoader, AnUnreadableLogFailsTheInstance) {
     // failed); the runtime names the file and line on stderr (openxr_bridge_test)
     EXPECT_NE(std::string(e.what()).find("XR_ERROR_"), std::string::npos) << e.what();
   }
+}
+
+// A bare instance through the loader, with these extensions.
+XrInstance bare_instance(std::vector<const char*> extensions) {
+  auto create = xr::xr_struct<XrInstanceCreateInfo>(XR_TYPE_INSTANCE_CREATE_INFO);
+  std::snprintf(create.applicationInfo.applicationName, XR_MAX_APPLICATION_NAME_SIZE, "openxr_replay_test");
+  create.applicationInfo.apiVersion = XR_MAKE_VERSION(1, 0, 0);
+  create.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  create.enabledExtensionNames = extensions.data();
+  XrInstance instance = XR_NULL_HANDLE;
+  return xrCreateInstance(&create, &instance) == XR_SUCCESS ? instance : XR_NULL_HANDLE;
+}
+
+TEST_F(ThroughTheLoader, SpacesLocateEachOtherAndUnservedCoreFunctionsSaySo) {
+  XrInstance instance = bare_instance({XR_MND_HEADLESS_EXTENSION_NAME});
+  ASSERT_NE(instance, XR_NULL_HANDLE);
+  auto system_info = xr::xr_struct<XrSystemGetInfo>(XR_TYPE_SYSTEM_GET_INFO);
+  system_info.formFactor = XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY;
+  XrSystemId system = XR_NULL_SYSTEM_ID;
+  ASSERT_EQ(xrGetSystem(instance, &system_info, &system), XR_SUCCESS);
+  auto session_info = xr::xr_struct<XrSessionCreateInfo>(XR_TYPE_SESSION_CREATE_INFO);
+  session_info.systemId = system;
+  XrSession session = XR_NULL_HANDLE;
+  ASSERT_EQ(xrCreateSession(instance, &session_info, &session), XR_SUCCESS);
+  auto local_info = xr::xr_struct<XrReferenceSpaceCreateInfo>(XR_TYPE_REFERENCE_SPACE_CREATE_INFO);
+  local_info.referenceSpaceType = XR_REFERENCE_SPACE_TYPE_LOCAL;
+  local_info.poseInReferenceSpace.orientation.w = 1.0f;
+  auto moved_info = local_info;
+  moved_info.poseInReferenceSpace.position = {0.1f, 0.2f, 0.3f};
+  XrSpace local = XR_NULL_HANDLE, moved = XR_NULL_HANDLE;
+  ASSERT_EQ(xrCreateReferenceSpace(session, &local_info, &local), XR_SUCCESS);
+  ASSERT_EQ(xrCreateReferenceSpace(session, &moved_info, &moved), XR_SUCCESS);
+  auto location = xr::xr_struct<XrSpaceLocation>(XR_TYPE_SPACE_LOCATION);
+  ASSERT_EQ(xrLocateSpace(moved, local, 1, &location), XR_SUCCESS);
+  EXPECT_NEAR(location.pose.position.y, 0.2f, 1e-6);
+  EXPECT_TRUE(location.locationFlags & XR_SPACE_LOCATION_POSITION_TRACKED_BIT);
+  XrPath path = XR_NULL_PATH;
+  EXPECT_EQ(xrStringToPath(instance, "/user/hand/left", &path), XR_ERROR_FUNCTION_UNSUPPORTED)
+      << "a core function it does not serve returns, rather than crash";
+  xrDestroyInstance(instance);  // its session and spaces with it
+  EXPECT_EQ(validation_report().find("VALID_ERROR"), std::string::npos) << validation_report();
+}
+
+TEST_F(ThroughTheLoader, ARateOutOfRangeFailsTheInstance) {
+  setenv("VCOCKPIT_XR_REPLAY_RATE", "1e300", 1);
+  EXPECT_EQ(bare_instance({}), XR_NULL_HANDLE);
+  setenv("VCOCKPIT_XR_REPLAY_RATE", "fast", 1);
+  EXPECT_EQ(bare_instance({}), XR_NULL_HANDLE);
 }
 
 // What the bridge test's clean report rests on: with the layer on, a misuse is in its report.

@@ -24,7 +24,8 @@ void fill_lost_joints(std::vector<JointsFrame>& frames) {
       } else if (seen[j]) {
         joint.p_m = last[j];
       } else {
-        joint.p_m = f[XrJoint::kPalm].valid ? f[XrJoint::kPalm].p_m : Eigen::Vector3d::Zero();
+        // the palm (joint 0) is filled already: where it is or was last seen, if ever
+        joint.p_m = f[XrJoint::kPalm].valid || seen[0] ? f[XrJoint::kPalm].p_m : Eigen::Vector3d::Zero();
       }
     }
   }
@@ -36,6 +37,8 @@ JointsTimeline::JointsTimeline(const std::vector<JointsFrame>& frames, double ra
     : rate_(rate), loop_(loop) {
   if (frames.empty()) throw std::invalid_argument("the hand-joints log has no frame");
   if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("the rate must be above 0");
+  // spans held in int64 ns without overflow, whatever the times (a log of epoch times included)
+  constexpr int64_t kMaxSpan_ns = int64_t{1} << 60;
   for (const JointsFrame& f : frames) hands_[f.left_hand ? 1 : 0].push_back(f);
   first_ns_ = frames.front().t_ns;
   last_ns_ = frames.front().t_ns;
@@ -43,6 +46,8 @@ JointsTimeline::JointsTimeline(const std::vector<JointsFrame>& frames, double ra
     first_ns_ = std::min(first_ns_, f.t_ns);
     last_ns_ = std::max(last_ns_, f.t_ns);
   }
+  if (static_cast<double>(last_ns_) - static_cast<double>(first_ns_) > static_cast<double>(kMaxSpan_ns))
+    throw std::invalid_argument("the hand-joints log spans more than 36 years");
   int64_t interval_ns = 0;  // the last interval of the longer hand's frames, to wrap around
   for (auto& hand : hands_) {
     fill_lost_joints(hand);
@@ -52,9 +57,12 @@ JointsTimeline::JointsTimeline(const std::vector<JointsFrame>& frames, double ra
 }
 
 int64_t JointsTimeline::log_time_ns(int64_t elapsed_ns) const {
-  int64_t offset_ns = std::llround(static_cast<double>(std::max<int64_t>(elapsed_ns, 0)) * rate_);
-  if (loop_) offset_ns %= period_ns_;
-  return first_ns_ + offset_ns;
+  // in double first: any elapsed time at any rate, with no integer overflow
+  double offset_ns = static_cast<double>(std::max<int64_t>(elapsed_ns, 0)) * rate_;
+  if (loop_) offset_ns = std::fmod(offset_ns, static_cast<double>(period_ns_));
+  // past the end (not looping): one past the last frame is as ended as any later time
+  offset_ns = std::min(offset_ns, static_cast<double>(last_ns_ - first_ns_ + 1));
+  return first_ns_ + std::llround(offset_ns);
 }
 
 bool JointsTimeline::ended(int64_t elapsed_ns) const {

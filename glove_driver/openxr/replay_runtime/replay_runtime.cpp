@@ -14,7 +14,9 @@
 // STAGE are all the log's frame (no head, no floor). A headless session goes IDLE -> READY at
 // once, SYNCHRONIZED -> VISIBLE -> FOCUSED when begun, and at the log's end (not looping) or on
 // xrRequestExitSession back down to STOPPING; xrEndSession then gives IDLE and EXITING.
-// The frame loop (xrWaitFrame at 90 Hz, xrBeginFrame, xrEndFrame with no layers) works too.
+// The frame loop (xrWaitFrame at 90 Hz, xrBeginFrame, xrEndFrame with no layers) and
+// xrLocateSpace work too; it has no views (no view configuration), and the other core functions
+// (swapchains, actions, paths) return XR_ERROR_FUNCTION_UNSUPPORTED.
 // Errors that are the caller's give the result the specification names; a log that cannot be
 // read fails xrCreateInstance with XR_ERROR_RUNTIME_FAILURE, and the reason on stderr.
 
@@ -35,6 +37,7 @@
 #include <mutex>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -54,6 +57,7 @@ static_assert(XR_HAND_JOINT_LITTLE_TIP_EXT == static_cast<int>(hand::tracking::X
 static_assert(XR_HAND_JOINT_THUMB_TIP_EXT == static_cast<int>(hand::tracking::XrJoint::kThumbTip));
 
 constexpr XrSystemId kSystemId = 1;
+constexpr double kMaxRate = 1000.0;  // log seconds per second
 constexpr int64_t kFramePeriod_ns = 11'111'111;  // 90 Hz
 constexpr float kDefaultJointRadius_m = 0.008f;  // when the log has none
 
@@ -129,7 +133,23 @@ void queue_state(Session& s, XrSessionState state) {
   e.state = state;
   e.time = monotonic_ns();
   s.queued = state;
-  s.instance->events.push_back(e);
+  try {
+    s.instance->events.push_back(e);
+  } catch (const std::bad_alloc&) {  // out of memory: the event is lost, as the spec allows
+    std::fprintf(stderr, "vcockpit replay runtime: out of memory: a session state event is lost\n");
+  }
+}
+
+// Adds a new object to its registry set: false (and nothing kept) when out of memory.
+template <typename T>
+bool register_new(std::set<T*>& live, std::unique_ptr<T>& object) {
+  try {
+    live.insert(object.get());
+  } catch (const std::bad_alloc&) {
+    return false;
+  }
+  object.release();
+  return true;
 }
 
 // A running session whose log ended (or whose exit was asked for) goes down to STOPPING.
@@ -173,6 +193,7 @@ XRAPI_ATTR XrResult XRAPI_CALL EnumerateInstanceExtensionProperties(
   *count = n;
   if (capacity == 0) return XR_SUCCESS;
   if (capacity < n) return XR_ERROR_SIZE_INSUFFICIENT;
+  if (properties == nullptr) return XR_ERROR_VALIDATION_FAILURE;
   for (uint32_t i = 0; i < n; ++i) {
     if (properties[i].type != XR_TYPE_EXTENSION_PROPERTIES) return XR_ERROR_VALIDATION_FAILURE;
     copy_name(properties[i].extensionName, XR_MAX_EXTENSION_NAME_SIZE, kExtensions[i].name);
@@ -186,7 +207,9 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateInstance(const XrInstanceCreateInfo* info, 
     return XR_ERROR_VALIDATION_FAILURE;
   if (XR_VERSION_MAJOR(info->applicationInfo.apiVersion) != 1) return XR_ERROR_API_VERSION_UNSUPPORTED;
   auto instance = std::make_unique<Instance>();
+  if (info->enabledExtensionCount > 0 && info->enabledExtensionNames == nullptr) return XR_ERROR_VALIDATION_FAILURE;
   for (uint32_t i = 0; i < info->enabledExtensionCount; ++i) {
+    if (info->enabledExtensionNames[i] == nullptr) return XR_ERROR_VALIDATION_FAILURE;
     const std::string name = info->enabledExtensionNames[i];
     if (name == XR_EXT_HAND_TRACKING_EXTENSION_NAME) instance->hand_tracking = true;
     else if (name == XR_MND_HEADLESS_EXTENSION_NAME) instance->headless = true;
@@ -204,8 +227,8 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateInstance(const XrInstanceCreateInfo* info, 
     const std::string rate_text = env_or("VCOCKPIT_XR_REPLAY_RATE", "1");
     char* end = nullptr;
     const double rate = std::strtod(rate_text.c_str(), &end);
-    if (end == rate_text.c_str() || *end != '\0' || !(rate > 0.0) || !std::isfinite(rate))
-      throw std::invalid_argument("VCOCKPIT_XR_REPLAY_RATE '" + rate_text + "' is not a number above 0");
+    if (end == rate_text.c_str() || *end != '\0' || !(rate > 0.0) || !(rate <= kMaxRate))
+      throw std::invalid_argument("VCOCKPIT_XR_REPLAY_RATE '" + rate_text + "' is not a number in (0, 1000]");
     instance->timeline = std::make_unique<JointsTimeline>(
         log.frames, rate, env_or("VCOCKPIT_XR_REPLAY_LOOP", "0") == "1");
   } catch (const std::exception& e) {
@@ -213,9 +236,17 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateInstance(const XrInstanceCreateInfo* info, 
     return XR_ERROR_RUNTIME_FAILURE;
   }
   std::lock_guard<std::mutex> lock(registry().mutex);
-  registry().instances.insert(instance.get());
-  *out = reinterpret_cast<XrInstance>(instance.get());
-  registry().instances_owned.insert(std::move(instance));
+  Instance* handle = instance.get();
+  try {
+    registry().instances_owned.insert(std::move(instance));
+    registry().instances.insert(handle);
+  } catch (const std::bad_alloc&) {
+    registry().instances.erase(handle);
+    for (auto it = registry().instances_owned.begin(); it != registry().instances_owned.end(); ++it)
+      if (it->get() == handle) { registry().instances_owned.erase(it); break; }
+    return XR_ERROR_OUT_OF_MEMORY;
+  }
+  *out = reinterpret_cast<XrInstance>(handle);
   return XR_SUCCESS;
 }
 
@@ -252,6 +283,7 @@ XRAPI_ATTR XrResult XRAPI_CALL GetInstanceProperties(XrInstance handle, XrInstan
 XRAPI_ATTR XrResult XRAPI_CALL ResultToString(XrInstance handle, XrResult value, char* buffer) {
   std::lock_guard<std::mutex> lock(registry().mutex);
   if (instance_of(handle) == nullptr) return XR_ERROR_HANDLE_INVALID;
+  if (buffer == nullptr) return XR_ERROR_VALIDATION_FAILURE;
   switch (value) {
 #define VCOCKPIT_XR_RESULT_CASE(name, number) \
   case name:                                 \
@@ -269,6 +301,7 @@ XRAPI_ATTR XrResult XRAPI_CALL ResultToString(XrInstance handle, XrResult value,
 XRAPI_ATTR XrResult XRAPI_CALL StructureTypeToString(XrInstance handle, XrStructureType value, char* buffer) {
   std::lock_guard<std::mutex> lock(registry().mutex);
   if (instance_of(handle) == nullptr) return XR_ERROR_HANDLE_INVALID;
+  if (buffer == nullptr) return XR_ERROR_VALIDATION_FAILURE;
   switch (value) {
 #define VCOCKPIT_XR_TYPE_CASE(name, number) \
   case name:                               \
@@ -286,7 +319,6 @@ XRAPI_ATTR XrResult XRAPI_CALL GetSystem(XrInstance handle, const XrSystemGetInf
   std::lock_guard<std::mutex> lock(registry().mutex);
   if (instance_of(handle) == nullptr) return XR_ERROR_HANDLE_INVALID;
   if (info == nullptr || id == nullptr || info->type != XR_TYPE_SYSTEM_GET_INFO) return XR_ERROR_VALIDATION_FAILURE;
-  if (info->formFactor == XR_FORM_FACTOR_HANDHELD_DISPLAY) return XR_ERROR_FORM_FACTOR_UNAVAILABLE;
   if (info->formFactor != XR_FORM_FACTOR_HEAD_MOUNTED_DISPLAY) return XR_ERROR_FORM_FACTOR_UNSUPPORTED;
   *id = kSystemId;
   return XR_SUCCESS;
@@ -333,6 +365,9 @@ XRAPI_ATTR XrResult XRAPI_CALL ConvertTimespecTimeToTimeKHR(XrInstance handle, c
   if (instance == nullptr) return XR_ERROR_HANDLE_INVALID;
   if (!instance->timespec) return XR_ERROR_FUNCTION_UNSUPPORTED;
   if (t == nullptr || out == nullptr) return XR_ERROR_VALIDATION_FAILURE;
+  constexpr int64_t kMaxSeconds = (INT64_MAX - 999'999'999) / 1'000'000'000;
+  if (t->tv_nsec < 0 || t->tv_nsec >= 1'000'000'000 || t->tv_sec < 0 || t->tv_sec > kMaxSeconds)
+    return XR_ERROR_TIME_INVALID;
   const int64_t ns = static_cast<int64_t>(t->tv_sec) * 1'000'000'000 + t->tv_nsec;
   if (ns <= 0) return XR_ERROR_TIME_INVALID;
   *out = ns;
@@ -359,11 +394,19 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateSession(XrInstance handle, const XrSessionC
   if (instance == nullptr) return XR_ERROR_HANDLE_INVALID;
   if (info == nullptr || out == nullptr || info->type != XR_TYPE_SESSION_CREATE_INFO) return XR_ERROR_VALIDATION_FAILURE;
   if (info->systemId != kSystemId) return XR_ERROR_SYSTEM_INVALID;
-  // no graphics here: only a headless session, with nothing in the chain
-  if (!instance->headless || info->next != nullptr) return XR_ERROR_GRAPHICS_DEVICE_INVALID;
-  auto* session = new Session;
-  session->instance = instance;
-  registry().sessions.insert(session);
+  // no graphics here: only a headless session, without a graphics binding in the chain
+  if (!instance->headless) return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+  for (const XrStructureType binding :
+       {XR_TYPE_GRAPHICS_BINDING_OPENGL_WIN32_KHR, XR_TYPE_GRAPHICS_BINDING_OPENGL_XLIB_KHR,
+        XR_TYPE_GRAPHICS_BINDING_OPENGL_XCB_KHR, XR_TYPE_GRAPHICS_BINDING_OPENGL_WAYLAND_KHR,
+        XR_TYPE_GRAPHICS_BINDING_OPENGL_ES_ANDROID_KHR, XR_TYPE_GRAPHICS_BINDING_VULKAN_KHR,
+        XR_TYPE_GRAPHICS_BINDING_D3D11_KHR, XR_TYPE_GRAPHICS_BINDING_D3D12_KHR,
+        XR_TYPE_GRAPHICS_BINDING_EGL_MNDX})
+    if (find_in_chain(info->next, binding) != nullptr) return XR_ERROR_GRAPHICS_DEVICE_INVALID;
+  auto owned = std::make_unique<Session>();
+  owned->instance = instance;
+  Session* session = owned.get();
+  if (!register_new(registry().sessions, owned)) return XR_ERROR_OUT_OF_MEMORY;
   queue_state(*session, XR_SESSION_STATE_IDLE);
   queue_state(*session, XR_SESSION_STATE_READY);
   *out = reinterpret_cast<XrSession>(session);
@@ -500,6 +543,7 @@ XRAPI_ATTR XrResult XRAPI_CALL EnumerateReferenceSpaces(XrSession handle, uint32
   *count = n;
   if (capacity == 0) return XR_SUCCESS;
   if (capacity < n) return XR_ERROR_SIZE_INSUFFICIENT;
+  if (spaces == nullptr) return XR_ERROR_VALIDATION_FAILURE;
   std::copy(std::begin(kSpaces), std::end(kSpaces), spaces);
   return XR_SUCCESS;
 }
@@ -521,8 +565,9 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateReferenceSpace(XrSession handle, const XrRe
   if (std::find(std::begin(kSpaces), std::end(kSpaces), info->referenceSpaceType) == std::end(kSpaces))
     return XR_ERROR_REFERENCE_SPACE_UNSUPPORTED;
   if (!valid_pose(info->poseInReferenceSpace)) return XR_ERROR_POSE_INVALID;
-  auto* space = new Space{s, info->poseInReferenceSpace};
-  registry().spaces.insert(space);
+  auto owned = std::make_unique<Space>(Space{s, info->poseInReferenceSpace});
+  Space* space = owned.get();
+  if (!register_new(registry().spaces, owned)) return XR_ERROR_OUT_OF_MEMORY;
   *out = reinterpret_cast<XrSpace>(space);
   return XR_SUCCESS;
 }
@@ -548,8 +593,9 @@ XRAPI_ATTR XrResult XRAPI_CALL CreateHandTrackerEXT(XrSession handle, const XrHa
     return XR_ERROR_VALIDATION_FAILURE;
   if (info->hand != XR_HAND_LEFT_EXT && info->hand != XR_HAND_RIGHT_EXT) return XR_ERROR_VALIDATION_FAILURE;
   if (info->handJointSet != XR_HAND_JOINT_SET_DEFAULT_EXT) return XR_ERROR_VALIDATION_FAILURE;
-  auto* tracker = new HandTracker{s, info->hand == XR_HAND_LEFT_EXT};
-  registry().trackers.insert(tracker);
+  auto owned = std::make_unique<HandTracker>(HandTracker{s, info->hand == XR_HAND_LEFT_EXT});
+  HandTracker* tracker = owned.get();
+  if (!register_new(registry().trackers, owned)) return XR_ERROR_OUT_OF_MEMORY;
   *out = reinterpret_cast<XrHandTrackerEXT>(tracker);
   return XR_SUCCESS;
 }
@@ -584,6 +630,7 @@ XRAPI_ATTR XrResult XRAPI_CALL LocateHandJointsEXT(XrHandTrackerEXT handle, cons
   if (locations->jointCount != XR_HAND_JOINT_COUNT_EXT) return XR_ERROR_VALIDATION_FAILURE;
   const Space* base = space_of(info->baseSpace);
   if (base == nullptr) return XR_ERROR_HANDLE_INVALID;
+  if (base->session != tracker->session) return XR_ERROR_VALIDATION_FAILURE;  // another session's
   if (info->time <= 0) return XR_ERROR_TIME_INVALID;
   auto* velocities = const_cast<XrHandJointVelocitiesEXT*>(reinterpret_cast<const XrHandJointVelocitiesEXT*>(
       find_in_chain(locations->next, XR_TYPE_HAND_JOINT_VELOCITIES_EXT)));
@@ -619,17 +666,92 @@ XRAPI_ATTR XrResult XRAPI_CALL LocateHandJointsEXT(XrHandTrackerEXT handle, cons
   return XR_SUCCESS;
 }
 
+XRAPI_ATTR XrResult XRAPI_CALL LocateSpace(XrSpace space_handle, XrSpace base_handle, XrTime time,
+                                           XrSpaceLocation* location) {
+  std::lock_guard<std::mutex> lock(registry().mutex);
+  const Space* space = space_of(space_handle);
+  const Space* base = space_of(base_handle);
+  if (space == nullptr || base == nullptr) return XR_ERROR_HANDLE_INVALID;
+  if (location == nullptr || location->type != XR_TYPE_SPACE_LOCATION) return XR_ERROR_VALIDATION_FAILURE;
+  if (space->session->instance != base->session->instance) return XR_ERROR_VALIDATION_FAILURE;
+  if (time <= 0) return XR_ERROR_TIME_INVALID;
+  // every space is fixed in the log's frame: the space's origin seen from the base
+  const Eigen::Isometry3d X_BS = X_space_log(base->pose_in_log) * X_space_log(space->pose_in_log).inverse();
+  const Eigen::Quaterniond q(X_BS.linear());
+  const Eigen::Vector3d p = X_BS.translation();
+  location->locationFlags = XR_SPACE_LOCATION_POSITION_VALID_BIT | XR_SPACE_LOCATION_ORIENTATION_VALID_BIT |
+                            XR_SPACE_LOCATION_POSITION_TRACKED_BIT | XR_SPACE_LOCATION_ORIENTATION_TRACKED_BIT;
+  location->pose.position = {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())};
+  location->pose.orientation = {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()),
+                                static_cast<float>(q.w())};
+  for (auto* q_next = static_cast<XrBaseOutStructure*>(location->next); q_next != nullptr; q_next = q_next->next) {
+    if (q_next->type == XR_TYPE_SPACE_VELOCITY) {  // nothing moves: zero, and said to be valid
+      auto* v = reinterpret_cast<XrSpaceVelocity*>(q_next);
+      v->velocityFlags = XR_SPACE_VELOCITY_LINEAR_VALID_BIT | XR_SPACE_VELOCITY_ANGULAR_VALID_BIT;
+      v->linearVelocity = {0, 0, 0};
+      v->angularVelocity = {0, 0, 0};
+    }
+  }
+  return XR_SUCCESS;
+}
+
+XRAPI_ATTR XrResult XRAPI_CALL GetReferenceSpaceBoundsRect(XrSession handle, XrReferenceSpaceType type,
+                                                           XrExtent2Df* bounds) {
+  std::lock_guard<std::mutex> lock(registry().mutex);
+  if (session_of(handle) == nullptr) return XR_ERROR_HANDLE_INVALID;
+  if (bounds == nullptr) return XR_ERROR_VALIDATION_FAILURE;
+  if (std::find(std::begin(kSpaces), std::end(kSpaces), type) == std::end(kSpaces))
+    return XR_ERROR_REFERENCE_SPACE_UNSUPPORTED;
+  *bounds = {0.0f, 0.0f};
+  return XR_SPACE_BOUNDS_UNAVAILABLE;  // a recording has no play area
+}
+
+// No display: no view configuration, and so no blend mode of one.
+XRAPI_ATTR XrResult XRAPI_CALL EnumerateViewConfigurations(XrInstance handle, XrSystemId id, uint32_t,
+                                                           uint32_t* count, XrViewConfigurationType*) {
+  std::lock_guard<std::mutex> lock(registry().mutex);
+  if (instance_of(handle) == nullptr) return XR_ERROR_HANDLE_INVALID;
+  if (id != kSystemId) return XR_ERROR_SYSTEM_INVALID;
+  if (count == nullptr) return XR_ERROR_VALIDATION_FAILURE;
+  *count = 0;
+  return XR_SUCCESS;
+}
+
+XRAPI_ATTR XrResult XRAPI_CALL EnumerateEnvironmentBlendModes(XrInstance handle, XrSystemId id,
+                                                              XrViewConfigurationType, uint32_t, uint32_t*,
+                                                              XrEnvironmentBlendMode*) {
+  std::lock_guard<std::mutex> lock(registry().mutex);
+  if (instance_of(handle) == nullptr) return XR_ERROR_HANDLE_INVALID;
+  if (id != kSystemId) return XR_ERROR_SYSTEM_INVALID;
+  return XR_ERROR_VIEW_CONFIGURATION_TYPE_UNSUPPORTED;
+}
+
+// A core function this runtime does not serve (swapchains, views, actions, paths), with its own
+// signature, so that an application calling it gets a result and not a jump to nothing.
+template <typename F>
+struct Unsupported;
+template <typename... Args>
+struct Unsupported<XrResult(XRAPI_PTR*)(Args...)> {
+  static XRAPI_ATTR XrResult XRAPI_CALL call(Args...) { return XR_ERROR_FUNCTION_UNSUPPORTED; }
+};
+
 // ---- dispatch -----------------------------------------------------------------------------------
 
 XRAPI_ATTR XrResult XRAPI_CALL GetInstanceProcAddr(XrInstance instance, const char* name, PFN_xrVoidFunction* function);
 
+enum class Needs { kNothing, kHandTracking, kTimespec };  // the extension a function belongs to
 struct Entry {
   const char* name;
   PFN_xrVoidFunction function;
   bool without_instance;  // callable with XR_NULL_HANDLE
+  Needs needs = Needs::kNothing;
 };
 #define VCOCKPIT_XR_ENTRY(name, fn, global) \
   Entry { name, reinterpret_cast<PFN_xrVoidFunction>(fn), global }
+#define VCOCKPIT_XR_EXT_ENTRY(name, fn, needs) \
+  Entry { name, reinterpret_cast<PFN_xrVoidFunction>(fn), false, needs }
+#define VCOCKPIT_XR_UNSUPPORTED(name) \
+  Entry { #name, reinterpret_cast<PFN_xrVoidFunction>(&Unsupported<PFN_##name>::call), false }
 const Entry kEntries[] = {
     VCOCKPIT_XR_ENTRY("xrGetInstanceProcAddr", GetInstanceProcAddr, true),
     VCOCKPIT_XR_ENTRY("xrEnumerateInstanceExtensionProperties", EnumerateInstanceExtensionProperties, true),
@@ -641,8 +763,8 @@ const Entry kEntries[] = {
     VCOCKPIT_XR_ENTRY("xrGetSystem", GetSystem, false),
     VCOCKPIT_XR_ENTRY("xrGetSystemProperties", GetSystemProperties, false),
     VCOCKPIT_XR_ENTRY("xrPollEvent", PollEvent, false),
-    VCOCKPIT_XR_ENTRY("xrConvertTimespecTimeToTimeKHR", ConvertTimespecTimeToTimeKHR, false),
-    VCOCKPIT_XR_ENTRY("xrConvertTimeToTimespecTimeKHR", ConvertTimeToTimespecTimeKHR, false),
+    VCOCKPIT_XR_EXT_ENTRY("xrConvertTimespecTimeToTimeKHR", ConvertTimespecTimeToTimeKHR, Needs::kTimespec),
+    VCOCKPIT_XR_EXT_ENTRY("xrConvertTimeToTimespecTimeKHR", ConvertTimeToTimespecTimeKHR, Needs::kTimespec),
     VCOCKPIT_XR_ENTRY("xrCreateSession", CreateSession, false),
     VCOCKPIT_XR_ENTRY("xrDestroySession", DestroySession, false),
     VCOCKPIT_XR_ENTRY("xrBeginSession", BeginSession, false),
@@ -654,22 +776,64 @@ const Entry kEntries[] = {
     VCOCKPIT_XR_ENTRY("xrEnumerateReferenceSpaces", EnumerateReferenceSpaces, false),
     VCOCKPIT_XR_ENTRY("xrCreateReferenceSpace", CreateReferenceSpace, false),
     VCOCKPIT_XR_ENTRY("xrDestroySpace", DestroySpace, false),
-    VCOCKPIT_XR_ENTRY("xrCreateHandTrackerEXT", CreateHandTrackerEXT, false),
-    VCOCKPIT_XR_ENTRY("xrDestroyHandTrackerEXT", DestroyHandTrackerEXT, false),
-    VCOCKPIT_XR_ENTRY("xrLocateHandJointsEXT", LocateHandJointsEXT, false),
+    VCOCKPIT_XR_ENTRY("xrLocateSpace", LocateSpace, false),
+    VCOCKPIT_XR_ENTRY("xrGetReferenceSpaceBoundsRect", GetReferenceSpaceBoundsRect, false),
+    VCOCKPIT_XR_ENTRY("xrEnumerateViewConfigurations", EnumerateViewConfigurations, false),
+    VCOCKPIT_XR_ENTRY("xrEnumerateEnvironmentBlendModes", EnumerateEnvironmentBlendModes, false),
+    VCOCKPIT_XR_EXT_ENTRY("xrCreateHandTrackerEXT", CreateHandTrackerEXT, Needs::kHandTracking),
+    VCOCKPIT_XR_EXT_ENTRY("xrDestroyHandTrackerEXT", DestroyHandTrackerEXT, Needs::kHandTracking),
+    VCOCKPIT_XR_EXT_ENTRY("xrLocateHandJointsEXT", LocateHandJointsEXT, Needs::kHandTracking),
+    VCOCKPIT_XR_UNSUPPORTED(xrCreateActionSpace),
+    VCOCKPIT_XR_UNSUPPORTED(xrGetViewConfigurationProperties),
+    VCOCKPIT_XR_UNSUPPORTED(xrEnumerateViewConfigurationViews),
+    VCOCKPIT_XR_UNSUPPORTED(xrEnumerateSwapchainFormats),
+    VCOCKPIT_XR_UNSUPPORTED(xrCreateSwapchain),
+    VCOCKPIT_XR_UNSUPPORTED(xrDestroySwapchain),
+    VCOCKPIT_XR_UNSUPPORTED(xrEnumerateSwapchainImages),
+    VCOCKPIT_XR_UNSUPPORTED(xrAcquireSwapchainImage),
+    VCOCKPIT_XR_UNSUPPORTED(xrWaitSwapchainImage),
+    VCOCKPIT_XR_UNSUPPORTED(xrReleaseSwapchainImage),
+    VCOCKPIT_XR_UNSUPPORTED(xrLocateViews),
+    VCOCKPIT_XR_UNSUPPORTED(xrStringToPath),
+    VCOCKPIT_XR_UNSUPPORTED(xrPathToString),
+    VCOCKPIT_XR_UNSUPPORTED(xrCreateActionSet),
+    VCOCKPIT_XR_UNSUPPORTED(xrDestroyActionSet),
+    VCOCKPIT_XR_UNSUPPORTED(xrCreateAction),
+    VCOCKPIT_XR_UNSUPPORTED(xrDestroyAction),
+    VCOCKPIT_XR_UNSUPPORTED(xrSuggestInteractionProfileBindings),
+    VCOCKPIT_XR_UNSUPPORTED(xrAttachSessionActionSets),
+    VCOCKPIT_XR_UNSUPPORTED(xrGetCurrentInteractionProfile),
+    VCOCKPIT_XR_UNSUPPORTED(xrGetActionStateBoolean),
+    VCOCKPIT_XR_UNSUPPORTED(xrGetActionStateFloat),
+    VCOCKPIT_XR_UNSUPPORTED(xrGetActionStateVector2f),
+    VCOCKPIT_XR_UNSUPPORTED(xrGetActionStatePose),
+    VCOCKPIT_XR_UNSUPPORTED(xrSyncActions),
+    VCOCKPIT_XR_UNSUPPORTED(xrEnumerateBoundSourcesForAction),
+    VCOCKPIT_XR_UNSUPPORTED(xrGetInputSourceLocalizedName),
+    VCOCKPIT_XR_UNSUPPORTED(xrApplyHapticFeedback),
+    VCOCKPIT_XR_UNSUPPORTED(xrStopHapticFeedback),
 };
+#undef VCOCKPIT_XR_UNSUPPORTED
+#undef VCOCKPIT_XR_EXT_ENTRY
 #undef VCOCKPIT_XR_ENTRY
 
 XRAPI_ATTR XrResult XRAPI_CALL GetInstanceProcAddr(XrInstance instance, const char* name, PFN_xrVoidFunction* function) {
   if (name == nullptr || function == nullptr) return XR_ERROR_VALIDATION_FAILURE;
   *function = nullptr;
+  bool hand_tracking = false, timespec = false;
   if (instance != XR_NULL_HANDLE) {
     std::lock_guard<std::mutex> lock(registry().mutex);
-    if (instance_of(instance) == nullptr) return XR_ERROR_HANDLE_INVALID;
+    const Instance* i = instance_of(instance);
+    if (i == nullptr) return XR_ERROR_HANDLE_INVALID;
+    hand_tracking = i->hand_tracking;
+    timespec = i->timespec;
   }
   for (const Entry& e : kEntries) {
     if (std::strcmp(e.name, name) != 0) continue;
     if (instance == XR_NULL_HANDLE && !e.without_instance) return XR_ERROR_HANDLE_INVALID;
+    // an extension's functions only for an instance that enabled it
+    if ((e.needs == Needs::kHandTracking && !hand_tracking) || (e.needs == Needs::kTimespec && !timespec))
+      return XR_ERROR_FUNCTION_UNSUPPORTED;
     *function = e.function;
     return XR_SUCCESS;
   }
