@@ -1,5 +1,7 @@
 #include "common/signals.hpp"
 
+#include "common/crash_backtrace.hpp"
+
 #include <atomic>
 #include <csignal>
 
@@ -21,6 +23,7 @@ void install_shutdown_handlers() {
   sigaction(SIGTERM, &action, nullptr);
   // a reader that went away must not kill a writer of files or sockets
   signal(SIGPIPE, SIG_IGN);
+  install_crash_backtrace();  // and a crash says where, in the node's log
 }
 
 bool shutdown_requested() { return g_shutdown.load(std::memory_order_relaxed); }

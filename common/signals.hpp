@@ -4,7 +4,7 @@
 
 namespace vcockpit {
 
-// Installs the handlers; call once from main before the loop.
+// Installs the handlers (and install_crash_backtrace's); call once from main before the loop.
 void install_shutdown_handlers();
 
 // True once SIGINT or SIGTERM arrived (or request_shutdown was called).
