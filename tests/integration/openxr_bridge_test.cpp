@@ -41,20 +41,31 @@ class OpenXrBridgeTest : public ProcessTest {
   }
 
   struct HandReport {
-    long located = -1, published = -1;
+    long located = -1, published = -1, unplaced = -1;
+    long calibration_frames = 0;  // the frames it was measured on (the last one also published)
     double p50_mm = -1;
   };
   // The bridge's closing line for a hand.
   static HandReport hand_report(const std::string& log, const std::string& side) {
     std::smatch m;
-    const std::regex line(side + R"( hand: located (\d+) frames, published (\d+) samples.*p50 ([\d.]+) mm)");
+    const std::regex line(side + R"( hand: located (\d+) frames, published (\d+) samples \((\d+) frames.*p50 ([\d.]+) mm)");
     HandReport r;
     if (std::regex_search(log, m, line)) {
       r.located = std::stol(m[1]);
       r.published = std::stol(m[2]);
-      r.p50_mm = std::stod(m[3]);
+      r.unplaced = std::stol(m[3]);
+      r.p50_mm = std::stod(m[4]);
     }
+    if (std::regex_search(log, m, std::regex(side + R"( hand calibrated on (\d+) frames)")))
+      r.calibration_frames = std::stol(m[1]);
     return r;
+  }
+  // Every located frame is accounted for, however fast the machine ran the bridge: measured
+  // (the last of those also published), published, or without a placeable palm.
+  static void expect_every_frame_accounted(const HandReport& r, const std::string& log) {
+    EXPECT_GT(r.calibration_frames, 0) << log;
+    EXPECT_GT(r.published, 0) << log;
+    EXPECT_EQ(r.located, r.calibration_frames - 1 + r.published + r.unplaced) << log;
   }
 
   std::string joints_log_;
@@ -80,12 +91,12 @@ TEST_F(OpenXrBridgeTest, BothHandsReachAPhysicsNodeThroughTheLoaderWithTheValida
   EXPECT_NE(log.find("API layers: 0 errors, 0 warnings"), std::string::npos) << log;
   EXPECT_EQ(text("validation.txt").find("VALID_ERROR"), std::string::npos) << text("validation.txt");
   EXPECT_EQ(text("validation.txt").find("VALID_WARNING"), std::string::npos) << text("validation.txt");
-  // 3.7 s of recording at 90 Hz, the first second of each hand measured
+  // 3.7 s of recording, the first second of each hand measured (at 90 Hz: 335 frames located,
+  // 244 published; fewer on a loaded machine)
   for (const char* side : {"right", "left"}) {
     const HandReport r = hand_report(log, side);
     SCOPED_TRACE(side);
-    EXPECT_GT(r.located, 150) << log;
-    EXPECT_GT(r.published, 50) << log;
+    expect_every_frame_accounted(r, log);
     EXPECT_GE(r.p50_mm, 0.0) << log;
     EXPECT_LT(r.p50_mm, 5.0) << "calibrated live, the fit follows the tracked tips: " << log;
   }
@@ -93,8 +104,8 @@ TEST_F(OpenXrBridgeTest, BothHandsReachAPhysicsNodeThroughTheLoaderWithTheValida
   int tracking[2] = {0, 0};
   for (const SeenHand& h : MonitorLog::read(dir_ + "/monitor.txt").hands)
     if (h.tracking && (h.id == 0 || h.id == 1)) ++tracking[h.id];
-  EXPECT_GT(tracking[0], 20) << text("node.log");
-  EXPECT_GT(tracking[1], 20) << text("node.log");
+  EXPECT_GT(tracking[0], 0) << text("node.log");
+  EXPECT_GT(tracking[1], 0) << text("node.log");
 }
 
 TEST_F(OpenXrBridgeTest, CtrlCAsksTheRuntimeToEndTheSessionAndExitsCleanly) {
@@ -144,7 +155,8 @@ TEST_F(OpenXrBridgeTest, TheOpenXrRigRunsUntilTheRuntimeEndsTheSession) {
   long published = 0;
   for (const char* side : {"right", "left"}) {
     const HandReport r = hand_report(bridge, side);
-    EXPECT_GT(r.published, 20) << side << ": " << bridge;
+    SCOPED_TRACE(side);
+    expect_every_frame_accounted(r, bridge);
     published += r.published;
   }
   // the summary counts both hands' samples as the run's input
