@@ -142,10 +142,9 @@ bool RigMonitor::input_consumed(const std::vector<std::string>& input_nodes) con
   if (physics == statuses_.end()) return false;
   uint64_t published = 0;
   for (const std::string& name : input_nodes) {
-    // a node's statuses: its own, or one per input it publishes ("openxr_hand_bridge/right")
     int seen = 0;
     for (const auto& [status_name, status] : statuses_) {
-      if (status_name != name && status_name.rfind(name + "/", 0) != 0) continue;
+      if (!is_status_of(status_name, name)) continue;
       if (status.state() != cockpit::STOPPING) return false;
       published += status.published();
       ++seen;

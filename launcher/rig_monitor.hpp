@@ -59,6 +59,11 @@ class RigMonitor {
   // "<name>/..." ones: openxr_hand_bridge's hands), and the physics node's accepted and rejected
   // samples add up to what they published. False while any of those is unknown.
   bool input_consumed(const std::vector<std::string>& input_nodes) const;
+  // Whether a node_status name is the node's: its own, or one of its "<node>/..." (a node that
+  // reports each of its inputs, openxr_hand_bridge/right and /left).
+  static bool is_status_of(const std::string& status_name, const std::string& node_name) {
+    return status_name == node_name || status_name.rfind(node_name + "/", 0) == 0;
+  }
   std::string object_name(uint32_t id) const;
   // the last state of every dynamic object, by name
   const std::map<std::string, cockpit::ObjectState>& final_states() const { return final_; }

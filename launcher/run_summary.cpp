@@ -35,7 +35,7 @@ RunSummary collect_run_summary(const RigConfig& rig, const std::string& out_dir,
   for (const NodeSpec& node : rig.nodes) {
     if (!node.ends_run && node.name.rfind("glove_driver", 0) != 0) continue;
     for (const auto& [name, status] : statuses)
-      if (name == node.name || name.rfind(node.name + "/", 0) == 0) s.samples_replayed += status.published();
+      if (RigMonitor::is_status_of(name, node.name)) s.samples_replayed += status.published();
   }
   if (auto it = statuses.find("physics_node"); it != statuses.end()) {
     for (const cockpit::HandInputStatus& h : it->second.hands())

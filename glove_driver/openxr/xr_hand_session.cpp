@@ -4,7 +4,6 @@
 #include <time.h>
 
 #include <openxr/openxr_platform.h>
-#include <openxr/openxr_reflection.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -14,22 +13,15 @@
 #include <vector>
 
 #include "glove_driver/openxr/xr_joint_locations.hpp"
+#include "glove_driver/openxr/xr_names.hpp"
 #include "glove_driver/openxr/xr_struct.hpp"
 
 namespace vcockpit::glove::xr {
 namespace {
 
-// The result's name from the headers (no instance needed: xrCreateInstance's own failures).
 std::string result_text(XrResult result) {
-  switch (result) {
-#define VCOCKPIT_XR_RESULT_NAME(name, number) \
-  case name:                                 \
-    return #name;
-    XR_LIST_ENUM_XrResult(VCOCKPIT_XR_RESULT_NAME)
-#undef VCOCKPIT_XR_RESULT_NAME
-    default:
-      return "XrResult " + std::to_string(static_cast<int>(result));
-  }
+  const char* name = xr_result_name(result);
+  return name != nullptr ? name : "XrResult " + std::to_string(static_cast<int>(result));
 }
 
 std::vector<std::string> instance_extensions() {

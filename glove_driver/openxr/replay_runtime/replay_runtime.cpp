@@ -25,7 +25,6 @@
 
 #include <openxr/openxr.h>
 #include <openxr/openxr_platform.h>
-#include <openxr/openxr_reflection.h>
 
 #include <algorithm>
 #include <cmath>
@@ -42,6 +41,7 @@
 #include <thread>
 
 #include "glove_driver/openxr/loader_interface.hpp"
+#include "glove_driver/openxr/xr_names.hpp"
 #include "glove_driver/openxr/xr_struct.hpp"
 #include "glove_driver/openxr/replay_runtime/joints_timeline.hpp"
 #include "hand/tracking/joints_log.hpp"
@@ -284,35 +284,24 @@ XRAPI_ATTR XrResult XRAPI_CALL ResultToString(XrInstance handle, XrResult value,
   std::lock_guard<std::mutex> lock(registry().mutex);
   if (instance_of(handle) == nullptr) return XR_ERROR_HANDLE_INVALID;
   if (buffer == nullptr) return XR_ERROR_VALIDATION_FAILURE;
-  switch (value) {
-#define VCOCKPIT_XR_RESULT_CASE(name, number) \
-  case name:                                 \
-    copy_name(buffer, XR_MAX_RESULT_STRING_SIZE, #name); \
-    return XR_SUCCESS;
-    XR_LIST_ENUM_XrResult(VCOCKPIT_XR_RESULT_CASE)
-#undef VCOCKPIT_XR_RESULT_CASE
-    default:
-      std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "XR_%s_%d", value < 0 ? "UNKNOWN_FAILURE" : "UNKNOWN_SUCCESS",
-                    static_cast<int>(value));
-      return XR_SUCCESS;
+  if (const char* name = xr::xr_result_name(value)) {
+    copy_name(buffer, XR_MAX_RESULT_STRING_SIZE, name);
+  } else {
+    std::snprintf(buffer, XR_MAX_RESULT_STRING_SIZE, "XR_%s_%d", value < 0 ? "UNKNOWN_FAILURE" : "UNKNOWN_SUCCESS",
+                  static_cast<int>(value));
   }
+  return XR_SUCCESS;
 }
 
 XRAPI_ATTR XrResult XRAPI_CALL StructureTypeToString(XrInstance handle, XrStructureType value, char* buffer) {
   std::lock_guard<std::mutex> lock(registry().mutex);
   if (instance_of(handle) == nullptr) return XR_ERROR_HANDLE_INVALID;
   if (buffer == nullptr) return XR_ERROR_VALIDATION_FAILURE;
-  switch (value) {
-#define VCOCKPIT_XR_TYPE_CASE(name, number) \
-  case name:                               \
-    copy_name(buffer, XR_MAX_STRUCTURE_NAME_SIZE, #name); \
-    return XR_SUCCESS;
-    XR_LIST_ENUM_XrStructureType(VCOCKPIT_XR_TYPE_CASE)
-#undef VCOCKPIT_XR_TYPE_CASE
-    default:
-      std::snprintf(buffer, XR_MAX_STRUCTURE_NAME_SIZE, "XR_UNKNOWN_STRUCTURE_TYPE_%d", static_cast<int>(value));
-      return XR_SUCCESS;
-  }
+  if (const char* name = xr::xr_structure_type_name(value))
+    copy_name(buffer, XR_MAX_STRUCTURE_NAME_SIZE, name);
+  else
+    std::snprintf(buffer, XR_MAX_STRUCTURE_NAME_SIZE, "XR_UNKNOWN_STRUCTURE_TYPE_%d", static_cast<int>(value));
+  return XR_SUCCESS;
 }
 
 XRAPI_ATTR XrResult XRAPI_CALL GetSystem(XrInstance handle, const XrSystemGetInfo* info, XrSystemId* id) {
