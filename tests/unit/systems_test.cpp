@@ -1,0 +1,418 @@
+// The aircraft systems (systems/): the expression language, the model's errors, and the default
+// aircraft (config/aircraft.yaml on config/cockpit.yaml's controls) against closed forms: the
+// gear's transit, the lags' time constants, the start sequence, within one systems step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <string>
+
+#include "common/config_error.hpp"
+#include "common/yaml_config.hpp"
+#include "physics_node/config/scene_config.hpp"
+#include "systems/config/systems_yaml.hpp"
+#include "systems/systems_engine.hpp"
+
+namespace vcockpit::systems {
+namespace {
+
+std::string source_dir() {
+  const char* dir = std::getenv("VCOCKPIT_SOURCE_DIR");
+  return dir != nullptr ? dir : ".";
+}
+
+// ---- expressions -------------------------------------------------------------------------------
+
+class MapReader final : public RefReader {
+ public:
+  double read(const Ref& ref) const override { return values.at(ref.index); }
+  std::map<int, double> values;
+};
+
+double eval(const std::string& text, std::map<std::string, double> vars = {}) {
+  Expression e = Expression::parse(text);
+  MapReader reader;
+  std::map<std::string, int> index;
+  e.bind([&](const Name& n) {
+    const std::string key = n.member.empty() ? n.name : n.name + "." + n.member;
+    if (!vars.count(key)) throw ExpressionError(n.column, "no '" + key + "'");
+    const int i = index.emplace(key, static_cast<int>(index.size())).first->second;
+    reader.values[i] = vars[key];
+    return Ref{RefKind::kElement, i, 0};
+  });
+  return e.evaluate(reader);
+}
+
+TEST(SystemsExpression, PrecedenceAndFunctions) {
+  EXPECT_EQ(eval("1 + 2 * 3"), 7.0);
+  EXPECT_EQ(eval("(1 + 2) * 3"), 9.0);
+  EXPECT_EQ(eval("10 - 4 - 3"), 3.0);  // left to right
+  EXPECT_EQ(eval("-2 * -3"), 6.0);
+  EXPECT_EQ(eval("1 < 2 && 3 >= 3"), 1.0);
+  EXPECT_EQ(eval("0 || 0"), 0.0);
+  EXPECT_EQ(eval("!0 && !(2 == 3)"), 1.0);
+  EXPECT_EQ(eval("1 != 1"), 0.0);
+  EXPECT_EQ(eval("0 ? 5 : 1 ? 6 : 7"), 6.0);  // right-associative select
+  EXPECT_EQ(eval("true ? 2 : 3"), 2.0);
+  EXPECT_EQ(eval("clamp(12, 0, 10) + min(3, 4) + max(3, 4) + abs(-1)"), 18.0);
+  EXPECT_EQ(eval("round(2.5) + floor(-0.5)"), 2.0);
+  EXPECT_EQ(eval("mod(-10, 360)"), 350.0);
+  EXPECT_EQ(eval("a.q * 2 + b", {{"a.q", 1.5}, {"b", 1.0}}), 4.0);
+  EXPECT_EQ(eval("1e3 / 4"), 250.0);
+}
+
+TEST(SystemsExpression, DivisionByZeroIsZeroNotNaN) {
+  EXPECT_EQ(eval("1 / 0"), 0.0);
+  EXPECT_EQ(eval("mod(5, 0)"), 0.0);
+  EXPECT_EQ(eval("1e300 * 1e300"), 0.0);  // an overflow is not published either
+}
+
+TEST(SystemsExpression, SyntaxErrorsNameTheCharacter) {
+  const auto error = [](const std::string& text) {
+    try {
+      Expression::parse(text);
+    } catch (const ExpressionError& e) {
+      return std::string(e.what());
+    }
+    return std::string("parsed");
+  };
+  EXPECT_EQ(error("1 +"), "at character 4: expected a value");
+  EXPECT_EQ(error("a && (b"), "at character 8: expected ')'");
+  EXPECT_EQ(error("a b"), "at character 3: unexpected 'b'");
+  EXPECT_EQ(error("1 < 2 < 3"), "at character 7: comparisons do not chain: use && between them");
+  EXPECT_EQ(error("sqrt(2)"), "at character 1: no function 'sqrt' (min, max, clamp, abs, round, floor, mod)");
+  EXPECT_EQ(error("min(1)"), "at character 6: expected ','");
+  EXPECT_EQ(error("a = b"), "at character 3: unexpected '='");
+  EXPECT_EQ(error(""), "at character 1: empty expression");
+  EXPECT_EQ(error("gear."), "at character 6: expected a name after '.'");
+  EXPECT_EQ(error("2x"), "at character 2: bad number");
+}
+
+// ---- the model's errors ------------------------------------------------------------------------
+
+std::vector<ControlSpec> two_controls() {
+  return {{"gear", false, {"down", "up"}}, {"throttle", true, {"cutoff", "idle", "full"}}};
+}
+
+std::string load_error(const std::string& yaml, std::vector<ControlSpec> controls = two_controls()) {
+  try {
+    Systems s(parse_systems_model(ConfigNode::load_string(yaml, "aircraft.yaml")), std::move(controls));
+  } catch (const ConfigError& e) {
+    return e.what();
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "loaded";
+}
+
+TEST(SystemsModelErrors, NameFileLineAndWhat) {
+  EXPECT_EQ(load_error("systems:\n  - {name: a, logic: \"gear.down &&\"}\n"),
+            "aircraft.yaml:2:22: systems[0].logic: at character 13: expected a value in \"gear.down &&\"");
+  EXPECT_EQ(load_error("systems:\n  - {name: a, logic: \"gear.dwn\"}\n"),
+            "aircraft.yaml:2:22: systems[0].logic: at character 1: control 'gear' has no position "
+            "'dwn' (positions: down, up; or q, position) in \"gear.dwn\"");
+  EXPECT_EQ(load_error("systems:\n  - {name: a, logic: \"flaps.up\"}\n"),
+            "aircraft.yaml:2:22: systems[0].logic: at character 1: no control, failure or system "
+            "named 'flaps' in \"flaps.up\"");
+  EXPECT_EQ(load_error("systems:\n  - {name: a, lag: {to: 1, tau_s: 0}}\n"),
+            "aircraft.yaml:2:35: systems[0].lag.tau_s: must be positive, got 0.000000");
+  EXPECT_EQ(load_error("systems:\n  - {name: a, logic: 1, lag: {to: 1, tau_s: 1}}\n"),
+            "aircraft.yaml:2:5: systems[0]: a system has one kind: logic, lag, rate, timer, latch or machine");
+  EXPECT_EQ(load_error("systems:\n  - {name: gear, logic: 1}\n"),
+            "aircraft.yaml:2:5: systems[0]: the name 'gear' is already taken (by a control, failure or system)");
+  EXPECT_EQ(load_error("systems:\n  - {name: a, logic: 1, colour: red}\n"),
+            "aircraft.yaml:2:25: systems[0].colour: unknown key 'colour' (allowed: name, logic, lag, "
+            "rate, timer, latch, machine, unit, events)");
+  EXPECT_EQ(load_error("systems:\n  - name: m\n    machine:\n      states: [a, b]\n"
+                       "      transitions: [{from: a, to: c}]\n"),
+            "aircraft.yaml:5:21: systems[0].machine.transitions[0]: no state 'c' (states: a, b)");
+  EXPECT_EQ(load_error("systems:\n  - name: m\n    machine:\n      states: [a, b]\n"
+                       "      transitions: [{from: a, to: b, clears: [fire]}]\n"),
+            "aircraft.yaml:5:21: systems[0].machine.transitions[0]: no failure 'fire' to clear");
+  EXPECT_EQ(load_error("systems:\n  - {name: a, logic: \"b.x\"}\n  - {name: b, lag: {to: 1, tau_s: 1}}\n"),
+            "aircraft.yaml:2:22: systems[0].logic: at character 1: 'b' is a lag: it has no .x in \"b.x\"");
+  EXPECT_EQ(load_error("rate_hz: 3\nsystems:\n  - {name: a, logic: 1}\n"),
+            "aircraft.yaml:1:10: rate_hz: rate_hz must give a whole number of nanoseconds a step");
+}
+
+// ---- the default aircraft on the default cockpit -------------------------------------------------
+
+class DefaultAircraft : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const physics::Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
+    std::vector<ControlSpec> controls;
+    for (const physics::ControlSpec& c : scene.controls) {
+      ControlSpec spec{c.name, c.joint == physics::JointKind::kRevolute, {}};
+      for (const physics::ControlPosition& p : c.positions) spec.positions.push_back(p.name);
+      controls.push_back(spec);
+      frame_.position.push_back(0);
+      frame_.q.push_back(spec.revolute ? c.q_initial * 180.0 / M_PI : c.q_initial);
+      for (std::size_t i = 0; i < c.positions.size(); ++i)
+        if (c.q_initial >= c.positions[i].enter_lo && c.q_initial <= c.positions[i].enter_hi)
+          frame_.position.back() = static_cast<int32_t>(i);
+      positions_[c.name] = spec.positions;
+      at_[c.name] = {};
+      for (const physics::ControlPosition& p : c.positions)
+        at_[c.name][p.name] = spec.revolute ? p.q * 180.0 / M_PI : p.q;
+    }
+    controls_ = controls;
+    systems_ = std::make_unique<Systems>(load_systems_model(source_dir() + "/config/aircraft.yaml"),
+                                         controls);
+  }
+
+  int control(const std::string& name) const {
+    for (std::size_t i = 0; i < controls_.size(); ++i)
+      if (controls_[i].name == name) return static_cast<int>(i);
+    ADD_FAILURE() << "no control " << name;
+    return 0;
+  }
+  // Puts a control in a named position, at its nominal coordinate.
+  void set(const std::string& name, const std::string& position) {
+    const int c = control(name);
+    const auto& names = positions_.at(name);
+    const auto it = std::find(names.begin(), names.end(), position);
+    ASSERT_NE(it, names.end()) << name << " has no " << position;
+    frame_.position[static_cast<std::size_t>(c)] = static_cast<int32_t>(it - names.begin());
+    frame_.q[static_cast<std::size_t>(c)] = at_.at(name).at(position);
+  }
+  double value(const std::string& name) const {
+    const int e = systems_->element_index(name);
+    EXPECT_GE(e, 0) << name;
+    return systems_->value(e);
+  }
+  std::string text(const std::string& name) const {
+    const int e = systems_->element_index(name);
+    return systems_->value_text(e, systems_->value(e));
+  }
+  void step(int n = 1) {
+    for (int i = 0; i < n; ++i) {
+      frame_.time_ns += systems_->period_ns();
+      systems_->step(frame_, events_);
+    }
+  }
+  // Steps until `name` reads `state` (at most `limit` steps); the steps taken, or -1.
+  int steps_until(const std::string& name, const std::string& state, int limit) {
+    for (int i = 1; i <= limit; ++i) {
+      step();
+      if (text(name) == state) return i;
+    }
+    return -1;
+  }
+  // The engine started and running, from a powered cockpit with the pump on and the throttle at
+  // idle; the steps from the start switch to cranking.
+  void power_up() {
+    set("avionics_master", "on");
+    set("fuel_pump", "on");
+    set("throttle", "idle");
+    step();
+  }
+
+  std::vector<ControlSpec> controls_;
+  std::map<std::string, std::vector<std::string>> positions_;
+  std::map<std::string, std::map<std::string, double>> at_;
+  ControlFrame frame_;
+  std::unique_ptr<Systems> systems_;
+  std::vector<SystemsEvent> events_;
+};
+
+TEST_F(DefaultAircraft, StartsAsTheCockpitIs) {
+  EXPECT_EQ(systems_->period_ns(), 10'000'000);
+  step();
+  EXPECT_EQ(text("engine"), "stopped");
+  EXPECT_EQ(value("bus"), 0.0);  // the avionics master starts off
+  EXPECT_EQ(text("gear_left"), "down");
+  EXPECT_EQ(value("gear_three_green"), 1.0);
+  EXPECT_EQ(value("gear_green_left"), 0.0);  // no power, no lights
+  EXPECT_EQ(value("egt"), 15.0);
+}
+
+TEST_F(DefaultAircraft, GearTransitTimesPerLeg) {
+  set("avionics_master", "on");
+  step();
+  set("gear", "up");
+  step();  // the lever's step: every leg starts retracting
+  EXPECT_EQ(text("gear_nose"), "retracting");
+  EXPECT_EQ(value("gear_red_left"), 1.0);
+  EXPECT_EQ(value("gear_three_green"), 0.0);
+  // 6.5, 7 and 7.5 s at 100 Hz, exactly
+  EXPECT_EQ(steps_until("gear_nose", "up", 2000), 650);
+  EXPECT_EQ(steps_until("gear_left", "up", 2000), 50);
+  EXPECT_EQ(steps_until("gear_right", "up", 2000), 50);
+  EXPECT_EQ(value("gear_red_right"), 0.0);
+  set("gear", "down");
+  step();
+  EXPECT_EQ(text("gear_right"), "extending");
+  EXPECT_EQ(steps_until("gear_three_green", "1", 2000), 750);
+  EXPECT_EQ(value("gear_green_nose") + value("gear_green_left") + value("gear_green_right"), 3.0);
+}
+
+TEST_F(DefaultAircraft, GearDoesNotMoveWithoutPower) {
+  set("gear", "up");
+  step(100);
+  EXPECT_EQ(text("gear_nose"), "down");
+  set("avionics_master", "on");
+  step();
+  EXPECT_EQ(text("gear_nose"), "retracting");
+}
+
+TEST_F(DefaultAircraft, StartSequenceTimingAndLags) {
+  power_up();
+  set("engine_start_guard", "open");
+  set("engine_start", "start");
+  step();
+  EXPECT_EQ(text("engine"), "cranking");
+  set("engine_start", "off");  // momentary: the start runs on by itself
+  // light-off 2 s after cranking began
+  EXPECT_EQ(steps_until("engine", "light_off", 1000), 200);
+  // 2 s of the starter's 22 % (the exact discrete lag: e^(-t/tau) at every step), then the
+  // light-off step's first step toward idle's 60 %
+  const double a = 1.0 - std::exp(-0.01 / 1.2);
+  const double rpm_cranked = 22.0 * (1.0 - std::exp(-2.0 / 1.2));
+  EXPECT_NEAR(value("rpm"), rpm_cranked + (60.0 - rpm_cranked) * a, 1e-9);
+  // running when rpm reaches 58 of its 60 %: t = tau ln((60 - r0) / (60 - 58)) after light-off;
+  // the machine reads rpm as the last step left it (it is above rpm in the file)
+  const double t_s = 1.2 * std::log((60.0 - rpm_cranked) / 2.0);
+  const int steps = steps_until("engine", "running", 2000);
+  EXPECT_GE(steps, static_cast<int>(std::floor(t_s * 100.0)));
+  EXPECT_LE(steps, static_cast<int>(std::ceil(t_s * 100.0)) + 1);
+}
+
+TEST_F(DefaultAircraft, LagTimeConstantIsExact) {
+  power_up();
+  set("engine_start", "start");
+  step();
+  set("engine_start", "off");
+  ASSERT_EQ(steps_until("engine", "light_off", 1000), 200);
+  // from light-off EGT heads for 420 C (throttle at idle) from where cranking left it (15 C)
+  const double egt0 = value("egt");
+  EXPECT_NEAR(egt0, 15.0 + (420.0 - 15.0) * (1.0 - std::exp(-0.01 / 2.5)), 1e-9);
+  step(249);  // tau = 2.5 s after the light-off step
+  EXPECT_NEAR(value("egt"), 420.0 - (420.0 - 15.0) * std::exp(-1.0), 1e-9);
+  // throttle to full: RPM heads for 100 % with its 1.2 s constant
+  ASSERT_EQ(steps_until("engine", "running", 1000) > 0, true);
+  step(1000);  // settled at idle
+  EXPECT_NEAR(value("rpm"), 60.0, 1e-3);
+  set("throttle", "full");
+  const double r0 = value("rpm");
+  step(120);
+  EXPECT_NEAR(value("rpm"), 100.0 - (100.0 - r0) * std::exp(-1.0), 1e-9);
+  EXPECT_NEAR(value("fuel_flow"), 60.0, 60.0 * std::exp(-1.2 / 0.5) + 1e-9);
+}
+
+TEST_F(DefaultAircraft, WrongConditionsFailTheStart) {
+  set("avionics_master", "on");
+  set("throttle", "idle");  // the fuel pump stays off
+  step();
+  set("engine_start", "start");
+  step();
+  set("engine_start", "off");
+  EXPECT_EQ(steps_until("engine", "start_failed", 1000), 200);
+  EXPECT_EQ(value("ann_start_failed"), 1.0);
+  EXPECT_EQ(value("master_caution_light"), 1.0);
+  // the master caution button puts the light out; the annunciator stays
+  set("master_caution", "pressed");
+  step();
+  EXPECT_EQ(value("master_caution_light"), 0.0);
+  EXPECT_EQ(value("ann_start_failed"), 1.0);
+  set("master_caution", "out");
+  step();
+  EXPECT_EQ(value("master_caution_light"), 0.0);
+  // the start switch released, the engine is stopped again after 5 s
+  EXPECT_EQ(steps_until("engine", "stopped", 1000), 498);
+
+  // with the throttle open instead, the start fails the same way
+  set("fuel_pump", "on");
+  set("throttle", "full");
+  set("engine_start", "start");
+  step();
+  set("engine_start", "off");
+  EXPECT_EQ(steps_until("engine", "start_failed", 1000), 200);
+}
+
+TEST_F(DefaultAircraft, GearUnsafeIsFixedByRecyclingTheGear) {
+  set("avionics_master", "on");
+  step();
+  events_.clear();
+  const int failure = systems_->failure_index("gear_unsafe_left");
+  ASSERT_GE(failure, 0);
+  ASSERT_TRUE(systems_->set_failure(failure, true).has_value());
+  EXPECT_FALSE(systems_->set_failure(failure, true).has_value());  // already in
+  step();
+  EXPECT_EQ(text("gear_left"), "unsafe");
+  EXPECT_EQ(value("gear_red_left"), 1.0);
+  EXPECT_EQ(value("ann_gear_unsafe"), 1.0);
+  EXPECT_EQ(value("master_caution_light"), 1.0);
+  EXPECT_EQ(value("gear_three_green"), 0.0);
+  // recycling: up clears the failure, and down locks all three again
+  set("gear", "up");
+  step();
+  EXPECT_EQ(text("gear_left"), "retracting");
+  EXPECT_EQ(systems_->state().failure[static_cast<std::size_t>(failure)], 0);
+  bool cleared = false;
+  for (const SystemsEvent& e : events_)
+    cleared |= e.kind == SystemsEventKind::kFailureCleared && e.index == failure;
+  EXPECT_TRUE(cleared);
+  ASSERT_GT(steps_until("gear_right", "up", 2000), 0);
+  set("gear", "down");
+  ASSERT_GT(steps_until("gear_three_green", "1", 2000), 0);
+  EXPECT_EQ(text("gear_left"), "down");
+  EXPECT_EQ(value("ann_gear_unsafe"), 0.0);
+}
+
+TEST_F(DefaultAircraft, GearHornAndFlapMotor) {
+  set("avionics_master", "on");
+  set("throttle", "idle");
+  set("flaps", "landing");
+  step();
+  EXPECT_EQ(value("gear_horn"), 0.0);  // gear down and locked
+  EXPECT_NEAR(value("flap_deg"), 0.04, 1e-12);
+  step(499);
+  EXPECT_NEAR(value("flap_deg"), 20.0, 1e-9);  // 4 deg/s
+  step(500);
+  EXPECT_NEAR(value("flap_deg"), 40.0, 1e-9);
+  step(10);
+  EXPECT_NEAR(value("flap_deg"), 40.0, 1e-12);
+  set("gear", "up");
+  step();
+  EXPECT_EQ(value("gear_horn"), 1.0);
+  set("throttle", "full");
+  step();
+  EXPECT_EQ(value("gear_horn"), 0.0);
+}
+
+TEST_F(DefaultAircraft, RestoredStateGoesOnIdentically) {
+  power_up();
+  set("engine_start", "start");
+  set("gear", "up");
+  step(150);
+  const SystemsState saved = systems_->state();
+  const ControlFrame frame_then = frame_;
+  set("engine_start", "off");
+  step(400);
+  const std::vector<double> values_a = systems_->state().value;
+  const std::size_t events_a = events_.size();
+
+  Systems other(load_systems_model(source_dir() + "/config/aircraft.yaml"), controls_);
+  other.restore(saved);
+  EXPECT_EQ(other.model_hash(), systems_->model_hash());
+  ControlFrame f = frame_then;
+  f.position[static_cast<std::size_t>(control("engine_start"))] = 0;
+  f.q[static_cast<std::size_t>(control("engine_start"))] = at_["engine_start"]["off"];
+  std::vector<SystemsEvent> events_b;
+  for (int i = 0; i < 400; ++i) {
+    f.time_ns += other.period_ns();
+    other.step(f, events_b);
+  }
+  EXPECT_EQ(other.state().value, values_a);  // bit for bit
+  EXPECT_GT(events_b.size(), 0u);
+  EXPECT_LE(events_b.size(), events_a);
+
+  SystemsState bad = saved;
+  bad.value.pop_back();
+  EXPECT_THROW(other.restore(bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vcockpit::systems
