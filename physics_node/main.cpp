@@ -99,6 +99,15 @@ int main(int argc, char** argv) {
   app.add_option("--rate-hz", node_options.rate_hz, "DDS real time: physics steps per second")
       ->check(CLI::Range(1.0, 10000.0) & kFinite)
       ->capture_default_str();
+  app.add_option("--control-frame-hz", node_options.control_frame_hz,
+                 "DDS: cockpit/control_frame (the aircraft systems' input) per second of world "
+                 "time; 0: none")
+      ->check(CLI::Range(0.0, 10000.0) & kFinite)
+      ->capture_default_str();
+  app.add_option("--wait-frame-readers", node_options.wait_frame_readers,
+                 "lockstep: wait (at most 30 s) for this many cockpit/control_frame readers (a "
+                 "systems node) before the first step")
+      ->check(CLI::Range(0, 16));
   app.add_option("--publish-hz", node_options.publish_hz,
                  "DDS: hand_state/object_state publications per second")
       ->check(CLI::Range(1.0, 10000.0) & kFinite)

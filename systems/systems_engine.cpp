@@ -62,7 +62,8 @@ class Systems::Reader final : public RefReader {
       case RefKind::kMachineTime:
         return static_cast<double>(st.step - st.since_step[i]) * s_.period_s_;
       case RefKind::kControlIn: return truth(s_.frame_->position[i] == ref.arg);
-      case RefKind::kControlQ: return s_.frame_->q[i];
+      case RefKind::kControlQ:  // the frame's SI coordinate, in the file's units (deg for angles)
+        return s_.controls_[i].revolute ? s_.frame_->q[i] * (180.0 / M_PI) : s_.frame_->q[i];
       case RefKind::kControlPosition: return s_.frame_->position[i];
       case RefKind::kFailure: return st.failure[i];
       case RefKind::kTime: return static_cast<double>(st.step) * s_.period_s_;
@@ -286,7 +287,9 @@ void Systems::step_element(std::size_t e, const Reader& reader, std::vector<Syst
       break;
     }
   }
-  const bool reports = el.kind == ElementKind::kMachine || el.kind == ElementKind::kLatch || el.events;
+  // a logic system's first value is where it starts, not a change from the 0 it held before
+  const bool reports = el.kind == ElementKind::kMachine || el.kind == ElementKind::kLatch ||
+                       (el.events && state_.step > 1);
   if (reports && v != before)
     events.push_back({state_.time_ns, SystemsEventKind::kChange, static_cast<int>(e), before, v});
   // a transition's cleared failures come after its change
@@ -294,13 +297,13 @@ void Systems::step_element(std::size_t e, const Reader& reader, std::vector<Syst
   cleared_.clear();
 }
 
-std::optional<SystemsEvent> Systems::set_failure(int failure, bool inserted) {
+std::optional<SystemsEvent> Systems::set_failure(int failure, bool inserted, int64_t time_ns) {
   if (failure < 0 || static_cast<std::size_t>(failure) >= state_.failure.size())
     throw std::out_of_range("no failure " + std::to_string(failure));
   auto& f = state_.failure[static_cast<std::size_t>(failure)];
   if ((f != 0) == inserted) return std::nullopt;
   f = inserted ? 1 : 0;
-  return SystemsEvent{state_.time_ns,
+  return SystemsEvent{time_ns >= 0 ? time_ns : state_.time_ns,
                       inserted ? SystemsEventKind::kFailureInserted : SystemsEventKind::kFailureCleared,
                       failure, inserted ? 0.0 : 1.0, inserted ? 1.0 : 0.0};
 }

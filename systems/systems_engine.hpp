@@ -13,7 +13,8 @@
 namespace vcockpit::systems {
 
 // The controls at one instant of the physics' time: per control of the engine's ControlSpec
-// list, its position index and its coordinate (m, or deg for a revolute joint).
+// list, its position index and its coordinate in SI units (m, or rad for a revolute joint, as
+// cockpit/control_state has it; expressions read a revolute one's in deg).
 struct ControlFrame {
   int64_t time_ns = 0;
   std::vector<int32_t> position;
@@ -57,8 +58,9 @@ class Systems {
   // control; a frame of another size throws std::invalid_argument). Appends its events.
   void step(const ControlFrame& frame, std::vector<SystemsEvent>& events);
 
-  // Inserts or clears a failure now; its event, or nothing when it already was so.
-  std::optional<SystemsEvent> set_failure(int failure, bool inserted);
+  // Inserts or clears a failure now (for the next step); its event, stamped `time_ns` (default:
+  // the last step's time), or nothing when it already was so.
+  std::optional<SystemsEvent> set_failure(int failure, bool inserted, int64_t time_ns = -1);
 
   int element_index(const std::string& name) const;  // -1 when none
   int failure_index(const std::string& name) const;  // -1 when none

@@ -84,7 +84,7 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
                                           : HandTimeline::span_ns(inputs);
   const int64_t interval_ns = output_interval_ns(options.output_hz, scene);
 
-  RunRecorder recorder(options.out_dir, interval_ns);
+  RunRecorder recorder(options.out_dir, interval_ns, scene);
 
   RunSummary summary;
   summary.scene_path = options.scene_path;

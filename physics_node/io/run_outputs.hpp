@@ -15,6 +15,8 @@
 //                     glove lost) with the max gap and glove timeout used, control_events and
 //                     "controls" (name -> final position name), final pose per object,
 //                     non_finite_refused
+//   control_frames.csv every control's position and coordinate at every output interval after
+//                     the start: the aircraft systems' input (systems/control_frames_file.hpp)
 // Every file is written to "<name>.partial" and renamed when the run completes.
 //
 // Only finite numbers are written (non_finite_guard.hpp): a trajectory row with a NaN or an

@@ -27,9 +27,11 @@ const std::string& created(const std::string& dir) {
 }
 }  // namespace
 
-RunRecorder::RunRecorder(const std::string& out_dir, int64_t interval_ns)
+RunRecorder::RunRecorder(const std::string& out_dir, int64_t interval_ns,
+                         const physics::Scene& scene)
     : interval_ns_(interval_ns),
       trajectories_(created(out_dir) + "/trajectories.csv"),
-      events_(out_dir + "/events.jsonl") {}
+      events_(out_dir + "/events.jsonl"),
+      control_frames_(out_dir + "/control_frames.csv", control_specs(scene)) {}
 
 }  // namespace vcockpit::physics_io

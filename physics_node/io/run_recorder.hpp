@@ -1,14 +1,18 @@
 #pragma once
 // What a run writes as it steps (run_outputs.hpp): a trajectory row at the start and every
-// output interval, and each step's grasp and control events. The offline runner and a lockstep
+// output interval, each step's grasp and control events, and a control frame every output
+// interval after the start (control_frames.csv, systems/control_frames_file.hpp: the aircraft
+// systems' input, as cockpit/control_frame carries it in a rig). The offline runner and a lockstep
 // node both record through it, so a lockstep replay's trajectories.csv and events.jsonl are the
 // offline runner's byte for byte.
 
 #include <cstdint>
 #include <string>
 
+#include "physics_node/io/control_frames.hpp"
 #include "physics_node/io/run_outputs.hpp"
 #include "physics_node/physics/world.hpp"
+#include "systems/control_frames_file.hpp"
 
 namespace vcockpit::physics_io {
 
@@ -19,16 +23,20 @@ int64_t output_interval_ns(double output_hz, const physics::Scene& scene);
 class RunRecorder {
  public:
   // Creates `out_dir`; the files appear there (renamed from .partial) on commit().
-  RunRecorder(const std::string& out_dir, int64_t interval_ns);
+  RunRecorder(const std::string& out_dir, int64_t interval_ns, const physics::Scene& scene);
 
   void start(const physics::World& world) { trajectories_.write(world); }  // the first row
   void after_step(const physics::World& world) {
     events_.write(world);
-    if (world.time_ns() % interval_ns_ == 0) trajectories_.write(world);
+    if (world.time_ns() % interval_ns_ == 0) {
+      trajectories_.write(world);
+      if (physics_io::control_frame(world, frame_)) control_frames_.write(frame_);
+    }
   }
   void commit() {
     trajectories_.commit();
     events_.commit();
+    control_frames_.commit();
   }
 
   const EventWriter& events() const { return events_; }
@@ -38,6 +46,8 @@ class RunRecorder {
   int64_t interval_ns_;
   TrajectoryWriter trajectories_;
   EventWriter events_;
+  systems::ControlFramesWriter control_frames_;
+  systems::ControlFrame frame_;
 };
 
 }  // namespace vcockpit::physics_io

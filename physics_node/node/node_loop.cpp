@@ -195,6 +195,14 @@ int Node::run_lockstep() {
   bool dirty = false;
   spdlog::info("lockstep: stepping to each sample's stamp ({} substeps per step)",
                world_.substeps());
+  if (options_.wait_frame_readers > 0) {
+    if (stepper_.control_frames().wait_for_readers(options_.wait_frame_readers, 30'000'000'000)) {
+      spdlog::info("{} control_frame reader(s) matched", options_.wait_frame_readers);
+    } else {
+      spdlog::warn("--wait-frame-readers: fewer than {} control_frame readers after 30 s; stepping "
+                   "anyway", options_.wait_frame_readers);
+    }
+  }
   start_clock();
   int64_t last_publish_ns = 0;
   const int64_t step_ns = std::llround(world_.scene().step_s * 1e9);

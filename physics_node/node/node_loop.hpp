@@ -48,6 +48,10 @@ struct NodeOptions {
   bool lockstep = false;
   double rate_hz = 1000.0;
   double publish_hz = 90.0;
+  double control_frame_hz = 100.0;  // cockpit/control_frame per second of world time (0: none)
+  // lockstep: before the first step, wait (at most 30 s) for this many control_frame readers (a
+  // systems node), so that none misses the first frames
+  int wait_frame_readers = 0;
   physics_io::InputTiming timing;         // --max-gap, --glove-timeout
   std::optional<double> input_delay_s;    // real time: fixed interpolation delay (none: adaptive)
   std::string node_name = "physics_node";

@@ -19,7 +19,8 @@ WorldStepper::WorldStepper(DdsParticipant& participant, physics::World& world,
       publisher_(publisher),
       sim_(sim),
       // volatile: a node (re)started later does not carry out old commands
-      command_reader_(participant.make_reader<cockpit::ControlCommand>("command")) {
+      command_reader_(participant.make_reader<cockpit::ControlCommand>("command")),
+      frames_(participant, world.scene(), options.control_frame_hz) {
   if (!options.checkpoint_path.empty()) {
     const std::filesystem::path dir = std::filesystem::path(options.checkpoint_path).parent_path();
     std::error_code error;
@@ -34,7 +35,8 @@ WorldStepper::WorldStepper(DdsParticipant& participant, physics::World& world,
   }
   if (!options.out_dir.empty()) {
     recorder_ = std::make_unique<physics_io::RunRecorder>(
-        options.out_dir, physics_io::output_interval_ns(options.output_hz, world_.scene()));
+        options.out_dir, physics_io::output_interval_ns(options.output_hz, world_.scene()),
+        world_.scene());
   }
 }
 
@@ -46,6 +48,7 @@ void WorldStepper::step(LoopStats& stats) {
   hand_peak_.record(world_);
   if (recorder_) recorder_->after_step(world_);
   publish_events();
+  frames_.after_step(world_);
   ++steps_in_period_;
   for (int s = 0; s < physics::kStageCount; ++s) stage_ns_[s] += world_.stage_times().ns[s];
   maybe_checkpoint();

@@ -2,7 +2,8 @@
 // The physics node's stepping, the same in both modes (node_loop.cpp): before a step the
 // commands from other nodes (cockpit/control_command; the world refuses a control or position it
 // does not have, and a control a hand holds); the step, timed; then its events published and
-// logged (faults, GRASP and RELEASE, CONTROL), the lockstep --out recorder fed, the stages'
+// logged (faults, GRASP and RELEASE, CONTROL), the control frame published on its period
+// (cockpit/control_frame), the lockstep --out recorder fed, the stages'
 // times summed for node_status, and every --checkpoint-every of simulated time the world offered
 // to the checkpoint writer. --resume starts the world from the newest checkpoint.
 
@@ -16,6 +17,7 @@
 #include "physics_node/io/run_recorder.hpp"
 #include "physics_node/io/world_checkpoint.hpp"
 #include "physics_node/node/checkpoint_writer.hpp"
+#include "physics_node/node/control_frame_publisher.hpp"
 #include "physics_node/node/loop_stats.hpp"
 #include "physics_node/node/node_loop.hpp"
 #include "physics_node/node/sim_commands.hpp"
@@ -51,6 +53,7 @@ class WorldStepper {
   uint32_t grasps(int hand) const { return grasps_[static_cast<std::size_t>(hand)]; }
   const physics_io::HandMotionPeak& hand_peak() const { return hand_peak_; }
   uint64_t commands_refused() const { return commands_refused_; }
+  const ControlFramePublisher& control_frames() const { return frames_; }
 
   // For node_status: the steps and their stages' summed times since the last take.
   uint64_t steps_in_period() const { return steps_in_period_; }
@@ -67,6 +70,7 @@ class WorldStepper {
   StatePublisher& publisher_;
   SimCommands& sim_;
   Reader<cockpit::ControlCommand> command_reader_;
+  ControlFramePublisher frames_;
   cockpit::ControlCommand command_;
   uint64_t commands_refused_ = 0;
   std::array<uint32_t, physics::kMaxHands> grasps_{};  // per world hand

@@ -4,7 +4,8 @@
 // the held object ("glove lost") and a restarted one resumes tracking; invalid samples are
 // rejected and counted while the node keeps running; a crafted log's faults are counted the same
 // by the glove driver, the lockstep node and the offline runner; each bundled control log in
-// lockstep writes the offline runner's trajectories.csv and events.jsonl byte for byte.
+// lockstep writes the offline runner's trajectories.csv, events.jsonl and control_frames.csv byte
+// for byte.
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -109,7 +110,7 @@ TEST_F(PhysicsNodeTest, EachControlLogInLockstepWritesTheOfflineRunnersFilesByte
     EXPECT_TRUE(wait_for_line(monitor_file, end, 120 * kSecond)) << text(std::string("node_") + name + ".log");
     EXPECT_EQ(monitor.stop(), 0);
     ASSERT_EQ(node.stop(), 0) << text(std::string("node_") + name + ".log");
-    for (const char* file : {"events.jsonl", "trajectories.csv"}) {
+    for (const char* file : {"events.jsonl", "trajectories.csv", "control_frames.csv"}) {
       const std::string lockstep = read_text(out + "/" + file);
       EXPECT_FALSE(lockstep.empty()) << file;
       EXPECT_TRUE(lockstep == read_text(offline.out_dir + "/" + file))

@@ -28,15 +28,16 @@ NODES = {
     "image_generator": ["image_generator/render", "image_generator/node", "image_generator"],
     "launcher": ["launcher"],
     "instructor": ["instructor"],
+    "systems_node": ["systems_node/node", "systems_node"],
 }
 # No DDS, no IDL types, no YAML: what the offline runner and the tests drive on their own.
 PURE = ["hand", "hand/tracking", "systems", "glove_driver/degrade", "glove_driver/openxr",
         "glove_driver/openxr/replay_runtime", "physics_node/physics", "physics_node/io",
         "physics_node/fit", "image_generator/render"]
 PURE_MAY_NOT = re.compile(r"^(fastdds|fastrtps|fastcdr|yaml-cpp)/|^(idl|dds|hand/config|systems/config)/|"
-                          r"^common/yaml_config\.hpp$|^cockpit(PubSubTypes)?\.h$")
+                          r"^common/yaml_config\.hpp$|^(cockpit|systems)(PubSubTypes)?\.h$")
 # fastddsgen's output, included by bare name: the IDL layer
-GENERATED_IDL = {"cockpit.h", "cockpitPubSubTypes.h"}
+GENERATED_IDL = {"cockpit.h", "cockpitPubSubTypes.h", "systems.h", "systemsPubSubTypes.h"}
 
 SOURCE = re.compile(r".*\.(c|cc|cpp|h|hpp)$")
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <string>
 
@@ -12,6 +13,9 @@
 #include "common/yaml_config.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "systems/config/systems_yaml.hpp"
+#include "systems/control_frames_file.hpp"
+#include "systems/systems_checkpoint.hpp"
+#include "systems/systems_run.hpp"
 #include "systems/systems_engine.hpp"
 
 namespace vcockpit::systems {
@@ -148,14 +152,14 @@ class DefaultAircraft : public ::testing::Test {
       for (const physics::ControlPosition& p : c.positions) spec.positions.push_back(p.name);
       controls.push_back(spec);
       frame_.position.push_back(0);
-      frame_.q.push_back(spec.revolute ? c.q_initial * 180.0 / M_PI : c.q_initial);
+      frame_.q.push_back(c.q_initial);
       for (std::size_t i = 0; i < c.positions.size(); ++i)
         if (c.q_initial >= c.positions[i].enter_lo && c.q_initial <= c.positions[i].enter_hi)
           frame_.position.back() = static_cast<int32_t>(i);
       positions_[c.name] = spec.positions;
       at_[c.name] = {};
       for (const physics::ControlPosition& p : c.positions)
-        at_[c.name][p.name] = spec.revolute ? p.q * 180.0 / M_PI : p.q;
+        at_[c.name][p.name] = p.q;
     }
     controls_ = controls;
     systems_ = std::make_unique<Systems>(load_systems_model(source_dir() + "/config/aircraft.yaml"),
@@ -412,6 +416,115 @@ TEST_F(DefaultAircraft, RestoredStateGoesOnIdentically) {
   SystemsState bad = saved;
   bad.value.pop_back();
   EXPECT_THROW(other.restore(bad), std::invalid_argument);
+}
+
+// ---- frames, runs and checkpoints ---------------------------------------------------------------
+
+std::string temp_path(const std::string& name) {
+  const char* dir = std::getenv("VCOCKPIT_TEST_TMP");
+  const std::string base = dir != nullptr && *dir != '\0' ? dir : "/tmp";
+  return base + "/systems_test_" + name;
+}
+
+TEST(ControlFramesFile, WritesAndReadsTheSameBits) {
+  const std::string path = temp_path("frames.csv");
+  const std::vector<ControlSpec> controls = two_controls();
+  {
+    ControlFramesWriter w(path, controls);
+    w.write({10'000'000, {0, 1}, {0.1, -0.3490658503988659}});
+    w.write({20'000'000, {1, 2}, {1.0 / 3.0, 0.5235987755982988}});
+    w.commit();
+  }
+  const ControlFrames read = read_control_frames(path);
+  ASSERT_EQ(read.controls.size(), 2u);
+  EXPECT_EQ(read.controls[1].name, "throttle");
+  EXPECT_TRUE(read.controls[1].revolute);
+  EXPECT_EQ(read.controls[1].positions, (std::vector<std::string>{"cutoff", "idle", "full"}));
+  ASSERT_EQ(read.frames.size(), 2u);
+  EXPECT_EQ(read.frames[1].time_ns, 20'000'000);
+  EXPECT_EQ(read.frames[1].position, (std::vector<int32_t>{1, 2}));
+  EXPECT_EQ(read.frames[1].q[0], 1.0 / 3.0);  // every bit
+  EXPECT_EQ(read.frames[0].q[1], -0.3490658503988659);
+}
+
+TEST(ControlFramesFile, ErrorsNameTheLineAndField) {
+  const auto error = [](const std::string& text) {
+    const std::string path = temp_path("bad_frames.csv");
+    std::ofstream(path) << text;
+    try {
+      read_control_frames(path);
+    } catch (const ControlFramesError& e) {
+      return std::string(e.what()).substr(path.size());
+    }
+    return std::string("read");
+  };
+  const std::string head = "# vcockpit control frames, version 1\n# control: gear prismatic down|up\n";
+  EXPECT_EQ(error("t_ns\n"), ":1: not a control frames file (its first line must be \"# vcockpit control frames, version 1\")");
+  EXPECT_EQ(error(head + "t_ns,gear.q\n"), ":3: header row: expected t_ns,gear.position,gear.q");
+  EXPECT_EQ(error(head + "t_ns,gear.position,gear.q\n10,0,0\n10,0,0\n"), ":5: t_ns: 10 does not come after the last row's 10");
+  EXPECT_EQ(error(head + "t_ns,gear.position,gear.q\n10,0,nan\n"), ":4: gear.q: 'nan' is not a finite number");
+  EXPECT_EQ(error(head + "t_ns,gear.position,gear.q\n10,0\n"), ":4: 2 fields, expected 3");
+  EXPECT_EQ(error("# vcockpit control frames, version 1\n# control: gear sliding down|up\n"), ":2: control gear: joint 'sliding' (prismatic or revolute)");
+  EXPECT_EQ(error(head), ":2: no header row (t_ns,...)");
+}
+
+TEST(SystemsRunFrames, MissedStaleAndOffGridFramesAreCountedNotLost) {
+  SystemsModel model = parse_systems_model(ConfigNode::load_string(
+      "systems:\n  - {name: t, timer: \"gear.up\"}\n", "a.yaml"));
+  Systems systems(std::move(model), two_controls());
+  SystemsRun run(systems);
+  int steps = 0;
+  const auto count = [&](const Systems&, const std::vector<SystemsEvent>&) { ++steps; };
+  ControlFrame f{10'000'000, {1, 0}, {0.04, 0.0}};
+  EXPECT_EQ(run.take(f, {}, count), 1);
+  f.time_ns = 50'000'000;  // three periods without a frame
+  EXPECT_EQ(run.take(f, {}, count), 4);
+  EXPECT_EQ(steps, 5);
+  EXPECT_NEAR(systems.value(0), 0.04, 1e-12);  // the timer counted every period
+  f.time_ns = 40'000'000;
+  EXPECT_EQ(run.take(f, {}, count), 0);  // stale
+  f.time_ns = 55'000'000;
+  EXPECT_EQ(run.take(f, {}, count), 0);  // off the grid
+  EXPECT_EQ(run.counts().taken, 2u);
+  EXPECT_EQ(run.counts().missed, 3u);
+  EXPECT_EQ(run.counts().stale, 1u);
+  EXPECT_EQ(run.counts().off_grid, 1u);
+}
+
+TEST(SystemsCheckpoint, RoundTripsEveryBitAndRefusesAnotherModel) {
+  const std::string aircraft = source_dir() + "/config/aircraft.yaml";
+  const std::vector<ControlSpec> controls = {
+      {"avionics_master", false, {"off", "on"}}, {"fuel_pump", true, {"off", "on"}},
+      {"engine_start", true, {"off", "start"}}, {"throttle", true, {"cutoff", "idle", "full"}},
+      {"gear", false, {"down", "up"}}, {"flaps", true, {"up", "approach", "landing"}},
+      {"landing_lights", true, {"off", "taxi", "on"}}, {"nav_mode", true, {"off", "vor", "gps", "loc", "app"}},
+      {"heading_bug", true, {"click", "between"}}, {"master_caution", false, {"out", "pressed"}}};
+  Systems a(load_systems_model(aircraft), controls);
+  ControlFrame f{0, {1, 1, 1, 1, 1, 2, 2, 1, 0, 0}, {0.004, 0.3, 0.3, -0.349, 0.04, 0.7, 0.3, 0.5, 1.3, 0}};
+  std::vector<SystemsEvent> events;
+  for (int i = 0; i < 333; ++i) {
+    f.time_ns += a.period_ns();
+    a.step(f, events);
+  }
+  ASSERT_TRUE(a.set_failure(a.failure_index("engine_fire"), true));
+  const std::string path = temp_path("systems.ckpt");
+  write_systems_checkpoint(path, a);
+  Systems b(load_systems_model(aircraft), controls);
+  b.restore(read_systems_checkpoint(path, b));
+  EXPECT_EQ(b.state().value, a.state().value);
+  EXPECT_EQ(b.state().since_step, a.state().since_step);
+  EXPECT_EQ(b.state().failure, a.state().failure);
+  EXPECT_EQ(b.state().time_ns, a.state().time_ns);
+
+  std::vector<ControlSpec> other = controls;  // a scene with one more control
+  other.push_back({"parking_brake", false, {"off", "set"}});
+  Systems c(load_systems_model(aircraft), other);
+  try {
+    read_systems_checkpoint(path, c);
+    ADD_FAILURE() << "another model's checkpoint was read";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find(":2: saved for another aircraft model or scene"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -1,0 +1,37 @@
+#include "physics_node/node/control_frame_publisher.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "physics_node/io/control_frames.hpp"
+
+namespace vcockpit::physics_node {
+
+ControlFramePublisher::ControlFramePublisher(DdsParticipant& participant,
+                                             const physics::Scene& scene, double hz)
+    : writer_(participant.make_writer<cockpit::ControlFrame>("event")) {
+  if (hz == 0.0) return;
+  const int64_t step_ns = std::llround(scene.step_s * 1e9);
+  const int64_t period_ns = std::isfinite(hz) && hz > 0.0 ? std::llround(1e9 / hz) : 0;
+  if (period_ns <= 0 || period_ns % step_ns != 0)
+    throw std::invalid_argument("--control-frame-hz " + std::to_string(hz) +
+                                " is not a whole number of steps of " +
+                                std::to_string(scene.step_s) + " s");
+  if (scene.controls.size() > 64)
+    throw std::invalid_argument("cockpit/control_frame carries at most 64 controls; the scene has " +
+                                std::to_string(scene.controls.size()));
+  period_ns_ = period_ns;
+}
+
+void ControlFramePublisher::after_step(const physics::World& world) {
+  if (period_ns_ == 0 || world.time_ns() % period_ns_ != 0) return;
+  if (!physics_io::control_frame(world, frame_)) return;
+  msg_.seq(++seq_);
+  msg_.sim_time_ns(world.time_ns());
+  msg_.position().assign(frame_.position.begin(), frame_.position.end());
+  msg_.coordinate().assign(frame_.q.begin(), frame_.q.end());
+  writer_.write(msg_);
+}
+
+}  // namespace vcockpit::physics_node

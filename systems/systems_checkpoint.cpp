@@ -1,0 +1,108 @@
+#include "systems/systems_checkpoint.hpp"
+
+#include <cerrno>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "common/atomic_file.hpp"
+
+namespace vcockpit::systems {
+namespace {
+
+constexpr const char* kMagic = "# vcockpit systems checkpoint, version 1";
+
+}  // namespace
+
+void write_systems_checkpoint(const std::string& path, const Systems& systems) {
+  const SystemsState& s = systems.state();
+  std::string text = std::string(kMagic) + "\n";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "model_hash %016" PRIx64 "\n", systems.model_hash());
+  text += buf;
+  text += "step " + std::to_string(s.step) + "\ntime_ns " + std::to_string(s.time_ns) + "\nvalue";
+  for (double v : s.value) {
+    std::snprintf(buf, sizeof buf, " %a", v);
+    text += buf;
+  }
+  text += "\nsince_step";
+  for (int64_t v : s.since_step) text += " " + std::to_string(v);
+  text += "\nlast_input";
+  for (double v : s.last_input) {
+    std::snprintf(buf, sizeof buf, " %a", v);
+    text += buf;
+  }
+  text += "\nfailure";
+  for (uint8_t f : s.failure) text += f != 0 ? " 1" : " 0";
+  text += "\n";
+  AtomicFile file(path);
+  file.write(text);
+  file.commit();
+}
+
+SystemsState read_systems_checkpoint(const std::string& path, const Systems& systems) {
+  std::ifstream in(path);
+  if (!in) throw FileError(path + ": cannot read: " + std::strerror(errno));
+  int n = 0;
+  const auto fail = [&](const std::string& what) -> void {
+    throw CheckpointError(path + ":" + std::to_string(n) + ": " + what);
+  };
+  std::string line;
+  const auto next = [&](const char* key) {
+    ++n;
+    if (!std::getline(in, line)) fail(std::string("ends before '") + key + "'");
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word != key) fail(std::string("expected '") + key + "'");
+    std::vector<std::string> rest;
+    while (words >> word) rest.push_back(word);
+    return rest;
+  };
+  ++n;
+  if (!std::getline(in, line) || line != kMagic) fail("not a systems checkpoint");
+  const auto number = [&](const std::string& text, bool integer) {
+    char* end = nullptr;
+    errno = 0;
+    const double v = integer ? static_cast<double>(std::strtoll(text.c_str(), &end, 10))
+                             : std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || errno != 0 || !std::isfinite(v)) fail("'" + text + "' is not a number");
+    return v;
+  };
+  const auto one = [&](const char* key) {
+    const auto words = next(key);
+    if (words.size() != 1) fail(std::string(key) + ": one value expected");
+    return words[0];
+  };
+  const std::string hash = one("model_hash");
+  char expected[32];
+  std::snprintf(expected, sizeof expected, "%016" PRIx64, systems.model_hash());
+  if (hash != expected) fail("saved for another aircraft model or scene (model_hash " + hash + ", this one " + expected + ")");
+  SystemsState s;
+  s.step = std::strtoll(one("step").c_str(), nullptr, 10);
+  s.time_ns = std::strtoll(one("time_ns").c_str(), nullptr, 10);
+  const std::size_t systems_count = systems.model().elements.size();
+  const auto list = [&](const char* key, std::size_t count, bool integer) {
+    const auto words = next(key);
+    if (words.size() != count) fail(std::string(key) + ": " + std::to_string(count) + " values expected");
+    std::vector<double> out;
+    for (const std::string& w : words) out.push_back(number(w, integer));
+    return out;
+  };
+  s.value = list("value", systems_count, false);
+  for (double v : list("since_step", systems_count, true)) s.since_step.push_back(static_cast<int64_t>(v));
+  s.last_input = list("last_input", systems_count, false);
+  for (double v : list("failure", systems.model().failures.size(), true)) {
+    if (v != 0.0 && v != 1.0) fail("failure: 0 or 1 expected");
+    s.failure.push_back(static_cast<uint8_t>(v));
+  }
+  if (s.step < 0) fail("step: negative");
+  return s;
+}
+
+}  // namespace vcockpit::systems

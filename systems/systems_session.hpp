@@ -1,0 +1,68 @@
+#pragma once
+// One run of the aircraft systems, whatever feeds it: the systems, their frame rule (SystemsRun),
+// the failures scheduled at simulated times (--failure-at), and with an output folder the
+// recorder's files and systems_summary.json. systems_node --offline feeds it control_frames.csv;
+// on DDS it is fed cockpit/control_frame and publishes what it hands back, so both write the same
+// files for the same frames.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "systems/systems_engine.hpp"
+#include "systems/systems_recorder.hpp"
+#include "systems/systems_run.hpp"
+
+namespace vcockpit::systems {
+
+// A failure inserted at a time of the simulation ("12.5:gear_unsafe_left").
+struct ScheduledFailure {
+  int64_t time_ns = 0;
+  std::string failure;
+};
+// Parses "SECONDS:NAME"; throws std::invalid_argument naming the text.
+ScheduledFailure parse_scheduled_failure(const std::string& text);
+
+struct SessionOptions {
+  std::string aircraft_path;  // for the summary
+  std::string out_dir;        // empty: no files
+  std::vector<ScheduledFailure> failures;
+};
+
+class SystemsSession {
+ public:
+  // Throws ModelError (binding) and std::invalid_argument (a scheduled failure of no name).
+  SystemsSession(SystemsModel model, std::vector<ControlSpec> controls, SessionOptions options);
+
+  Systems& systems() { return systems_; }
+  const Systems& systems() const { return systems_; }
+  // The steps for a frame; each step's events (scheduled failures first) go to the files and to
+  // `sink`. Returns the steps taken.
+  int take(const ControlFrame& frame, const SystemsRun::StepSink& sink = {});
+  // An instructor's failure now: its event (recorded), or nothing when it already was so.
+  std::optional<SystemsEvent> set_failure(int failure, bool inserted);
+  // Continues from a saved state (after kill -9).
+  void restore(const SystemsState& state) { systems_.restore(state); }
+
+  const FrameCounts& counts() const { return run_.counts(); }
+  bool run_started() const { return run_.started(); }
+  uint64_t events() const { return events_; }
+  // Writes systems_summary.json and commits the files (no-op without an output folder).
+  void finish();
+
+ private:
+  void record(const SystemsEvent& event);
+
+  Systems systems_;
+  SystemsRun run_;
+  SessionOptions options_;
+  std::vector<std::pair<int64_t, int>> schedule_;  // (time, failure), in time order
+  std::size_t next_scheduled_ = 0;
+  std::unique_ptr<SystemsRecorder> recorder_;
+  uint64_t events_ = 0;
+  std::vector<SystemsEvent> step_events_;
+};
+
+}  // namespace vcockpit::systems

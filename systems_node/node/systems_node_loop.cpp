@@ -1,0 +1,351 @@
+#include "systems_node/node/systems_node_loop.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <deque>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "common/clock.hpp"
+#include "common/signals.hpp"
+#include "idl/topics/systems_topics.hpp"
+#include "systems/systems_checkpoint.hpp"
+
+namespace vcockpit::systems_node {
+namespace {
+
+using systems::Systems;
+using systems::SystemsEvent;
+
+constexpr std::size_t kMaxWaitingFrames = 1000;  // 10 s at 100 Hz
+
+std::vector<std::string> split_names(const std::string& joined) {
+  std::vector<std::string> out;
+  std::string name;
+  std::istringstream in(joined);
+  while (std::getline(in, name, '|'))
+    if (!name.empty()) out.push_back(name);
+  return out;
+}
+
+systems::ControlFrame from_msg(const cockpit::ControlFrame& msg) {
+  systems::ControlFrame f;
+  f.time_ns = msg.sim_time_ns();
+  f.position.assign(msg.position().begin(), msg.position().end());
+  f.q.assign(msg.coordinate().begin(), msg.coordinate().end());
+  return f;
+}
+
+cockpit::SystemKind kind_of(systems::ElementKind k) {
+  switch (k) {
+    case systems::ElementKind::kLogic: return cockpit::SYSTEM_LOGIC;
+    case systems::ElementKind::kLag: return cockpit::SYSTEM_LAG;
+    case systems::ElementKind::kRate: return cockpit::SYSTEM_RATE;
+    case systems::ElementKind::kTimer: return cockpit::SYSTEM_TIMER;
+    case systems::ElementKind::kLatch: return cockpit::SYSTEM_LATCH;
+    case systems::ElementKind::kMachine: return cockpit::SYSTEM_MACHINE;
+  }
+  return cockpit::SYSTEM_LOGIC;
+}
+
+std::string clipped(const std::string& s, std::size_t n) { return s.size() <= n ? s : s.substr(0, n); }
+
+class Node {
+ public:
+  Node(DdsParticipant& participant, systems::SystemsModel model, const NodeOptions& options)
+      : model_(std::move(model)),
+        options_(options),
+        info_reader_(participant.make_reader<cockpit::ControlInfo>("state")),
+        frame_reader_(participant.make_reader<cockpit::ControlFrame>("event")),
+        failure_reader_(participant.make_reader<cockpit::FailureCommand>("command")),
+        info_writer_(participant.make_writer<cockpit::SystemsInfo>("state")),
+        state_writer_(participant.make_writer<cockpit::SystemsState>("state")),
+        event_writer_(participant.make_writer<cockpit::SystemsEvent>("event")),
+        ack_writer_(participant.make_writer<cockpit::FailureAck>("command")),
+        status_writer_(participant.make_writer<cockpit::NodeStatus>("state")) {
+    if (model_.elements.size() > 128) throw systems::ModelError(model_.source + ": at most 128 systems (cockpit/systems_state)");
+    if (model_.failures.size() > 32) throw systems::ModelError(model_.source + ": at most 32 failures (cockpit/systems_state)");
+    if (!options_.checkpoint_path.empty()) {
+      const auto dir = std::filesystem::path(options_.checkpoint_path).parent_path();
+      if (!dir.empty()) std::filesystem::create_directories(dir);
+    }
+  }
+
+  int run() {
+    const int64_t start_ns = monotonic_now_ns();
+    int64_t next_status_ns = start_ns;
+    while (!shutdown_requested()) {
+      const int64_t now = monotonic_now_ns();
+      if (options_.duration_s > 0 && now - start_ns >= static_cast<int64_t>(options_.duration_s * 1e9)) break;
+      take_infos();
+      take_frames();
+      if (!session_ && try_bind() && !session_) return 1;
+      if (session_) {
+        drain_waiting();
+        take_failure_commands();
+        maybe_checkpoint(false);
+      }
+      if (now >= next_status_ns) {
+        publish_status(now);
+        next_status_ns = now + 1'000'000'000;
+      }
+      sleep_until_ns(monotonic_now_ns() + 2'000'000);
+    }
+    // what has arrived is taken before stopping
+    take_frames();
+    if (session_) {
+      drain_waiting();
+      maybe_checkpoint(true);
+      session_->finish();
+      const auto& c = session_->counts();
+      spdlog::info("stopped at step {} (t {:.3f} s): {} frames taken, {} periods without a frame, "
+                   "{} stale, {} off the grid; {} events",
+                   session_->systems().state().step,
+                   static_cast<double>(session_->systems().state().time_ns) * 1e-9, c.taken,
+                   c.missed, c.stale, c.off_grid, session_->events());
+    } else {
+      spdlog::warn("stopped before the controls were known: no systems ran");
+    }
+    return 0;
+  }
+
+ private:
+  void take_infos() {
+    cockpit::ControlInfo info;
+    while (info_reader_.take(info)) {
+      systems::ControlSpec spec;
+      spec.name = info.name().to_string();
+      spec.revolute = info.joint() == cockpit::REVOLUTE;
+      spec.positions = split_names(info.position_names().to_string());
+      controls_[info.control_id()] = spec;
+    }
+  }
+
+  void take_frames() {
+    cockpit::ControlFrame msg;
+    while (frame_reader_.take(msg)) {
+      expected_controls_ = static_cast<int>(msg.position().size());
+      if (msg.position().size() != msg.coordinate().size()) {
+        ++malformed_;
+        continue;
+      }
+      if (waiting_.size() >= kMaxWaitingFrames) waiting_.pop_front();
+      waiting_.push_back(from_msg(msg));
+    }
+  }
+
+  // True when it tried (bound, or failed: session_ stays empty and the node exits).
+  bool try_bind() {
+    if (expected_controls_ < 0) return false;
+    std::vector<systems::ControlSpec> specs;
+    for (int i = 0; i < expected_controls_; ++i) {
+      const auto it = controls_.find(static_cast<uint32_t>(i));
+      if (it == controls_.end()) return false;
+      specs.push_back(it->second);
+    }
+    try {
+      session_ = std::make_unique<systems::SystemsSession>(model_, specs, options_.session);
+    } catch (const std::exception& e) {
+      spdlog::error("{}", e.what());
+      return true;
+    }
+    spdlog::info("bound to {} controls: {} systems, {} failures, a step every {} ms", specs.size(),
+                 model_.elements.size(), model_.failures.size(),
+                 session_->systems().period_ns() / 1'000'000);
+    if (options_.resume) resume();
+    publish_info();
+    next_checkpoint_ns_ = session_->systems().state().time_ns +
+                          static_cast<int64_t>(options_.checkpoint_every_s * 1e9);
+    return true;
+  }
+
+  void resume() {
+    const std::string& path = options_.checkpoint_path;
+    if (path.empty() || !std::filesystem::exists(path)) {
+      spdlog::info("--resume: no checkpoint{}, starting from the start", path.empty() ? "" : " at " + path);
+      return;
+    }
+    try {
+      session_->restore(systems::read_systems_checkpoint(path, session_->systems()));
+      spdlog::info("resumed from {}: step {}, t {:.3f} s", path, session_->systems().state().step,
+                   static_cast<double>(session_->systems().state().time_ns) * 1e-9);
+    } catch (const std::exception& e) {
+      std::error_code ignored;
+      std::filesystem::rename(path, path + ".bad", ignored);
+      spdlog::warn("--resume: {} (kept as {}.bad); starting from the start", e.what(), path);
+    }
+  }
+
+  void drain_waiting() {
+    while (!waiting_.empty()) {
+      session_->take(waiting_.front(), [this](const Systems& s, const std::vector<SystemsEvent>& events) {
+        for (const SystemsEvent& e : events) publish_event(s, e);
+        publish_state(s);
+      });
+      waiting_.pop_front();
+    }
+  }
+
+  void take_failure_commands() {
+    cockpit::FailureCommand cmd;
+    while (failure_reader_.take(cmd)) {
+      cockpit::FailureAck ack;
+      ack.command_seq(cmd.seq());
+      ack.command_source(cmd.source());
+      ack.failure(cmd.failure());
+      ack.sim_time_ns(session_->systems().state().time_ns);
+      const std::string failure = cmd.failure().to_string();
+      const std::string source = cmd.source().to_string();
+      const int f = session_->systems().failure_index(failure);
+      if (f < 0) {
+        ack.accepted(false);
+        ack.detail(clipped("no failure '" + failure + "'", 128));
+        spdlog::warn("failure command from '{}': no failure '{}'", source, failure);
+      } else {
+        const auto event = session_->set_failure(f, cmd.inserted());
+        ack.accepted(true);
+        ack.detail(event ? (cmd.inserted() ? "inserted" : "cleared")
+                         : (cmd.inserted() ? "was already inserted" : "was not inserted"));
+        spdlog::info("failure '{}' {} by '{}'", failure, ack.detail().to_string(), source);
+        if (event) publish_event(session_->systems(), *event);
+        publish_state(session_->systems());
+      }
+      ack_writer_.write(ack);
+    }
+  }
+
+  void maybe_checkpoint(bool force) {
+    if (options_.checkpoint_path.empty() || !session_->run_started()) return;
+    const int64_t t = session_->systems().state().time_ns;
+    if (!force && t < next_checkpoint_ns_) return;
+    try {
+      systems::write_systems_checkpoint(options_.checkpoint_path, session_->systems());
+      ++checkpoints_;
+    } catch (const std::exception& e) {
+      spdlog::warn("checkpoint: {}", e.what());
+    }
+    next_checkpoint_ns_ = t + static_cast<int64_t>(options_.checkpoint_every_s * 1e9);
+  }
+
+  void publish_info() {
+    const Systems& s = session_->systems();
+    cockpit::SystemsInfo info;
+    info.aircraft(clipped(options_.session.aircraft_path, 256));
+    info.rate_hz(s.model().rate_hz);
+    info.model_hash(s.model_hash());
+    for (const systems::Element& e : s.model().elements) {
+      cockpit::SystemInfo si;
+      si.name(clipped(e.name, 64));
+      si.kind(kind_of(e.kind));
+      si.unit(clipped(e.unit, 16));
+      std::string states;
+      for (const std::string& st : e.states) states += st + "|";
+      si.state_names(clipped(states, 512));
+      info.systems().push_back(si);
+    }
+    for (const systems::Failure& f : s.model().failures) {
+      cockpit::FailureInfo fi;
+      fi.name(clipped(f.name, 64));
+      fi.text(clipped(f.text, 128));
+      info.failures().push_back(fi);
+    }
+    info_writer_.write(info);
+  }
+
+  void publish_state(const Systems& s) {
+    state_msg_.step(static_cast<uint64_t>(s.state().step));
+    state_msg_.sim_time_ns(s.state().time_ns);
+    state_msg_.values().assign(s.state().value.begin(), s.state().value.end());
+    state_msg_.failures().clear();
+    for (uint8_t f : s.state().failure) state_msg_.failures().push_back(f != 0);
+    state_writer_.write(state_msg_);
+    ++states_published_;
+  }
+
+  void publish_event(const Systems& s, const SystemsEvent& e) {
+    cockpit::SystemsEvent msg;
+    msg.seq(++event_seq_);
+    msg.sim_time_ns(e.time_ns);
+    msg.index(static_cast<uint32_t>(e.index));
+    msg.from_value(e.from);
+    msg.to_value(e.to);
+    if (e.kind == systems::SystemsEventKind::kChange) {
+      msg.kind(cockpit::SYSTEM_CHANGED);
+      msg.name(clipped(s.model().elements[static_cast<std::size_t>(e.index)].name, 64));
+      msg.from_text(clipped(s.value_text(e.index, e.from), 64));
+      msg.to_text(clipped(s.value_text(e.index, e.to), 64));
+    } else {
+      msg.kind(e.kind == systems::SystemsEventKind::kFailureInserted ? cockpit::FAILURE_INSERTED
+                                                                     : cockpit::FAILURE_CLEARED);
+      msg.name(clipped(s.model().failures[static_cast<std::size_t>(e.index)].name, 64));
+      msg.from_text(e.from != 0.0 ? "inserted" : "clear");
+      msg.to_text(e.to != 0.0 ? "inserted" : "clear");
+    }
+    event_writer_.write(msg);
+  }
+
+  void publish_status(int64_t now_ns) {
+    cockpit::NodeStatus st;
+    st.node_name(options_.node_name);
+    st.stamp_ns(now_ns);
+    st.state(session_ ? cockpit::RUNNING : cockpit::STARTING);
+    if (session_) {
+      const auto& c = session_->counts();
+      const double dt_s = last_status_ns_ > 0 ? static_cast<double>(now_ns - last_status_ns_) * 1e-9 : 0.0;
+      const uint64_t steps = static_cast<uint64_t>(session_->systems().state().step);
+      st.loop_rate_hz(dt_s > 0 ? static_cast<double>(steps - last_steps_) / dt_s : 0.0);
+      st.input_rate_hz(dt_s > 0 ? static_cast<double>(c.taken - last_taken_) / dt_s : 0.0);
+      last_steps_ = steps;
+      last_taken_ = c.taken;
+      st.received(c.taken);
+      st.rejected_stale(c.stale);
+      st.rejected(c.stale + c.off_grid + malformed_);
+      st.detail(clipped("t " + std::to_string(static_cast<double>(session_->systems().state().time_ns) * 1e-9) +
+                            " s, " + std::to_string(c.missed) + " periods without a frame, " +
+                            std::to_string(checkpoints_) + " checkpoints",
+                        128));
+    } else {
+      st.detail(expected_controls_ < 0 ? "waiting for cockpit/control_frame"
+                                       : "waiting for every control's cockpit/control_info");
+    }
+    st.published(states_published_);
+    st.input_alive(session_ != nullptr);
+    last_status_ns_ = now_ns;
+    status_writer_.write(st);
+  }
+
+  systems::SystemsModel model_;
+  const NodeOptions& options_;
+  Reader<cockpit::ControlInfo> info_reader_;
+  Reader<cockpit::ControlFrame> frame_reader_;
+  Reader<cockpit::FailureCommand> failure_reader_;
+  Writer<cockpit::SystemsInfo> info_writer_;
+  Writer<cockpit::SystemsState> state_writer_;
+  Writer<cockpit::SystemsEvent> event_writer_;
+  Writer<cockpit::FailureAck> ack_writer_;
+  Writer<cockpit::NodeStatus> status_writer_;
+  std::map<uint32_t, systems::ControlSpec> controls_;
+  int expected_controls_ = -1;
+  std::deque<systems::ControlFrame> waiting_;
+  std::unique_ptr<systems::SystemsSession> session_;
+  cockpit::SystemsState state_msg_;
+  uint64_t event_seq_ = 0;
+  uint64_t states_published_ = 0;
+  uint64_t malformed_ = 0;
+  uint64_t checkpoints_ = 0;
+  int64_t next_checkpoint_ns_ = 0;
+  int64_t last_status_ns_ = 0;
+  uint64_t last_steps_ = 0;
+  uint64_t last_taken_ = 0;
+};
+
+}  // namespace
+
+int run_node(DdsParticipant& participant, systems::SystemsModel model, const NodeOptions& options) {
+  Node node(participant, std::move(model), options);
+  return node.run();
+}
+
+}  // namespace vcockpit::systems_node

@@ -1,0 +1,202 @@
+// systems_node as a real process over loopback DDS: in a lockstep rig (physics node, glove driver,
+// systems node) it writes the files systems_node --offline writes from the offline physics run,
+// byte for byte; killed with SIGKILL during a gear transit and restarted with --resume, the
+// transit ends when it would have without the kill; bad files and flags are refused by name.
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <fstream>
+#include <thread>
+
+#include "dds/dds_options.hpp"
+#include "dds/dds_participant.hpp"
+#include "idl/topics/systems_topics.hpp"
+#include "physics_node/config/scene_config.hpp"
+#include "physics_node/io/offline_runner.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/process_test.hpp"
+#include "tests/support/test_env.hpp"
+
+namespace vcockpit::test {
+namespace {
+
+class SystemsNodeTest : public ProcessTest {};
+
+// Waits until cockpit/systems_state says the systems have stepped to `t_ns`.
+bool wait_for_systems_time(Reader<cockpit::SystemsState>& states, int64_t t_ns, int64_t timeout_ns) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::nanoseconds(timeout_ns);
+  cockpit::SystemsState s;
+  while (std::chrono::steady_clock::now() < deadline) {
+    while (states.take(s))
+      if (s.sim_time_ns() >= t_ns) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
+TEST_F(SystemsNodeTest, LockstepRigWritesTheOfflineSystemsFilesByteForByte) {
+  const std::string log = source_dir() + "/config/glove_logs/panel_switches.csv";
+  physics_io::OfflineOptions offline;
+  offline.scene_path = source_dir() + "/config/cockpit.yaml";
+  offline.log_paths = {log};
+  offline.out_dir = dir_ + "/offline";
+  const auto summary = physics_io::run_offline(load_scene(offline.scene_path), offline);
+  const int64_t end_ns = std::llround(summary.simulated_s * 1e9);
+  // an instructor's failure at a set time, the same in both
+  ChildProcess replay = start("systems_node", {"--offline", "--control-frames",
+                                               offline.out_dir + "/control_frames.csv", "--out",
+                                               dir_ + "/offline_systems", "--failure-at",
+                                               "4.005:engine_fire"},
+                              "offline_systems.log");
+  ASSERT_EQ(replay.wait(60 * kSecond), 0) << text("offline_systems.log");
+
+  DdsParticipant participant(resolve_dds_options(DdsFlags{}), "systems_node_test");
+  auto states = participant.make_reader<cockpit::SystemsState>("state");
+  ChildProcess systems = start("systems_node", {"--out", dir_ + "/rig_systems", "--failure-at",
+                                                "4.005:engine_fire"},
+                               "systems.log");
+  ChildProcess node = start("physics_node", {"--lockstep", "--wait-frame-readers", "1"}, "node.log");
+  ChildProcess driver = start("glove_driver", {"--source", "replay", "--log", log, "--lockstep",
+                                               "--rate", "0"},
+                              "driver.log");
+  ASSERT_EQ(driver.wait(120 * kSecond), 0) << text("driver.log");
+  EXPECT_TRUE(wait_for_systems_time(states, end_ns, 120 * kSecond)) << text("systems.log");
+  EXPECT_EQ(systems.stop(), 0) << text("systems.log");
+  EXPECT_EQ(node.stop(), 0) << text("node.log");
+
+  for (const char* file : {"systems_events.jsonl", "systems.csv", "systems_summary.json"}) {
+    const std::string rig = read_text(dir_ + "/rig_systems/" + file);
+    EXPECT_FALSE(rig.empty()) << file;
+    const std::string expected = read_text(dir_ + "/offline_systems/" + file);
+    EXPECT_TRUE(rig == expected) << file << " differs from systems_node --offline's";
+  }
+  const std::string events = read_text(dir_ + "/rig_systems/systems_events.jsonl");
+  // the avionics master pushed on at 3.29 s and off at 4.79 s (the control log's), and the fire
+  EXPECT_NE(events.find("{\"t_ns\": 3290000000, \"t_s\": 3.290, \"event\": \"change\", \"system\": "
+                        "\"bus\", \"from\": 0, \"to\": 1}"),
+            std::string::npos)
+      << events;
+  EXPECT_NE(events.find("\"t_ns\": 4010000000, \"t_s\": 4.010, \"event\": \"failure_inserted\", "
+                        "\"failure\": \"engine_fire\""),
+            std::string::npos)
+      << events;
+}
+
+// The test plays the physics: it publishes every control's info and a frame every 10 ms of
+// simulated time (five times faster than real time), the avionics master on and the gear lever
+// up at 1 s. The systems node is killed 3 s into the simulated time, during the 6.5-7.5 s
+// transits, and restarted with --resume while frames go on.
+TEST_F(SystemsNodeTest, KilledDuringAGearTransitResumesWhereItWas) {
+  const physics::Scene scene = load_scene(config_path("cockpit.yaml"));
+  DdsParticipant participant(resolve_dds_options(DdsFlags{}), "systems_node_test");
+  auto infos = participant.make_writer<cockpit::ControlInfo>("state");
+  auto frames = participant.make_writer<cockpit::ControlFrame>("event");
+  auto events = participant.make_reader<cockpit::SystemsEvent>("event");
+  cockpit::ControlFrame frame;
+  int gear = -1;
+  for (std::size_t c = 0; c < scene.controls.size(); ++c) {
+    const physics::ControlSpec& spec = scene.controls[c];
+    cockpit::ControlInfo info;
+    info.control_id(static_cast<uint32_t>(c));
+    info.name(spec.name);
+    info.joint(spec.joint == physics::JointKind::kRevolute ? cockpit::REVOLUTE : cockpit::PRISMATIC);
+    std::string names;
+    for (const physics::ControlPosition& p : spec.positions) names += p.name + "|";
+    info.position_names(names);
+    info.position_count(static_cast<uint32_t>(spec.positions.size()));
+    infos.write(info);
+    // every control in its first position, the avionics master on
+    int position = 0;
+    if (spec.name == "avionics_master") position = 1;
+    if (spec.name == "gear") gear = static_cast<int>(c);
+    frame.position().push_back(position);
+    frame.coordinate().push_back(spec.positions[static_cast<std::size_t>(position)].q);
+  }
+  ASSERT_GE(gear, 0);
+  const std::string checkpoint = dir_ + "/state/systems.ckpt";
+  const std::vector<std::string> args = {"--checkpoint", checkpoint, "--checkpoint-every", "0.5"};
+  auto systems = std::make_unique<ChildProcess>(start("systems_node", args, "systems1.log"));
+  ASSERT_TRUE(frames.wait_for_matched(1, 30 * kSecond)) << text("systems1.log");
+
+  uint64_t seq = 0;
+  const auto publish_until = [&](int64_t end_ns) {
+    while (frame.sim_time_ns() < end_ns) {
+      frame.sim_time_ns(frame.sim_time_ns() + 10'000'000);
+      frame.seq(++seq);
+      frame.position()[static_cast<std::size_t>(gear)] = frame.sim_time_ns() >= kSecond ? 1 : 0;  // up
+      frames.write(frame);
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  };
+  publish_until(3 * kSecond);
+  // the last checkpoint is at most 0.5 s old: wait for one past 2.5 s, then kill
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  bool saved = false;
+  while (!saved && std::chrono::steady_clock::now() < deadline) {
+    std::ifstream in(checkpoint);
+    std::string line;
+    while (std::getline(in, line))
+      if (line.rfind("time_ns ", 0) == 0 && std::stoll(line.substr(8)) >= 2'500'000'000) saved = true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(saved) << text("systems1.log");
+  systems->signal(SIGKILL);
+  EXPECT_EQ(systems->wait(10 * kSecond), 128 + SIGKILL);
+  expect_clean_shm_ = false;  // a killed process leaves its DDS files
+  publish_until(3'200'000'000);  // the physics goes on while it is down
+  std::vector<std::string> resume_args = args;
+  resume_args.push_back("--resume");
+  systems = std::make_unique<ChildProcess>(start("systems_node", resume_args, "systems2.log"));
+  ASSERT_TRUE(frames.wait_for_matched(1, 30 * kSecond));
+  publish_until(9 * kSecond);
+
+  // each leg's "up" once, at 1 s plus its transit time, to the step
+  std::map<std::string, std::vector<int64_t>> up_at;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  cockpit::SystemsEvent e;
+  while (up_at.size() < 3 && std::chrono::steady_clock::now() < until) {
+    while (events.take(e))
+      if (e.kind() == cockpit::SYSTEM_CHANGED && e.to_text().to_string() == "up")
+        up_at[e.name().to_string()].push_back(e.sim_time_ns());
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(up_at["gear_nose"], std::vector<int64_t>{7'500'000'000}) << text("systems2.log");
+  EXPECT_EQ(up_at["gear_left"], std::vector<int64_t>{8'000'000'000});
+  EXPECT_EQ(up_at["gear_right"], std::vector<int64_t>{8'500'000'000});
+  EXPECT_NE(text("systems2.log").find("resumed from"), std::string::npos) << text("systems2.log");
+  EXPECT_EQ(systems->stop(), 0);
+}
+
+TEST_F(SystemsNodeTest, BadFilesAndFlagsAreRefusedByName) {
+  const std::string bad_yaml = dir_ + "/bad.yaml";
+  std::ofstream(bad_yaml) << "rate_hz: 100\nsystems:\n  - {name: a, logic: \"gear.down &&\"}\n";
+  const std::string bad_name = dir_ + "/bad_name.yaml";
+  std::ofstream(bad_name) << "systems:\n  - {name: a, logic: \"gear.dwn\"}\n";
+  const std::string frames = dir_ + "/frames.csv";
+  std::ofstream(frames) << "# vcockpit control frames, version 1\n"
+                           "# control: gear prismatic down|up\n"
+                           "t_ns,gear.position,gear.q\n"
+                           "10000000,0,0\n"
+                           "20000000,2,0\n";
+  const std::string good_frames = dir_ + "/good_frames.csv";
+  std::ofstream(good_frames) << "# vcockpit control frames, version 1\n"
+                                "# control: gear prismatic down|up\n"
+                                "t_ns,gear.position,gear.q\n"
+                                "10000000,0,0\n";
+  expect_each_refused("systems_node", {
+      {{"--aircraft", bad_yaml, "--offline", "--control-frames", good_frames, "--out", dir_ + "/o"},
+       "bad.yaml:3:22: systems[0].logic: at character 13: expected a value"},
+      {{"--aircraft", bad_name, "--offline", "--control-frames", good_frames, "--out", dir_ + "/o"},
+       "bad_name.yaml:2:22: systems[0].logic: at character 1: control 'gear' has no position 'dwn'"},
+      {{"--aircraft", bad_name, "--offline", "--control-frames", frames, "--out", dir_ + "/o"},
+       "frames.csv:5: gear.position: '2' is not one of its 2 positions"},
+      {{"--offline", "--out", dir_ + "/o"}, "--offline needs --control-frames"},
+      {{"--failure-at", "soon:engine_fire"}, "--failure-at 'soon:engine_fire': 'soon' is not a time"},
+      {{"--checkpoint-every", "nan"}, "--checkpoint-every"},
+  });
+  EXPECT_FALSE(std::ifstream(dir_ + "/o/systems_events.jsonl").good());  // nothing half-written
+}
+
+}  // namespace
+}  // namespace vcockpit::test
