@@ -22,6 +22,14 @@ void print_console_report(const RunSummary& s) {
     std::printf("  CONTROL %s %s -> %s at %.3f s: %s%s%s\n", e.control.c_str(), e.from.c_str(),
                 e.to.c_str(), e.t_s, e.cause.c_str(), e.link.empty() ? "" : " by ", e.link.c_str());
   }
+  for (const auto& e : s.systems_events) {
+    if (e.kind == "changed") {
+      std::printf("  SYSTEM  %s %s -> %s at %.3f s\n", e.name.c_str(), e.from.c_str(), e.to.c_str(), e.t_s);
+    } else {
+      std::printf("  FAILURE %s %s at %.3f s\n", e.name.c_str(),
+                  e.kind == "failure_inserted" ? "inserted" : "cleared", e.t_s);
+    }
+  }
   std::printf("  frames rendered      %llu, snapshots written %d (%s/frames)\n",
               static_cast<unsigned long long>(s.frames_rendered), s.snapshots_written,
               s.out_dir.c_str());

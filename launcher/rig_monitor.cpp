@@ -42,7 +42,10 @@ RigMonitor::RigMonitor(DdsParticipant& participant)
       state_reader_(participant.make_reader<cockpit::ObjectState>("state")),
       control_info_reader_(participant.make_reader<cockpit::ControlInfo>("state")),
       control_state_reader_(participant.make_reader<cockpit::ControlState>("state")),
-      control_event_reader_(participant.make_reader<cockpit::ControlEvent>("event")) {}
+      control_event_reader_(participant.make_reader<cockpit::ControlEvent>("event")),
+      systems_info_reader_(participant.make_reader<cockpit::SystemsInfo>("state")),
+      systems_state_reader_(participant.make_reader<cockpit::SystemsState>("state")),
+      systems_event_reader_(participant.make_reader<cockpit::SystemsEvent>("event")) {}
 
 std::string RigMonitor::object_name(uint32_t id) const {
   auto it = names_.find(id);
@@ -114,6 +117,38 @@ void RigMonitor::poll() {
       seen.link = std::string(hand::link_name(static_cast<hand::Link>(control_event.link())));
     control_events_.push_back(seen);
   }
+  cockpit::SystemsInfo systems_info;
+  while (systems_info_reader_.take(systems_info)) {
+    systems_.clear();
+    for (const cockpit::SystemInfo& si : systems_info.systems()) {
+      SystemNames names{si.name().to_string(), {}};
+      std::string state;
+      for (char c : si.state_names().to_string()) {
+        if (c != '|') {
+          state += c;
+        } else {
+          names.states.push_back(state);
+          state.clear();
+        }
+      }
+      systems_.push_back(names);
+    }
+  }
+  cockpit::SystemsState systems_state;
+  while (systems_state_reader_.take(systems_state))
+    systems_values_.assign(systems_state.values().begin(), systems_state.values().end());
+  cockpit::SystemsEvent systems_event;
+  while (systems_event_reader_.take(systems_event)) {
+    SeenSystemsEvent seen;
+    seen.t_s = static_cast<double>(systems_event.sim_time_ns()) / 1e9;
+    seen.kind = systems_event.kind() == cockpit::SYSTEM_CHANGED      ? "changed"
+                : systems_event.kind() == cockpit::FAILURE_INSERTED ? "failure_inserted"
+                                                                     : "failure_cleared";
+    seen.name = systems_event.name().to_string();
+    seen.from = systems_event.from_text().to_string();
+    seen.to = systems_event.to_text().to_string();
+    systems_events_.push_back(seen);
+  }
   cockpit::FrameInfo frame;
   while (frame_reader_.take(frame)) {
     ++frames_seen_;
@@ -169,6 +204,23 @@ std::string RigMonitor::status_line(double elapsed_s) const {
                 rate("image_generator"), held_.empty() ? "nothing held" : ("holding " + held_).c_str(),
                 static_cast<double>(latency_.percentile_ns(0.5)) * 1e-6);
   return line;
+}
+
+std::map<std::string, std::string> RigMonitor::systems_values() const {
+  std::map<std::string, std::string> out;
+  for (std::size_t i = 0; i < systems_.size() && i < systems_values_.size(); ++i) {
+    const double v = systems_values_[i];
+    const auto& states = systems_[i].states;
+    if (!states.empty()) {
+      const auto s = static_cast<std::size_t>(v);
+      out[systems_[i].name] = v >= 0 && s < states.size() ? states[s] : "?";
+    } else {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.6g", v);
+      out[systems_[i].name] = text;
+    }
+  }
+  return out;
 }
 
 }  // namespace vcockpit::rig

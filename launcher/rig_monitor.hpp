@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dds/dds_participant.hpp"
+#include "idl/topics/systems_topics.hpp"
 #include "common/latency_histogram.hpp"
 
 namespace vcockpit::rig {
@@ -32,6 +33,15 @@ struct SeenControlEvent {
   std::string link;   // the hand link that pushed it; empty when none
 };
 
+// A change of the aircraft's systems (cockpit/systems_event): a system's value or a failure.
+struct SeenSystemsEvent {
+  double t_s = 0;
+  std::string kind;  // changed, failure_inserted, failure_cleared
+  std::string name;  // the system or the failure
+  std::string from;
+  std::string to;
+};
+
 class RigMonitor {
  public:
   explicit RigMonitor(DdsParticipant& participant);
@@ -44,6 +54,10 @@ class RigMonitor {
   const std::vector<SeenControlEvent>& control_events() const { return control_events_; }
   // each control's last position name (cockpit/control_state), by control name
   const std::map<std::string, std::string>& control_positions() const { return control_positions_; }
+  const std::vector<SeenSystemsEvent>& systems_events() const { return systems_events_; }
+  // each system's last value as words (a machine's state name), by name (systems_state with
+  // systems_info); empty without a systems node
+  std::map<std::string, std::string> systems_values() const;
   // Histograms (fixed memory, however long the rig runs: an hour at 90 frames a second kept as a
   // list grew the launcher by megabytes and sorted it four times a second for the status line)
   const LatencyHistogram& latency() const { return latency_; }
@@ -77,6 +91,16 @@ class RigMonitor {
   Reader<cockpit::ControlInfo> control_info_reader_;
   Reader<cockpit::ControlState> control_state_reader_;
   Reader<cockpit::ControlEvent> control_event_reader_;
+  Reader<cockpit::SystemsInfo> systems_info_reader_;
+  Reader<cockpit::SystemsState> systems_state_reader_;
+  Reader<cockpit::SystemsEvent> systems_event_reader_;
+  std::vector<SeenSystemsEvent> systems_events_;
+  struct SystemNames {
+    std::string name;
+    std::vector<std::string> states;  // a machine's
+  };
+  std::vector<SystemNames> systems_;
+  std::vector<double> systems_values_;
   struct ControlNames {
     std::string name;
     std::vector<std::string> positions;

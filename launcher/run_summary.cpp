@@ -50,6 +50,8 @@ RunSummary collect_run_summary(const RigConfig& rig, const std::string& out_dir,
   for (const auto& e : s.events) (e.grasp ? s.grasps : s.releases)++;
   s.control_events = monitor.control_events();
   s.controls = monitor.control_positions();
+  s.systems_events = monitor.systems_events();
+  s.systems = monitor.systems_values();
   s.physics_step_rate_hz = monitor.mean_step_rate_hz();
   s.late_steps = monitor.late_steps();
 
@@ -116,6 +118,13 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
   }
   auto& controls = j["controls"] = nlohmann::ordered_json::object();
   for (const auto& [name, position] : s.controls) controls[name] = position;
+  auto& systems_events = j["systems_events"] = nlohmann::ordered_json::array();
+  for (const auto& e : s.systems_events) {
+    systems_events.push_back({{"t_s", e.t_s}, {"event", e.kind}, {"name", e.name},
+                              {"from", e.from}, {"to", e.to}});
+  }
+  auto& systems = j["systems"] = nlohmann::ordered_json::object();
+  for (const auto& [name, value] : s.systems) systems[name] = value;
   j["frames_rendered"] = s.frames_rendered;
   j["snapshots_written"] = s.snapshots_written;
   j["physics_step_rate_hz"] = s.physics_step_rate_hz;

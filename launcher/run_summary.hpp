@@ -54,6 +54,8 @@ struct RunSummary {
   std::vector<SeenEvent> events;
   std::vector<SeenControlEvent> control_events;
   std::map<std::string, std::string> controls;  // name -> last position
+  std::vector<SeenSystemsEvent> systems_events;  // empty without a systems node
+  std::map<std::string, std::string> systems;    // each system's last value as words
   uint64_t frames_rendered = 0;  // the image generator's last published count
   int snapshots_written = 0;     // PNGs in OUT/frames
   double physics_step_rate_hz = 0.0;

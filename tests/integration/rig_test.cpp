@@ -37,13 +37,18 @@ namespace {
 std::string config(const std::string& name) { return config_path(name); }
 
 // A rig file for this test's domain; `glove` is the glove driver's node block.
+// With `systems`, a systems node too, which the lockstep physics waits for.
 std::string rig_yaml(const std::string& domain, bool lockstep, const std::string& glove,
-                     const std::string& log = "reach_grasp_lift_release") {
+                     const std::string& log = "reach_grasp_lift_release", bool systems = false) {
   std::string text = "domain: " + domain + "\nqos: " + config("qos.xml") +
                      "\nparticipant: loopback\nlog: " + config("glove_logs/" + log + ".csv") +
                      "\nnodes:\n";
   text += "  - {name: physics_node, command: [physics_node" + std::string(lockstep ? ", --lockstep" : "") +
-          ", --scene, " + config("cockpit.yaml") + "], required: true, start_delay_s: 0.3}\n";
+          ", --scene, " + config("cockpit.yaml") +
+          (systems ? ", --wait-frame-readers, '1'" : "") + "], required: true, start_delay_s: 0.3}\n";
+  if (systems)
+    text += "  - {name: systems_node, command: [systems_node, --aircraft, " + config("aircraft.yaml") +
+            "], required: false, start_delay_s: 0.1}\n";
   text += "  - {name: image_generator, command: [image_generator, --hmd, " + config("hmd.yaml") +
           ", --fps, '30', --out, '{out}/frames', --snapshot-every, '15', --video, "
           "'{out}/rig.mp4'], required: false, "
@@ -286,7 +291,7 @@ TEST_F(RigTest, FullRigReportsAControlLogsEventsAsTheOfflineRunnerWritesThem) {
     // ctest run; physics_node_test replays the same log in lockstep there
     GTEST_SKIP() << "the full rig on the knob log is checked in the normal build";
   }
-  ChildProcess rig = launch(rig_yaml(domain_, true, kLockstepGlove, "panel_knobs"));
+  ChildProcess rig = launch(rig_yaml(domain_, true, kLockstepGlove, "panel_knobs", true));
   const int code = rig.wait(90 * kSecond);
   if (code == -1) rig.stop();  // never leave a rig running on the domain the next test uses
   ASSERT_EQ(code, 0) << launcher_log();
@@ -314,6 +319,23 @@ TEST_F(RigTest, FullRigReportsAControlLogsEventsAsTheOfflineRunnerWritesThem) {
   for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(seen[i], expected[i]) << i;
   EXPECT_EQ(controls.value("nav_mode", ""), "gps") << summary;
   EXPECT_EQ(controls.value("heading_bug", ""), "click") << summary;
+
+  // the aircraft's systems on the same controls: the heading bug where systems_node --offline
+  // leaves it on the offline run's frames, and the unpowered displays dark
+  ChildProcess replay({bin_dir() + "/systems_node", "--offline", "--control-frames",
+                       offline.out_dir + "/control_frames.csv", "--out", dir_ + "/systems"},
+                      dds_test_env(), dir_ + "/systems_offline.log");
+  ASSERT_EQ(replay.wait(60 * kSecond), 0) << read_text(dir_ + "/systems_offline.log");
+  const Json offline_systems = parse_summary(read_text(dir_ + "/systems/systems_summary.json"));
+  const Json systems = json.value("systems", Json::object());
+  EXPECT_EQ(systems.size(), 30u) << summary;
+  const double bug_deg = offline_systems.value("final", Json::object()).value("heading_bug_deg", -1.0);
+  EXPECT_GT(bug_deg, 0.0) << "the knob log turns the heading bug";
+  char bug_text[32];
+  std::snprintf(bug_text, sizeof bug_text, "%.6g", bug_deg);
+  EXPECT_EQ(systems.value("heading_bug_deg", ""), bug_text) << summary;
+  EXPECT_EQ(systems.value("nav_display", ""), "-1") << summary;  // the avionics master is off
+  EXPECT_EQ(systems.value("gear_left", ""), "down") << summary;
 }
 
 TEST_F(RigTest, KilledImageGeneratorIsRestartedAndRendersAgainWithinTwoSeconds) {
