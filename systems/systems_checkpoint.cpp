@@ -19,7 +19,8 @@ constexpr const char* kMagic = "# vcockpit systems checkpoint, version 1";
 
 }  // namespace
 
-void write_systems_checkpoint(const std::string& path, const Systems& systems) {
+void write_systems_checkpoint(const std::string& path, const Systems& systems,
+                              const ProcedureRunner* procedures) {
   const SystemsState& s = systems.state();
   std::string text = std::string(kMagic) + "\n";
   char buf[64];
@@ -40,12 +41,28 @@ void write_systems_checkpoint(const std::string& path, const Systems& systems) {
   text += "\nfailure";
   for (uint8_t f : s.failure) text += f != 0 ? " 1" : " 0";
   text += "\n";
+  const std::size_t n = procedures != nullptr ? procedures->scores().size() : 0;
+  text += "procedures " + std::to_string(n) + "\n";
+  for (std::size_t p = 0; p < n; ++p) {
+    const ProcedureScore& score = procedures->scores()[p];
+    text += "procedure " + std::to_string(static_cast<int>(score.state)) + " " +
+            std::to_string(score.started_ns) + " " + std::to_string(score.ended_ns) + " " +
+            std::to_string(score.last_done_ns) + " " + std::to_string(score.steps.size()) + "\n";
+    for (const StepScore& st : score.steps) {
+      text += "step " + std::to_string(static_cast<int>(st.status)) + " " +
+              std::to_string(st.out_of_order) + " " + std::to_string(st.late) + " " +
+              std::to_string(st.undone) + " " + std::to_string(st.done_ns) + " " +
+              std::to_string(st.since_previous_ns) + " " + std::to_string(st.undone_ns) + " " +
+              std::to_string(st.held_at_start) + " " + std::to_string(st.held_last) + "\n";
+    }
+  }
   AtomicFile file(path);
   file.write(text);
   file.commit();
 }
 
-SystemsState read_systems_checkpoint(const std::string& path, const Systems& systems) {
+SystemsCheckpoint read_systems_checkpoint(const std::string& path, const Systems& systems,
+                                          const ProcedureRunner* procedures) {
   std::ifstream in(path);
   if (!in) throw FileError(path + ": cannot read: " + std::strerror(errno));
   int n = 0;
@@ -102,7 +119,50 @@ SystemsState read_systems_checkpoint(const std::string& path, const Systems& sys
     s.failure.push_back(static_cast<uint8_t>(v));
   }
   if (s.step < 0) fail("step: negative");
-  return s;
+  SystemsCheckpoint out;
+  out.state = std::move(s);
+  const std::size_t count = procedures != nullptr ? procedures->scores().size() : 0;
+  const auto counted = next("procedures");
+  if (counted.size() != 1 || number(counted[0], true) != static_cast<double>(count))
+    fail("procedures: saved for another lesson (this one has " + std::to_string(count) + ")");
+  const auto whole = [&](const std::string& w) { return static_cast<int64_t>(number(w, true)); };
+  const auto flag = [&](const std::string& w) {
+    const int64_t v = whole(w);
+    if (v != 0 && v != 1) fail("'" + w + "': 0 or 1 expected");
+    return v == 1;
+  };
+  for (std::size_t p = 0; p < count; ++p) {
+    const auto words = next("procedure");
+    const std::size_t steps = procedures->scores()[p].steps.size();
+    if (words.size() != 5 || whole(words[4]) != static_cast<int64_t>(steps))
+      fail("procedure: saved for another lesson");
+    ProcedureScore score;
+    const int64_t state = whole(words[0]);
+    if (state < 0 || state > 3) fail("procedure: no state " + words[0]);
+    score.state = static_cast<ProcedureState>(state);
+    score.started_ns = whole(words[1]);
+    score.ended_ns = whole(words[2]);
+    score.last_done_ns = whole(words[3]);
+    for (std::size_t k = 0; k < steps; ++k) {
+      const auto w = next("step");
+      if (w.size() != 9) fail("step: 9 values expected");
+      StepScore st;
+      const int64_t status = whole(w[0]);
+      if (status < 0 || status > 2) fail("step: no status " + w[0]);
+      st.status = static_cast<StepStatus>(status);
+      st.out_of_order = flag(w[1]);
+      st.late = flag(w[2]);
+      st.undone = flag(w[3]);
+      st.done_ns = whole(w[4]);
+      st.since_previous_ns = whole(w[5]);
+      st.undone_ns = whole(w[6]);
+      st.held_at_start = flag(w[7]);
+      st.held_last = flag(w[8]);
+      score.steps.push_back(st);
+    }
+    out.scores.push_back(std::move(score));
+  }
+  return out;
 }
 
 }  // namespace vcockpit::systems

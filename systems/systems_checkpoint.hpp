@@ -11,11 +11,16 @@
 //   since_step <n> ...    one per system
 //   last_input <%a> ...   one per system
 //   failure <0|1> ...     one per failure (the line is "failure" alone when there are none)
+//   procedures <n>        the lesson's scores (0 without a lesson), then per procedure
+//   procedure <state> <started_ns> <ended_ns> <last_done_ns> <steps>, and per step
+//   step <status> <out_of_order> <late> <undone> <done_ns> <since_previous_ns> <undone_ns>
+//        <held_at_start> <held_last>
 
 #include <cstdint>
 #include <stdexcept>
 #include <string>
 
+#include "systems/procedure_runner.hpp"
 #include "systems/systems_engine.hpp"
 
 namespace vcockpit::systems {
@@ -25,10 +30,18 @@ class CheckpointError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Throws FileError when it cannot be written.
-void write_systems_checkpoint(const std::string& path, const Systems& systems);
-// The saved state for `systems`' model; throws CheckpointError "path:line: ..." on a damaged file
-// or another model's, FileError when unreadable.
-SystemsState read_systems_checkpoint(const std::string& path, const Systems& systems);
+struct SystemsCheckpoint {
+  SystemsState state;
+  std::vector<ProcedureScore> scores;  // empty without a lesson
+};
+
+// The systems and, when there is a lesson, its scores. Throws FileError when it cannot be written.
+void write_systems_checkpoint(const std::string& path, const Systems& systems,
+                              const ProcedureRunner* procedures = nullptr);
+// What was saved for `systems`' model (and `procedures`' lesson: the same procedures and steps);
+// throws CheckpointError "path:line: ..." on a damaged file or another model's or lesson's,
+// FileError when unreadable.
+SystemsCheckpoint read_systems_checkpoint(const std::string& path, const Systems& systems,
+                                          const ProcedureRunner* procedures = nullptr);
 
 }  // namespace vcockpit::systems

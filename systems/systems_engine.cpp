@@ -61,10 +61,10 @@ class Systems::Reader final : public RefReader {
       case RefKind::kMachineIn: return truth(st.value[i] == ref.arg);
       case RefKind::kMachineTime:
         return static_cast<double>(st.step - st.since_step[i]) * s_.period_s_;
-      case RefKind::kControlIn: return truth(s_.frame_->position[i] == ref.arg);
+      case RefKind::kControlIn: return truth(s_.frame_.position[i] == ref.arg);
       case RefKind::kControlQ:  // the frame's SI coordinate, in the file's units (deg for angles)
-        return s_.controls_[i].revolute ? s_.frame_->q[i] * (180.0 / M_PI) : s_.frame_->q[i];
-      case RefKind::kControlPosition: return s_.frame_->position[i];
+        return s_.controls_[i].revolute ? s_.frame_.q[i] * (180.0 / M_PI) : s_.frame_.q[i];
+      case RefKind::kControlPosition: return s_.frame_.position[i];
       case RefKind::kFailure: return st.failure[i];
       case RefKind::kTime: return static_cast<double>(st.step) * s_.period_s_;
     }
@@ -94,60 +94,14 @@ void Systems::bind() {
   for (const Failure& f : model_.failures) {
     if (!taken.insert(f.name).second) fail(f.origin, "the name '" + f.name + "' is already taken");
   }
-  std::vector<std::string> element_names;
   for (const Element& e : model_.elements) {
     if (!taken.insert(e.name).second)
       fail(e.origin, "the name '" + e.name + "' is already taken (by a control, failure or system)");
-    element_names.push_back(e.name);
   }
   std::vector<std::string> failure_names;
   for (const Failure& f : model_.failures) failure_names.push_back(f.name);
 
-  const NameResolver resolve = [&](const Name& n) -> Ref {
-    if (n.name == "time_s" && n.member.empty()) return {RefKind::kTime, 0, 0};
-    const int e = index_of(element_names, n.name);
-    if (e >= 0) {
-      const Element& el = model_.elements[static_cast<std::size_t>(e)];
-      if (n.member.empty()) return {RefKind::kElement, e, 0};
-      if (el.kind != ElementKind::kMachine)
-        throw ExpressionError(n.column, "'" + n.name + "' is a " + element_kind_name(el.kind) +
-                                            ": it has no ." + n.member);
-      if (n.member == "time_s") return {RefKind::kMachineTime, e, 0};
-      const int s = index_of(el.states, n.member);
-      if (s < 0)
-        throw ExpressionError(n.column, "machine '" + n.name + "' has no state '" + n.member +
-                                            "' (states: " + joined(el.states) + "; or time_s)");
-      return {RefKind::kMachineIn, e, s};
-    }
-    const int f = index_of(failure_names, n.name);
-    if (f >= 0) {
-      if (!n.member.empty())
-        throw ExpressionError(n.column, "failure '" + n.name + "' has no ." + n.member);
-      return {RefKind::kFailure, f, 0};
-    }
-    for (std::size_t c = 0; c < controls_.size(); ++c) {
-      const ControlSpec& spec = controls_[c];
-      if (spec.name != n.name) continue;
-      const int ci = static_cast<int>(c);
-      if (n.member == "q") return {RefKind::kControlQ, ci, 0};
-      if (n.member == "position") return {RefKind::kControlPosition, ci, 0};
-      const int p = index_of(spec.positions, n.member);
-      if (p < 0)
-        throw ExpressionError(n.column, "control '" + n.name + "' has no position '" + n.member +
-                                            "' (positions: " + joined(spec.positions) +
-                                            "; or q, position)");
-      return {RefKind::kControlIn, ci, p};
-    }
-    throw ExpressionError(n.column, "no control, failure or system named '" + n.name + "'");
-  };
-  const auto bind_expression = [&](SourceExpression& se) {
-    if (se.expression.empty()) return;
-    try {
-      se.expression.bind(resolve);
-    } catch (const ExpressionError& e) {
-      fail(se.origin, std::string(e.what()) + " in \"" + se.expression.text() + "\"");
-    }
-  };
+  const auto bind_expression = [&](SourceExpression& se) { this->bind_expression(se); };
 
   std::string canonical = std::to_string(period_ns_) + ";";
   for (const ControlSpec& c : controls_) canonical += "c:" + c.name + ":" + joined(c.positions) + ";";
@@ -215,19 +169,72 @@ void Systems::bind() {
       fail(el.origin, std::string("a ") + element_kind_name(el.kind) + " needs its input");
   }
   model_hash_ = fnv1a(canonical);
+  frame_.position.assign(controls_.size(), 0);
+  frame_.q.assign(controls_.size(), 0.0);
 }
+
+Ref Systems::resolve(const Name& n) const {
+  std::vector<std::string> element_names, failure_names;
+  for (const Element& e : model_.elements) element_names.push_back(e.name);
+  for (const Failure& f : model_.failures) failure_names.push_back(f.name);
+  if (n.name == "time_s" && n.member.empty()) return {RefKind::kTime, 0, 0};
+  const int e = index_of(element_names, n.name);
+  if (e >= 0) {
+    const Element& el = model_.elements[static_cast<std::size_t>(e)];
+    if (n.member.empty()) return {RefKind::kElement, e, 0};
+    if (el.kind != ElementKind::kMachine)
+      throw ExpressionError(n.column, "'" + n.name + "' is a " + element_kind_name(el.kind) +
+                                          ": it has no ." + n.member);
+    if (n.member == "time_s") return {RefKind::kMachineTime, e, 0};
+    const int s = index_of(el.states, n.member);
+    if (s < 0)
+      throw ExpressionError(n.column, "machine '" + n.name + "' has no state '" + n.member +
+                                          "' (states: " + joined(el.states) + "; or time_s)");
+    return {RefKind::kMachineIn, e, s};
+  }
+  const int f = index_of(failure_names, n.name);
+  if (f >= 0) {
+    if (!n.member.empty())
+      throw ExpressionError(n.column, "failure '" + n.name + "' has no ." + n.member);
+    return {RefKind::kFailure, f, 0};
+  }
+  for (std::size_t c = 0; c < controls_.size(); ++c) {
+    const ControlSpec& spec = controls_[c];
+    if (spec.name != n.name) continue;
+    const int ci = static_cast<int>(c);
+    if (n.member == "q") return {RefKind::kControlQ, ci, 0};
+    if (n.member == "position") return {RefKind::kControlPosition, ci, 0};
+    const int p = index_of(spec.positions, n.member);
+    if (p < 0)
+      throw ExpressionError(n.column, "control '" + n.name + "' has no position '" + n.member +
+                                          "' (positions: " + joined(spec.positions) +
+                                          "; or q, position)");
+    return {RefKind::kControlIn, ci, p};
+  }
+  throw ExpressionError(n.column, "no control, failure or system named '" + n.name + "'");
+}
+
+void Systems::bind_expression(SourceExpression& se) const {
+  if (se.expression.empty()) return;
+  try {
+    se.expression.bind([this](const Name& n) { return resolve(n); });
+  } catch (const ExpressionError& e) {
+    fail(se.origin, std::string(e.what()) + " in \"" + se.expression.text() + "\"");
+  }
+}
+
+double Systems::evaluate(const Expression& e) const { return e.evaluate(Reader(*this)); }
 
 void Systems::step(const ControlFrame& frame, std::vector<SystemsEvent>& events) {
   if (frame.position.size() != controls_.size() || frame.q.size() != controls_.size())
     throw std::invalid_argument("a control frame of " + std::to_string(frame.position.size()) +
                                 " controls, for systems bound to " +
                                 std::to_string(controls_.size()));
-  frame_ = &frame;
+  frame_ = frame;
   ++state_.step;
   state_.time_ns = frame.time_ns;
   const Reader reader(*this);
   for (std::size_t e = 0; e < model_.elements.size(); ++e) step_element(e, reader, events);
-  frame_ = nullptr;
 }
 
 void Systems::step_element(std::size_t e, const Reader& reader, std::vector<SystemsEvent>& events) {

@@ -69,6 +69,13 @@ class Systems {
   std::string value_text(int element, double value) const;
 
   const SystemsState& state() const { return state_; }
+  // The controls the last step took (all in their first position before any step).
+  const ControlFrame& frame() const { return frame_; }
+
+  // Other expressions on the same names (a procedure's steps): resolved as the model's are,
+  // throwing ModelError at the expression's origin; evaluated on the state the last step left.
+  void bind_expression(SourceExpression& e) const;
+  double evaluate(const Expression& e) const;
   // Puts back a saved state (std::invalid_argument if it does not fit this model).
   void restore(const SystemsState& saved);
   // Fingerprint of the model and the control list (a checkpoint of another model is refused).
@@ -94,7 +101,8 @@ class Systems {
   std::vector<double> lag_factor_;
   std::vector<std::vector<BoundTransition>> transitions_;
   SystemsState state_;
-  const ControlFrame* frame_ = nullptr;  // during step()
+  Ref resolve(const Name& name) const;
+  ControlFrame frame_;                   // the last step's
   std::vector<int> cleared_;             // during a step: failures a transition cleared
 };
 

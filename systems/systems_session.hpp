@@ -6,11 +6,14 @@
 // files for the same frames.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "systems/procedure_runner.hpp"
+#include "common/atomic_file.hpp"
 #include "systems/systems_engine.hpp"
 #include "systems/systems_recorder.hpp"
 #include "systems/systems_run.hpp"
@@ -29,7 +32,18 @@ struct SessionOptions {
   std::string aircraft_path;  // for the summary
   std::string out_dir;        // empty: no files
   std::vector<ScheduledFailure> failures;
+  std::optional<Lesson> lesson;  // procedures to score (procedure_runner.hpp)
 };
+
+// One step's outcome, for the DDS side: its systems events and the score's changes.
+struct StepOutcome {
+  std::vector<SystemsEvent> events;
+  std::vector<ScoreEvent> score_events;
+};
+
+// The score as JSON text (procedures.json; the report reads it); one change of it as a JSON line.
+std::string score_json_text(const ProcedureRunner& runner);
+std::string score_event_json(const ProcedureRunner& runner, const ScoreEvent& event);
 
 class SystemsSession {
  public:
@@ -38,22 +52,29 @@ class SystemsSession {
 
   Systems& systems() { return systems_; }
   const Systems& systems() const { return systems_; }
-  // The steps for a frame; each step's events (scheduled failures first) go to the files and to
-  // `sink`. Returns the steps taken.
-  int take(const ControlFrame& frame, const SystemsRun::StepSink& sink = {});
+  using Sink = std::function<void(const Systems&, const StepOutcome&)>;
+  // The steps for a frame; each step's events (scheduled failures first) and the score's
+  // changes go to the files and to `sink`. Returns the steps taken.
+  int take(const ControlFrame& frame, const Sink& sink = {});
   // An instructor's failure now: its event (recorded), or nothing when it already was so.
   std::optional<SystemsEvent> set_failure(int failure, bool inserted);
   // Continues from a saved state (after kill -9).
   void restore(const SystemsState& state) { systems_.restore(state); }
+  // The lesson's scoring; null without a lesson.
+  ProcedureRunner* procedures() { return procedures_.get(); }
+  const ProcedureRunner* procedures() const { return procedures_.get(); }
 
   const FrameCounts& counts() const { return run_.counts(); }
   bool run_started() const { return run_.started(); }
   uint64_t events() const { return events_; }
-  // Writes systems_summary.json and commits the files (no-op without an output folder).
-  void finish();
+  // Ends the scoring (what runs is incomplete, its open steps missed: `sink` gets those changes),
+  // then writes systems_summary.json and procedures.json and commits the files (with an output
+  // folder).
+  void finish(const Sink& sink = {});
 
  private:
   void record(const SystemsEvent& event);
+  void record_scores();
 
   Systems systems_;
   SystemsRun run_;
@@ -62,7 +83,9 @@ class SystemsSession {
   std::size_t next_scheduled_ = 0;
   std::unique_ptr<SystemsRecorder> recorder_;
   uint64_t events_ = 0;
-  std::vector<SystemsEvent> step_events_;
+  std::unique_ptr<ProcedureRunner> procedures_;
+  std::unique_ptr<AtomicFile> score_log_;  // procedure_events.jsonl
+  StepOutcome outcome_;
 };
 
 }  // namespace vcockpit::systems

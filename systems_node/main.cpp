@@ -1,7 +1,9 @@
 // systems_node: the aircraft's systems (config/aircraft.yaml, docs/systems.md) stepped in the
 // physics' time. On DDS it follows cockpit/control_frame (systems_node/node/systems_node_loop.hpp);
-// --offline it reads the control_frames.csv a physics run wrote. Both write, with --out, the same
-// systems_events.jsonl, systems.csv and systems_summary.json for the same frames.
+// --offline it reads the control_frames.csv a physics run wrote. With --lesson it scores the
+// lesson's procedures as they are flown (systems/procedure_runner.hpp). Both write, with --out,
+// the same systems_events.jsonl, systems.csv, systems_summary.json and (with a lesson)
+// procedures.json and procedure_events.jsonl for the same frames.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -11,6 +13,7 @@
 #include "common/logging.hpp"
 #include "common/signals.hpp"
 #include "dds/dds_options.hpp"
+#include "systems/config/procedure_yaml.hpp"
 #include "systems/config/systems_yaml.hpp"
 #include "systems/control_frames_file.hpp"
 #include "systems/systems_session.hpp"
@@ -26,6 +29,13 @@ int run_offline(const std::string& aircraft, const std::string& frames_path,
   systems::SystemsSession session(load_systems_model(aircraft), frames.controls, options);
   for (const systems::ControlFrame& f : frames.frames) session.take(f);
   session.finish();
+  if (const systems::ProcedureRunner* runner = session.procedures()) {
+    for (std::size_t p = 0; p < runner->scores().size(); ++p) {
+      const systems::ProcedureScore& score = runner->scores()[p];
+      spdlog::info("procedure '{}': {}, {} error(s)", runner->lesson().procedures[p].title,
+                   systems::state_name(score.state), score.errors());
+    }
+  }
   const auto& c = session.counts();
   spdlog::info("{} frames: {} steps to t {:.3f} s, {} events; {} periods without a frame, {} off "
                "the grid", frames.frames.size(), session.systems().state().step,
@@ -55,6 +65,10 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   app.add_option("--out", node.session.out_dir,
                  "write systems_events.jsonl, systems.csv and systems_summary.json here (at stop)");
+  std::string lesson;
+  app.add_option("--lesson", lesson,
+                 "score the procedures of this lesson file (config/lessons/*.yaml) as they are flown")
+      ->check(CLI::ExistingFile);
   app.add_option("--failure-at", failures,
                  "SECONDS:NAME: insert a failure at that simulated time (repeatable)");
   app.add_option("--checkpoint", node.checkpoint_path,
@@ -74,6 +88,7 @@ int main(int argc, char** argv) {
   try {
     node.session.aircraft_path = aircraft;
     for (const std::string& f : failures) node.session.failures.push_back(systems::parse_scheduled_failure(f));
+    if (!lesson.empty()) node.session.lesson = load_lesson(lesson);
     if (offline) {
       if (frames_path.empty()) throw std::invalid_argument("--offline needs --control-frames");
       if (node.session.out_dir.empty()) throw std::invalid_argument("--offline needs --out");

@@ -20,6 +20,7 @@ VCOCKPIT_SYSTEMS_TOPIC(SystemsState, "cockpit/systems_state");
 VCOCKPIT_SYSTEMS_TOPIC(SystemsEvent, "cockpit/systems_event");
 VCOCKPIT_SYSTEMS_TOPIC(FailureCommand, "cockpit/failure_command");
 VCOCKPIT_SYSTEMS_TOPIC(FailureAck, "cockpit/failure_ack");
+VCOCKPIT_SYSTEMS_TOPIC(ProcedureScore, "cockpit/procedure_score");
 
 #undef VCOCKPIT_SYSTEMS_TOPIC
 

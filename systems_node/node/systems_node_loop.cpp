@@ -64,6 +64,7 @@ class Node {
         state_writer_(participant.make_writer<cockpit::SystemsState>("state")),
         event_writer_(participant.make_writer<cockpit::SystemsEvent>("event")),
         ack_writer_(participant.make_writer<cockpit::FailureAck>("command")),
+        score_writer_(participant.make_writer<cockpit::ProcedureScore>("state")),
         status_writer_(participant.make_writer<cockpit::NodeStatus>("state")) {
     if (model_.elements.size() > 128) throw systems::ModelError(model_.source + ": at most 128 systems (cockpit/systems_state)");
     if (model_.failures.size() > 32) throw systems::ModelError(model_.source + ": at most 32 failures (cockpit/systems_state)");
@@ -98,7 +99,9 @@ class Node {
     if (session_) {
       drain_waiting();
       maybe_checkpoint(true);
-      session_->finish();
+      session_->finish([this](const Systems&, const systems::StepOutcome& outcome) {
+        publish_scores(outcome.score_events);
+      });
       const auto& c = session_->counts();
       spdlog::info("stopped at step {} (t {:.3f} s): {} frames taken, {} periods without a frame, "
                    "{} stale, {} off the grid; {} events",
@@ -156,6 +159,7 @@ class Node {
                  session_->systems().period_ns() / 1'000'000);
     if (options_.resume) resume();
     publish_info();
+    publish_scores({});
     next_checkpoint_ns_ = session_->systems().state().time_ns +
                           static_cast<int64_t>(options_.checkpoint_every_s * 1e9);
     return true;
@@ -168,7 +172,10 @@ class Node {
       return;
     }
     try {
-      session_->restore(systems::read_systems_checkpoint(path, session_->systems()));
+      systems::SystemsCheckpoint saved =
+          systems::read_systems_checkpoint(path, session_->systems(), session_->procedures());
+      session_->restore(saved.state);
+      if (session_->procedures() != nullptr) session_->procedures()->restore(saved.scores);
       spdlog::info("resumed from {}: step {}, t {:.3f} s", path, session_->systems().state().step,
                    static_cast<double>(session_->systems().state().time_ns) * 1e-9);
     } catch (const std::exception& e) {
@@ -180,12 +187,69 @@ class Node {
 
   void drain_waiting() {
     while (!waiting_.empty()) {
-      session_->take(waiting_.front(), [this](const Systems& s, const std::vector<SystemsEvent>& events) {
-        for (const SystemsEvent& e : events) publish_event(s, e);
+      session_->take(waiting_.front(), [this](const Systems& s, const systems::StepOutcome& outcome) {
+        for (const SystemsEvent& e : outcome.events) publish_event(s, e);
         publish_state(s);
+        publish_scores(outcome.score_events);
       });
       waiting_.pop_front();
     }
+  }
+
+  // The procedures a change touched (all of them once, when bound).
+  void publish_scores(const std::vector<systems::ScoreEvent>& changes) {
+    const systems::ProcedureRunner* runner = session_->procedures();
+    if (runner == nullptr) return;
+    std::vector<bool> changed(runner->scores().size(), changes.empty() && !scores_published_);
+    for (const systems::ScoreEvent& e : changes) {
+      changed[static_cast<std::size_t>(e.procedure)] = true;
+      log_score_event(*runner, e);
+    }
+    scores_published_ = true;
+    for (std::size_t p = 0; p < changed.size(); ++p)
+      if (changed[p]) publish_score(*runner, p);
+  }
+
+  static void log_score_event(const systems::ProcedureRunner& runner, const systems::ScoreEvent& e) {
+    const systems::Procedure& p = runner.lesson().procedures[static_cast<std::size_t>(e.procedure)];
+    const double t_s = static_cast<double>(e.time_ns) * 1e-9;
+    if (e.step < 0) {
+      spdlog::info("procedure '{}' {} at {:.2f} s", p.title, e.what, t_s);
+    } else {
+      const systems::ProcedureStep& step = p.steps[static_cast<std::size_t>(e.step)];
+      spdlog::info("procedure '{}' step {} ({} {}) {} at {:.2f} s", p.title, e.step + 1, step.item,
+                   step.action, e.what, t_s);
+    }
+  }
+
+  void publish_score(const systems::ProcedureRunner& runner, std::size_t p) {
+    const systems::Procedure& proc = runner.lesson().procedures[p];
+    const systems::ProcedureScore& score = runner.scores()[p];
+    cockpit::ProcedureScore msg;
+    msg.index(static_cast<uint32_t>(p));
+    msg.count(static_cast<uint32_t>(runner.scores().size()));
+    msg.lesson(clipped(runner.lesson().title, 64));
+    msg.name(clipped(proc.name, 64));
+    msg.title(clipped(proc.title, 64));
+    msg.state(static_cast<cockpit::ProcedureRunState>(static_cast<int>(score.state)));
+    msg.started_time_ns(score.started_ns);
+    msg.ended_time_ns(score.ended_ns);
+    msg.errors(static_cast<uint32_t>(score.errors()));
+    for (std::size_t s = 0; s < score.steps.size(); ++s) {
+      const systems::StepScore& st = score.steps[s];
+      cockpit::ProcedureStepScore m;
+      m.item(clipped(proc.steps[s].item, 64));
+      m.action(clipped(proc.steps[s].action, 64));
+      m.status(static_cast<cockpit::ProcedureStepStatus>(static_cast<int>(st.status)));
+      m.out_of_order(st.out_of_order);
+      m.late(st.late);
+      m.undone(st.undone);
+      m.done_time_ns(st.done_ns);
+      m.since_previous_ns(st.since_previous_ns);
+      m.undone_time_ns(st.undone_ns);
+      msg.steps().push_back(m);
+    }
+    score_writer_.write(msg);
   }
 
   void take_failure_commands() {
@@ -221,7 +285,8 @@ class Node {
     const int64_t t = session_->systems().state().time_ns;
     if (!force && t < next_checkpoint_ns_) return;
     try {
-      systems::write_systems_checkpoint(options_.checkpoint_path, session_->systems());
+      systems::write_systems_checkpoint(options_.checkpoint_path, session_->systems(),
+                                        session_->procedures());
       ++checkpoints_;
     } catch (const std::exception& e) {
       spdlog::warn("checkpoint: {}", e.what());
@@ -325,6 +390,7 @@ class Node {
   Writer<cockpit::SystemsState> state_writer_;
   Writer<cockpit::SystemsEvent> event_writer_;
   Writer<cockpit::FailureAck> ack_writer_;
+  Writer<cockpit::ProcedureScore> score_writer_;
   Writer<cockpit::NodeStatus> status_writer_;
   std::map<uint32_t, systems::ControlSpec> controls_;
   int expected_controls_ = -1;
@@ -334,6 +400,7 @@ class Node {
   uint64_t event_seq_ = 0;
   uint64_t states_published_ = 0;
   uint64_t malformed_ = 0;
+  bool scores_published_ = false;
   uint64_t checkpoints_ = 0;
   int64_t next_checkpoint_ns_ = 0;
   int64_t last_status_ns_ = 0;

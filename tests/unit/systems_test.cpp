@@ -12,7 +12,9 @@
 #include "common/config_error.hpp"
 #include "common/yaml_config.hpp"
 #include "physics_node/config/scene_config.hpp"
+#include "systems/config/procedure_yaml.hpp"
 #include "systems/config/systems_yaml.hpp"
+#include "systems/procedure_runner.hpp"
 #include "systems/control_frames_file.hpp"
 #include "systems/systems_checkpoint.hpp"
 #include "systems/systems_run.hpp"
@@ -418,6 +420,140 @@ TEST_F(DefaultAircraft, RestoredStateGoesOnIdentically) {
   EXPECT_THROW(other.restore(bad), std::invalid_argument);
 }
 
+// ---- procedures: the default lesson scored on synthetic frames ----------------------------------
+
+class DefaultLesson : public DefaultAircraft {
+ protected:
+  void SetUp() override {
+    DefaultAircraft::SetUp();
+    runner_ = std::make_unique<ProcedureRunner>(load_lesson(source_dir() + "/config/lessons/default.yaml"),
+                                                *systems_);
+  }
+  void fly(int steps = 1) {
+    for (int i = 0; i < steps; ++i) {
+      step();
+      runner_->after_step(*systems_, score_events_);
+    }
+  }
+  const ProcedureScore& score(const std::string& name) const {
+    for (std::size_t p = 0; p < runner_->lesson().procedures.size(); ++p)
+      if (runner_->lesson().procedures[p].name == name) return runner_->scores()[p];
+    throw std::out_of_range(name);
+  }
+  // A pushed control: in position for `hold` steps, then back.
+  void press(const std::string& control, const std::string& on, const std::string& off, int hold = 5) {
+    set(control, on);
+    fly(hold);
+    set(control, off);
+    fly();
+  }
+  // The flow done right up to the gear raised "after take-off".
+  void start_engine_and_take_off() {
+    fly();  // before start begins; its checks hold
+    set("avionics_master", "on");
+    fly(50);
+    set("fuel_pump", "on");
+    fly(50);
+    set("engine_start_guard", "open");
+    fly(20);
+    press("engine_start", "start", "off", 30);
+    fly(700);  // running after about 5.5 s
+    set("engine_start_guard", "closed");
+    fly(50);
+    set("gear", "up");
+    fly(800);  // the legs up
+  }
+
+  std::unique_ptr<ProcedureRunner> runner_;
+  std::vector<ScoreEvent> score_events_;
+};
+
+TEST_F(DefaultLesson, TheFlowDoneRightScoresEveryProcedureComplete) {
+  start_engine_and_take_off();
+  set("gear", "down");
+  fly(800);
+  set("flaps", "landing");
+  fly(50);
+  set("landing_lights", "on");
+  fly(50);
+  runner_->finish(systems_->state().time_ns, score_events_);
+  for (const char* name : {"before_start", "engine_start", "before_landing"}) {
+    SCOPED_TRACE(name);
+    EXPECT_EQ(score(name).state, ProcedureState::kComplete);
+    EXPECT_EQ(score(name).errors(), 0);
+  }
+  EXPECT_EQ(score("gear_unsafe").state, ProcedureState::kWaiting);  // never happened: no error
+  EXPECT_EQ(score("gear_unsafe").errors(), 0);
+  // the checks that held at the start are done at its first step; then the avionics 50 steps on
+  const ProcedureScore& before = score("before_start");
+  EXPECT_EQ(before.started_ns, 10'000'000);
+  EXPECT_EQ(before.steps[0].done_ns, 10'000'000);
+  EXPECT_EQ(before.steps[4].done_ns, 20'000'000);  // avionics master, set before the 2nd step
+  EXPECT_EQ(before.steps[4].since_previous_ns, 10'000'000);
+  // three green 7.5 s after the lever went down (the right leg's transit), within its 10 s
+  const ProcedureScore& landing = score("before_landing");
+  EXPECT_EQ(landing.steps[1].since_previous_ns, 7'500'000'000);
+  EXPECT_FALSE(landing.steps[1].late);
+}
+
+TEST_F(DefaultLesson, OutOfOrderMissedAndUndoneStepsAreScoredAsSuch) {
+  start_engine_and_take_off();
+  set("flaps", "landing");  // before the gear: out of order
+  fly(50);
+  set("gear", "down");
+  fly(800);
+  set("fuel_pump", "off");  // before start is complete already: not its concern
+  fly(10);
+  runner_->finish(systems_->state().time_ns, score_events_);  // landing lights never on
+  const ProcedureScore& landing = score("before_landing");
+  EXPECT_EQ(landing.state, ProcedureState::kIncomplete);
+  EXPECT_TRUE(landing.steps[2].out_of_order);       // flaps
+  EXPECT_EQ(landing.steps[3].status, StepStatus::kMissed);  // landing lights
+  EXPECT_EQ(landing.errors(), 2);
+  EXPECT_EQ(score("before_start").errors(), 0);
+
+  // undone: the avionics master switched off again before the procedure was complete
+  runner_->reset();
+  systems_ = std::make_unique<Systems>(load_systems_model(source_dir() + "/config/aircraft.yaml"), controls_);
+  frame_.time_ns = 0;
+  set("avionics_master", "off");
+  set("fuel_pump", "off");
+  set("gear", "down");
+  set("flaps", "up");
+  set("landing_lights", "off");
+  fly();
+  set("avionics_master", "on");
+  fly(10);
+  set("avionics_master", "off");
+  fly(10);
+  set("fuel_pump", "on");
+  fly(10);
+  const ProcedureScore& before = score("before_start");
+  EXPECT_EQ(before.state, ProcedureState::kComplete);
+  EXPECT_TRUE(before.steps[4].undone);
+  EXPECT_EQ(before.steps[4].undone_ns, before.steps[4].done_ns + 100'000'000);
+  EXPECT_EQ(before.errors(), 1);
+}
+
+TEST_F(DefaultLesson, GearUnsafeAbnormalStartsWithTheFailureAndIsScored) {
+  start_engine_and_take_off();
+  set("gear", "down");
+  fly(800);
+  ASSERT_TRUE(systems_->set_failure(systems_->failure_index("gear_unsafe_left"), true));
+  fly(10);
+  EXPECT_EQ(score("gear_unsafe").state, ProcedureState::kRunning);
+  press("master_caution", "pressed", "out");
+  fly(50);
+  set("gear", "up");
+  fly(800);
+  set("gear", "down");
+  fly(800);
+  const ProcedureScore& abnormal = score("gear_unsafe");
+  EXPECT_EQ(abnormal.state, ProcedureState::kComplete);
+  EXPECT_EQ(abnormal.errors(), 0);
+  EXPECT_EQ(abnormal.steps[3].since_previous_ns, 7'500'000'000);
+}
+
 // ---- frames, runs and checkpoints ---------------------------------------------------------------
 
 std::string temp_path(const std::string& name) {
@@ -510,7 +646,7 @@ TEST(SystemsCheckpoint, RoundTripsEveryBitAndRefusesAnotherModel) {
   const std::string path = temp_path("systems.ckpt");
   write_systems_checkpoint(path, a);
   Systems b(load_systems_model(aircraft), controls);
-  b.restore(read_systems_checkpoint(path, b));
+  b.restore(read_systems_checkpoint(path, b).state);
   EXPECT_EQ(b.state().value, a.state().value);
   EXPECT_EQ(b.state().since_step, a.state().since_step);
   EXPECT_EQ(b.state().failure, a.state().failure);
