@@ -1,6 +1,7 @@
 #include "systems/systems_session.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -103,10 +104,12 @@ std::optional<SystemsEvent> SystemsSession::set_failure(int failure, bool insert
 
 static nlohmann::ordered_json score_json(const ProcedureRunner& runner) {
   const auto seconds = [](int64_t ns) {
-    return ns < 0 ? nlohmann::ordered_json() : nlohmann::ordered_json(static_cast<double>(ns) * 1e-9);
+    // to the millisecond (the steps are 10 ms apart): "3.59", not "3.5900000000000003"
+    return ns < 0 ? nlohmann::ordered_json()
+                  : nlohmann::ordered_json(std::round(static_cast<double>(ns) * 1e-6) / 1e3);
   };
   nlohmann::ordered_json j;
-  j["lesson"] = runner.lesson().source;
+  j["lesson"] = std::filesystem::path(runner.lesson().source).stem().string();
   j["title"] = runner.lesson().title;
   int complete = 0, errors = 0, started = 0;
   nlohmann::ordered_json procedures = nlohmann::ordered_json::array();

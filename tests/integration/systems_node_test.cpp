@@ -1,6 +1,6 @@
 // systems_node as a real process over loopback DDS: in a lockstep rig (physics node, glove driver,
-// systems node) it writes the files systems_node --offline writes from the offline physics run,
-// byte for byte; killed with SIGKILL during a gear transit and restarted with --resume, the
+// systems node) flying the bundled procedures it writes the files and the score systems_node
+// --offline writes from the offline physics run, byte for byte; killed with SIGKILL during a gear transit and restarted with --resume, the
 // transit ends when it would have without the kill; bad files and flags are refused by name.
 
 #include <gtest/gtest.h>
@@ -35,26 +35,27 @@ bool wait_for_systems_time(Reader<cockpit::SystemsState>& states, int64_t t_ns, 
   return false;
 }
 
-TEST_F(SystemsNodeTest, LockstepRigWritesTheOfflineSystemsFilesByteForByte) {
-  const std::string log = source_dir() + "/config/glove_logs/panel_switches.csv";
+TEST_F(SystemsNodeTest, LockstepRigWritesTheOfflineSystemsFilesAndScoreByteForByte) {
+  // the procedures flown right, and the gear-unsafe abnormal after the instructor's failure
+  const std::string log = source_dir() + "/config/glove_logs/procedures_right.csv";
+  const std::string lesson = source_dir() + "/config/lessons/default.yaml";
   physics_io::OfflineOptions offline;
   offline.scene_path = source_dir() + "/config/cockpit.yaml";
   offline.log_paths = {log};
   offline.out_dir = dir_ + "/offline";
   const auto summary = physics_io::run_offline(load_scene(offline.scene_path), offline);
   const int64_t end_ns = std::llround(summary.simulated_s * 1e9);
-  // an instructor's failure at a set time, the same in both
   ChildProcess replay = start("systems_node", {"--offline", "--control-frames",
                                                offline.out_dir + "/control_frames.csv", "--out",
-                                               dir_ + "/offline_systems", "--failure-at",
-                                               "4.005:engine_fire"},
+                                               dir_ + "/offline_systems", "--lesson", lesson,
+                                               "--failure-at", "50:gear_unsafe_left"},
                               "offline_systems.log");
   ASSERT_EQ(replay.wait(60 * kSecond), 0) << text("offline_systems.log");
 
   DdsParticipant participant(resolve_dds_options(DdsFlags{}), "systems_node_test");
   auto states = participant.make_reader<cockpit::SystemsState>("state");
-  ChildProcess systems = start("systems_node", {"--out", dir_ + "/rig_systems", "--failure-at",
-                                                "4.005:engine_fire"},
+  ChildProcess systems = start("systems_node", {"--out", dir_ + "/rig_systems", "--lesson", lesson,
+                                                "--failure-at", "50:gear_unsafe_left"},
                                "systems.log");
   ChildProcess node = start("physics_node", {"--lockstep", "--wait-frame-readers", "1"}, "node.log");
   ChildProcess driver = start("glove_driver", {"--source", "replay", "--log", log, "--lockstep",
@@ -65,20 +66,24 @@ TEST_F(SystemsNodeTest, LockstepRigWritesTheOfflineSystemsFilesByteForByte) {
   EXPECT_EQ(systems.stop(), 0) << text("systems.log");
   EXPECT_EQ(node.stop(), 0) << text("node.log");
 
-  for (const char* file : {"systems_events.jsonl", "systems.csv", "systems_summary.json"}) {
+  for (const char* file : {"systems_events.jsonl", "systems.csv", "systems_summary.json",
+                           "procedures.json", "procedure_events.jsonl"}) {
     const std::string rig = read_text(dir_ + "/rig_systems/" + file);
     EXPECT_FALSE(rig.empty()) << file;
-    const std::string expected = read_text(dir_ + "/offline_systems/" + file);
-    EXPECT_TRUE(rig == expected) << file << " differs from systems_node --offline's";
+    EXPECT_TRUE(rig == read_text(dir_ + "/offline_systems/" + file))
+        << file << " differs from systems_node --offline's";
   }
+  // the score the bundled log is pinned to (tests/scenario/procedure_logs_test)
+  EXPECT_EQ(read_text(dir_ + "/rig_systems/procedures.json"),
+            read_text(source_dir() + "/tests/data/procedures/right_gear_unsafe.json"));
   const std::string events = read_text(dir_ + "/rig_systems/systems_events.jsonl");
-  // the avionics master pushed on at 3.29 s and off at 4.79 s (the control log's), and the fire
-  EXPECT_NE(events.find("{\"t_ns\": 3290000000, \"t_s\": 3.290, \"event\": \"change\", \"system\": "
+  // the avionics master pushed on at 1.59 s (the log's), and the failure at 50 s
+  EXPECT_NE(events.find("{\"t_ns\": 1590000000, \"t_s\": 1.590, \"event\": \"change\", \"system\": "
                         "\"bus\", \"from\": 0, \"to\": 1}"),
             std::string::npos)
       << events;
-  EXPECT_NE(events.find("\"t_ns\": 4010000000, \"t_s\": 4.010, \"event\": \"failure_inserted\", "
-                        "\"failure\": \"engine_fire\""),
+  EXPECT_NE(events.find("\"t_ns\": 50000000000, \"t_s\": 50.000, \"event\": \"failure_inserted\", "
+                        "\"failure\": \"gear_unsafe_left\""),
             std::string::npos)
       << events;
 }
