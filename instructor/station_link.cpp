@@ -17,8 +17,14 @@ StationLink::StationLink(DdsParticipant& participant, StationModel& model, std::
       control_event_reader_(participant.make_reader<cockpit::ControlEvent>("event")),
       ack_reader_(participant.make_reader<cockpit::SimAck>("event")),
       preview_reader_(participant.make_reader<cockpit::PreviewFrame>("preview")),
+      systems_info_reader_(participant.make_reader<cockpit::SystemsInfo>("state")),
+      systems_state_reader_(participant.make_reader<cockpit::SystemsState>("state")),
+      systems_event_reader_(participant.make_reader<cockpit::SystemsEvent>("event")),
+      failure_ack_reader_(participant.make_reader<cockpit::FailureAck>("command")),
+      score_reader_(participant.make_reader<cockpit::ProcedureScore>("state")),
       sim_writer_(participant.make_writer<cockpit::SimCommand>("command")),
-      control_writer_(participant.make_writer<cockpit::ControlCommand>("command")) {}
+      control_writer_(participant.make_writer<cockpit::ControlCommand>("command")),
+      failure_writer_(participant.make_writer<cockpit::FailureCommand>("command")) {}
 
 void StationLink::poll() {
   const int64_t now_ns = monotonic_now_ns();
@@ -33,6 +39,11 @@ void StationLink::poll() {
   while (control_event_reader_.take(control_event_)) model_.on_control_event(control_event_);
   while (ack_reader_.take(ack_)) model_.on_ack(ack_);
   while (preview_reader_.take(preview_)) model_.on_preview(preview_, now_ns);
+  while (systems_info_reader_.take(systems_info_)) model_.on_systems_info(systems_info_);
+  while (systems_state_reader_.take(systems_state_)) model_.on_systems_state(systems_state_);
+  while (systems_event_reader_.take(systems_event_)) model_.on_systems_event(systems_event_);
+  while (failure_ack_reader_.take(failure_ack_)) model_.on_failure_ack(failure_ack_);
+  while (score_reader_.take(score_)) model_.on_procedure_score(score_);
 }
 
 namespace {
@@ -62,6 +73,18 @@ int64_t StationLink::send_control(uint32_t control_id, uint32_t position) {
   command.source(source_name_);
   control_writer_.wait_for_matched(1, kMatchWaitNs);
   if (!control_writer_.write(command)) return -1;
+  return static_cast<int64_t>(next_seq_++);
+}
+
+int64_t StationLink::send_failure(const std::string& failure, bool inserted) {
+  std::lock_guard<std::mutex> lock(send_mutex_);
+  cockpit::FailureCommand command;
+  command.seq(next_seq_);
+  command.failure(failure.substr(0, 64));
+  command.inserted(inserted);
+  command.source(source_name_);
+  failure_writer_.wait_for_matched(1, kMatchWaitNs);
+  if (!failure_writer_.write(command)) return -1;
   return static_cast<int64_t>(next_seq_++);
 }
 

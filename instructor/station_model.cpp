@@ -1,5 +1,8 @@
 #include "instructor/station_model.hpp"
 
+#include <cmath>
+#include <iterator>
+
 #include <algorithm>
 #include <cstdio>
 
@@ -56,6 +59,39 @@ std::vector<std::string> split_positions(const std::string& names, uint32_t coun
   return out;
 }
 
+}  // namespace
+
+namespace {
+std::vector<std::string> split_bars(const std::string& joined) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (std::size_t bar; (bar = joined.find('|', start)) != std::string::npos; start = bar + 1)
+    out.push_back(joined.substr(start, bar - start));
+  return out;
+}
+
+const char* procedure_state_word(cockpit::ProcedureRunState s) {
+  switch (s) {
+    case cockpit::PROCEDURE_WAITING: return "waiting";
+    case cockpit::PROCEDURE_RUNNING: return "running";
+    case cockpit::PROCEDURE_COMPLETE: return "complete";
+    case cockpit::PROCEDURE_INCOMPLETE: return "incomplete";
+  }
+  return "unknown";
+}
+
+const char* step_status_word(cockpit::ProcedureStepStatus s) {
+  switch (s) {
+    case cockpit::STEP_PENDING: return "pending";
+    case cockpit::STEP_DONE: return "done";
+    case cockpit::STEP_MISSED: return "missed";
+  }
+  return "unknown";
+}
+
+nlohmann::json seconds_or_null(int64_t ns) {
+  return ns < 0 ? nlohmann::json(nullptr) : nlohmann::json(static_cast<double>(ns) * 1e-9);
+}
 }  // namespace
 
 const char* sim_command_word(cockpit::SimCommandKind kind) {
@@ -258,6 +294,30 @@ nlohmann::json StationModel::state_json(int64_t now_ns) const {
                  {"height_px", frame_height_px_},
                  {"age_s", ns_to_seconds(now_ns - frame_taken_ns_)}};
   }
+  // the aircraft: each system's value (a machine's as its state's name too), the failures, and
+  // the lesson's live score; null without a systems node
+  if (systems_.empty()) {
+    j["systems"] = nullptr;
+  } else {
+    nlohmann::json values = nlohmann::json::object();
+    for (std::size_t i = 0; i < systems_.size() && i < system_values_.size(); ++i) {
+      const double v = system_values_[i];
+      nlohmann::json entry = {{"value", std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr)},
+                              {"unit", systems_[i].unit}};
+      const auto& states = systems_[i].states;
+      if (!states.empty() && v >= 0 && static_cast<std::size_t>(v) < states.size())
+        entry["state"] = states[static_cast<std::size_t>(v)];
+      values[systems_[i].name] = entry;
+    }
+    j["systems"] = {{"sim_time_s", seconds_or_null(systems_time_ns_)}, {"values", values}};
+  }
+  nlohmann::json failures = nlohmann::json::array();
+  for (const FailureEntry& f : failures_)
+    failures.push_back({{"name", f.name}, {"text", f.text}, {"inserted", f.inserted}});
+  j["failures"] = failures;
+  nlohmann::json procedures = nlohmann::json::array();
+  for (const auto& [index, p] : procedures_) procedures.push_back(p);
+  j["procedures"] = {{"lesson", lesson_}, {"list", procedures}};
   j["events_next"] = next_event_seq_;
   return j;
 }
@@ -285,6 +345,94 @@ bool StationModel::view_png(std::string& out) const {
   if (png_.empty()) return false;
   out = png_;
   return true;
+}
+
+// ---- the aircraft's systems -------------------------------------------------------------------
+
+
+void StationModel::on_systems_info(const cockpit::SystemsInfo& info) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  systems_.clear();
+  for (const cockpit::SystemInfo& si : info.systems())
+    systems_.push_back({si.name().to_string(), si.unit().to_string(), split_bars(si.state_names().to_string())});
+  std::vector<FailureEntry> failures;
+  for (const cockpit::FailureInfo& fi : info.failures()) {
+    FailureEntry f{fi.name().to_string(), fi.text().to_string(), false};
+    for (const FailureEntry& old : failures_)
+      if (old.name == f.name) f.inserted = old.inserted;
+    failures.push_back(f);
+  }
+  failures_ = std::move(failures);
+  failures_known_ = true;
+}
+
+void StationModel::on_systems_state(const cockpit::SystemsState& state) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  system_values_.assign(state.values().begin(), state.values().end());
+  systems_time_ns_ = state.sim_time_ns();
+  for (std::size_t f = 0; f < failures_.size() && f < state.failures().size(); ++f)
+    failures_[f].inserted = state.failures()[f];
+}
+
+void StationModel::on_systems_event(const cockpit::SystemsEvent& event) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const std::string name = event.name().to_string();
+  if (event.kind() == cockpit::SYSTEM_CHANGED) {
+    add_event("system", event.sim_time_ns(),
+              "SYSTEM " + name + " " + event.from_text().to_string() + " -> " + event.to_text().to_string());
+  } else {
+    const bool inserted = event.kind() == cockpit::FAILURE_INSERTED;
+    for (FailureEntry& f : failures_)
+      if (f.name == name) f.inserted = inserted;
+    add_event("failure", event.sim_time_ns(), "FAILURE " + name + (inserted ? " inserted" : " cleared"));
+  }
+}
+
+void StationModel::on_failure_ack(const cockpit::FailureAck& ack) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  add_event("failure", std::max<int64_t>(ack.sim_time_ns(), 0),
+            "FAILURE " + ack.failure().to_string() + (ack.accepted() ? ": " : " refused: ") +
+                ack.detail().to_string() + " (#" + std::to_string(ack.command_seq()) + " from " +
+                ack.command_source().to_string() + ")");
+}
+
+void StationModel::on_procedure_score(const cockpit::ProcedureScore& score) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  lesson_ = score.lesson().to_string();
+  nlohmann::json steps = nlohmann::json::array();
+  for (const cockpit::ProcedureStepScore& st : score.steps()) {
+    steps.push_back({{"item", st.item().to_string()},
+                     {"action", st.action().to_string()},
+                     {"status", step_status_word(st.status())},
+                     {"out_of_order", st.out_of_order()},
+                     {"late", st.late()},
+                     {"undone", st.undone()},
+                     {"done_s", seconds_or_null(st.done_time_ns())},
+                     {"since_previous_s", seconds_or_null(st.since_previous_ns())}});
+  }
+  procedures_[score.index()] = {{"index", score.index()},
+                                {"name", score.name().to_string()},
+                                {"title", score.title().to_string()},
+                                {"state", procedure_state_word(score.state())},
+                                {"started_s", seconds_or_null(score.started_time_ns())},
+                                {"ended_s", seconds_or_null(score.ended_time_ns())},
+                                {"errors", score.errors()},
+                                {"steps", steps}};
+  // a lesson of fewer procedures (another systems node): drop those beyond it
+  while (!procedures_.empty() && procedures_.rbegin()->first >= score.count())
+    procedures_.erase(std::prev(procedures_.end()));
+}
+
+bool StationModel::knows_failures() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return failures_known_;
+}
+
+bool StationModel::has_failure(const std::string& name) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const FailureEntry& f : failures_)
+    if (f.name == name) return true;
+  return false;
 }
 
 bool StationModel::has_control_position(uint32_t control_id, uint32_t position) const {

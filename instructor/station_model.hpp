@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "dds/dds_participant.hpp"
+#include "idl/topics/systems_topics.hpp"
 
 namespace vcockpit::instructor {
 
@@ -36,6 +37,13 @@ class StationModel {
   void on_preview(const cockpit::PreviewFrame& frame, int64_t now_ns);
   // a command this station sent (logged as an event, so the page shows what was asked)
   void on_command_sent(const std::string& text);
+  // the aircraft's systems (systems_node): names once, values every step, changes, failures
+  // and the lesson's scores
+  void on_systems_info(const cockpit::SystemsInfo& info);
+  void on_systems_state(const cockpit::SystemsState& state);
+  void on_systems_event(const cockpit::SystemsEvent& event);
+  void on_failure_ack(const cockpit::FailureAck& ack);
+  void on_procedure_score(const cockpit::ProcedureScore& score);
 
   // HTTP side
   nlohmann::json state_json(int64_t now_ns) const;
@@ -44,6 +52,9 @@ class StationModel {
   bool view_png(std::string& out) const;  // false: no preview yet
   // A control and position the rig has (for refusing bad commands before they go out).
   bool has_control_position(uint32_t control_id, uint32_t position) const;
+  // Whether the systems node has said which failures it has, and whether it has this one.
+  bool knows_failures() const;
+  bool has_failure(const std::string& name) const;
 
  private:
   struct Node {
@@ -64,9 +75,19 @@ class StationModel {
     bool tracking = false;
     int32_t holding = -1;
   };
+  struct System {
+    std::string name;
+    std::string unit;
+    std::vector<std::string> states;  // a machine's
+  };
+  struct FailureEntry {
+    std::string name;
+    std::string text;
+    bool inserted = false;
+  };
   struct Event {
     int64_t seq = 0;
-    std::string kind;  // grasp, release, control, sim
+    std::string kind;  // grasp, release, control, sim, system, failure
     double sim_time_s = 0.0;
     std::string text;
   };
@@ -85,6 +106,13 @@ class StationModel {
   bool frozen_ = false;
   std::vector<std::string> checkpoints_;
   nlohmann::json last_ack_;  // null until one
+  std::vector<System> systems_;
+  std::vector<double> system_values_;
+  int64_t systems_time_ns_ = -1;
+  std::vector<FailureEntry> failures_;
+  bool failures_known_ = false;
+  std::string lesson_;
+  std::map<uint32_t, nlohmann::json> procedures_;  // by index, as the page shows them
   std::deque<Event> events_;
   int64_t next_event_seq_ = 0;
   // the newest preview

@@ -132,6 +132,33 @@ void StationServer::routes() {
     spdlog::info("control command #{}: control {} to position {}", seq, control, position);
     reply_json(res, {{"seq", seq}});
   });
+  server_->Post("/api/failure", [this](const httplib::Request& req, httplib::Response& res) {
+    const nlohmann::json body = nlohmann::json::parse(req.body, nullptr, false);
+    if (!body.is_object() || !body.contains("failure") || !body["failure"].is_string() ||
+        !body.contains("inserted") || !body["inserted"].is_boolean()) {
+      reply_error(res, "expected {\"failure\": NAME, \"inserted\": true | false}");
+      return;
+    }
+    const std::string failure = body["failure"].get<std::string>();
+    const bool inserted = body["inserted"].get<bool>();
+    if (!model_.knows_failures()) {
+      reply_json(res, {{"error", "no systems node has said which failures it has"}}, 503);
+      return;
+    }
+    if (!model_.has_failure(failure)) {
+      reply_error(res, "failure: unknown '" + failure + "'");
+      return;
+    }
+    const int64_t seq = link_.send_failure(failure, inserted);
+    if (seq < 0) {
+      reply_json(res, {{"error", "the command could not be sent"}}, 503);
+      return;
+    }
+    model_.on_command_sent("SENT " + std::string(inserted ? "insert " : "clear ") + failure +
+                           " (#" + std::to_string(seq) + ")");
+    spdlog::info("failure command #{}: {} {}", seq, inserted ? "insert" : "clear", failure);
+    reply_json(res, {{"seq", seq}});
+  });
   server_->set_exception_handler([](const httplib::Request& req, httplib::Response& res,
                                     std::exception_ptr ep) {
     std::string what = "unknown";

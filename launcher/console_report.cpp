@@ -30,6 +30,12 @@ void print_console_report(const RunSummary& s) {
                   e.kind == "failure_inserted" ? "inserted" : "cleared", e.t_s);
     }
   }
+  for (const auto& p : s.procedures) {
+    std::printf("  PROCEDURE %s: %s", p.title.c_str(), p.state.c_str());
+    if (p.state != "waiting") std::printf(", %u error(s)", p.errors);
+    if (p.started_s >= 0 && p.ended_s >= 0) std::printf(", %.2f s", p.ended_s - p.started_s);
+    std::printf("\n");
+  }
   std::printf("  frames rendered      %llu, snapshots written %d (%s/frames)\n",
               static_cast<unsigned long long>(s.frames_rendered), s.snapshots_written,
               s.out_dir.c_str());

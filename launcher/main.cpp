@@ -23,6 +23,7 @@
 #include "common/signals.hpp"
 #include "launcher/console_report.hpp"
 #include "launcher/rig_monitor.hpp"
+#include "launcher/run_report.hpp"
 #include "launcher/run_summary.hpp"
 #include "launcher/shm_cleanup.hpp"
 #include "launcher/supervisor.hpp"
@@ -112,6 +113,13 @@ int run(RigConfig rig, const Options& options) {
     const RunSummary summary = collect_run_summary(rig, out_dir, supervisor, monitor,
                                                    ns_to_seconds(monotonic_now_ns() - start_ns));
     write_run_summary(out_dir + "/summary.json", summary);
+    if (!summary.procedures.empty()) {
+      try {
+        spdlog::info("procedure report: {}", write_report(summary, out_dir));
+      } catch (const std::exception& e) {
+        spdlog::warn("procedure report: {}", e.what());
+      }
+    }
     print_console_report(summary);
   }
   const int removed = remove_new_dds_shm(shm_before);

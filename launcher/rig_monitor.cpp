@@ -45,7 +45,8 @@ RigMonitor::RigMonitor(DdsParticipant& participant)
       control_event_reader_(participant.make_reader<cockpit::ControlEvent>("event")),
       systems_info_reader_(participant.make_reader<cockpit::SystemsInfo>("state")),
       systems_state_reader_(participant.make_reader<cockpit::SystemsState>("state")),
-      systems_event_reader_(participant.make_reader<cockpit::SystemsEvent>("event")) {}
+      systems_event_reader_(participant.make_reader<cockpit::SystemsEvent>("event")),
+      score_reader_(participant.make_reader<cockpit::ProcedureScore>("state")) {}
 
 std::string RigMonitor::object_name(uint32_t id) const {
   auto it = names_.find(id);
@@ -149,6 +150,34 @@ void RigMonitor::poll() {
     seen.to = systems_event.to_text().to_string();
     systems_events_.push_back(seen);
   }
+  cockpit::ProcedureScore score;
+  while (score_reader_.take(score)) {
+    const auto seconds = [](int64_t ns) { return ns < 0 ? -1.0 : static_cast<double>(ns) * 1e-9; };
+    static constexpr const char* kStates[] = {"waiting", "running", "complete", "incomplete"};
+    static constexpr const char* kStatus[] = {"pending", "done", "missed"};
+    SeenProcedure p;
+    p.lesson = score.lesson().to_string();
+    p.name = score.name().to_string();
+    p.title = score.title().to_string();
+    p.state = kStates[std::min<int>(static_cast<int>(score.state()), 3)];
+    p.started_s = seconds(score.started_time_ns());
+    p.ended_s = seconds(score.ended_time_ns());
+    p.errors = score.errors();
+    for (const cockpit::ProcedureStepScore& st : score.steps()) {
+      SeenProcedure::Step step;
+      step.item = st.item().to_string();
+      step.action = st.action().to_string();
+      step.status = kStatus[std::min<int>(static_cast<int>(st.status()), 2)];
+      step.out_of_order = st.out_of_order();
+      step.late = st.late();
+      step.undone = st.undone();
+      step.done_s = seconds(st.done_time_ns());
+      step.since_previous_s = seconds(st.since_previous_ns());
+      p.steps.push_back(step);
+    }
+    procedures_[score.index()] = p;
+    procedure_count_ = score.count();
+  }
   cockpit::FrameInfo frame;
   while (frame_reader_.take(frame)) {
     ++frames_seen_;
@@ -204,6 +233,13 @@ std::string RigMonitor::status_line(double elapsed_s) const {
                 rate("image_generator"), held_.empty() ? "nothing held" : ("holding " + held_).c_str(),
                 static_cast<double>(latency_.percentile_ns(0.5)) * 1e-6);
   return line;
+}
+
+std::vector<SeenProcedure> RigMonitor::procedures() const {
+  std::vector<SeenProcedure> out;
+  for (const auto& [index, p] : procedures_)
+    if (index < procedure_count_) out.push_back(p);
+  return out;
 }
 
 std::map<std::string, std::string> RigMonitor::systems_values() const {

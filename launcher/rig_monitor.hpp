@@ -42,6 +42,19 @@ struct SeenSystemsEvent {
   std::string to;
 };
 
+// One procedure of the lesson, as its last cockpit/procedure_score had it.
+struct SeenProcedure {
+  struct Step {
+    std::string item, action, status;  // status: pending | done | missed
+    bool out_of_order = false, late = false, undone = false;
+    double done_s = -1, since_previous_s = -1;  // -1: not done
+  };
+  std::string lesson, name, title, state;  // state: waiting | running | complete | incomplete
+  double started_s = -1, ended_s = -1;
+  uint32_t errors = 0;
+  std::vector<Step> steps;
+};
+
 class RigMonitor {
  public:
   explicit RigMonitor(DdsParticipant& participant);
@@ -55,6 +68,8 @@ class RigMonitor {
   // each control's last position name (cockpit/control_state), by control name
   const std::map<std::string, std::string>& control_positions() const { return control_positions_; }
   const std::vector<SeenSystemsEvent>& systems_events() const { return systems_events_; }
+  // the lesson's procedures in order (cockpit/procedure_score); empty without a lesson
+  std::vector<SeenProcedure> procedures() const;
   // each system's last value as words (a machine's state name), by name (systems_state with
   // systems_info); empty without a systems node
   std::map<std::string, std::string> systems_values() const;
@@ -94,6 +109,9 @@ class RigMonitor {
   Reader<cockpit::SystemsInfo> systems_info_reader_;
   Reader<cockpit::SystemsState> systems_state_reader_;
   Reader<cockpit::SystemsEvent> systems_event_reader_;
+  Reader<cockpit::ProcedureScore> score_reader_;
+  std::map<uint32_t, SeenProcedure> procedures_;
+  uint32_t procedure_count_ = 0;
   std::vector<SeenSystemsEvent> systems_events_;
   struct SystemNames {
     std::string name;

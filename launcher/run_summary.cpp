@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "common/json_file.hpp"
+#include "launcher/run_report.hpp"
 #include "launcher/supervisor.hpp"
 
 namespace vcockpit::rig {
@@ -52,6 +53,7 @@ RunSummary collect_run_summary(const RigConfig& rig, const std::string& out_dir,
   s.controls = monitor.control_positions();
   s.systems_events = monitor.systems_events();
   s.systems = monitor.systems_values();
+  s.procedures = monitor.procedures();
   s.physics_step_rate_hz = monitor.mean_step_rate_hz();
   s.late_steps = monitor.late_steps();
 
@@ -125,6 +127,7 @@ void write_run_summary(const std::string& path, const RunSummary& s) {
   }
   auto& systems = j["systems"] = nlohmann::ordered_json::object();
   for (const auto& [name, value] : s.systems) systems[name] = value;
+  j["procedures"] = procedures_json(s.procedures);
   j["frames_rendered"] = s.frames_rendered;
   j["snapshots_written"] = s.snapshots_written;
   j["physics_step_rate_hz"] = s.physics_step_rate_hz;

@@ -56,6 +56,7 @@ struct RunSummary {
   std::map<std::string, std::string> controls;  // name -> last position
   std::vector<SeenSystemsEvent> systems_events;  // empty without a systems node
   std::map<std::string, std::string> systems;    // each system's last value as words
+  std::vector<SeenProcedure> procedures;         // the lesson's score; empty without a lesson
   uint64_t frames_rendered = 0;  // the image generator's last published count
   int snapshots_written = 0;     // PNGs in OUT/frames
   double physics_step_rate_hz = 0.0;

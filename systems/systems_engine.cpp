@@ -169,6 +169,7 @@ void Systems::bind() {
       fail(el.origin, std::string("a ") + element_kind_name(el.kind) + " needs its input");
   }
   model_hash_ = fnv1a(canonical);
+  initial_ = state_;
   frame_.position.assign(controls_.size(), 0);
   frame_.q.assign(controls_.size(), 0.0);
 }
@@ -336,6 +337,16 @@ std::string Systems::value_text(int element, double value) const {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", value);
   return text;
+}
+
+void Systems::reset_to_start() {
+  const int64_t step = state_.step;
+  const int64_t time_ns = state_.time_ns;
+  state_ = initial_;
+  state_.step = step;
+  state_.time_ns = time_ns;
+  for (std::size_t e = 0; e < model_.elements.size(); ++e)
+    if (model_.elements[e].kind == ElementKind::kMachine) state_.since_step[e] = step;
 }
 
 void Systems::restore(const SystemsState& saved) {

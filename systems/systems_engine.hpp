@@ -78,6 +78,9 @@ class Systems {
   double evaluate(const Expression& e) const;
   // Puts back a saved state (std::invalid_argument if it does not fit this model).
   void restore(const SystemsState& saved);
+  // An instructor's reset to the start: every system as it starts, no failure inserted; the step
+  // count and time go on (machines enter their initial states now).
+  void reset_to_start();
   // Fingerprint of the model and the control list (a checkpoint of another model is refused).
   uint64_t model_hash() const { return model_hash_; }
 
@@ -101,6 +104,7 @@ class Systems {
   std::vector<double> lag_factor_;
   std::vector<std::vector<BoundTransition>> transitions_;
   SystemsState state_;
+  SystemsState initial_;  // as bound, before any step
   Ref resolve(const Name& name) const;
   ControlFrame frame_;                   // the last step's
   std::vector<int> cleared_;             // during a step: failures a transition cleared

@@ -96,6 +96,13 @@ void SystemsSession::record_scores() {
     score_log_->write(score_event_json(*procedures_, e) + "\n");
 }
 
+void SystemsSession::reset_to_start() {
+  systems_.reset_to_start();
+  if (procedures_) procedures_->reset();
+  if (score_log_)
+    score_log_->write("{\"t_ns\":" + std::to_string(systems_.state().time_ns) + ",\"event\":\"reset\"}\n");
+}
+
 std::optional<SystemsEvent> SystemsSession::set_failure(int failure, bool inserted) {
   auto e = systems_.set_failure(failure, inserted);
   if (e) record(*e);

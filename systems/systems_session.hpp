@@ -60,6 +60,9 @@ class SystemsSession {
   std::optional<SystemsEvent> set_failure(int failure, bool inserted);
   // Continues from a saved state (after kill -9).
   void restore(const SystemsState& state) { systems_.restore(state); }
+  // An instructor's reset to the start: the systems as they start and the scoring from nothing
+  // (recorded as events in procedure_events.jsonl and the log); the time goes on.
+  void reset_to_start();
   // The lesson's scoring; null without a lesson.
   ProcedureRunner* procedures() { return procedures_.get(); }
   const ProcedureRunner* procedures() const { return procedures_.get(); }

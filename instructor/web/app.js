@@ -7,6 +7,7 @@
 //        GET  view.png             the newest left-eye preview (503: none yet)
 //        POST api/sim              {command, checkpoint?} -> {seq}; acked in state sim.last_ack
 //        POST api/control          {control_id, position} -> {seq}
+//        POST api/failure          {failure, inserted} -> {seq}; acked as a "failure" event
 //
 // What tests read (tests/integration/instructor_browser_test.py), besides the texts:
 //   #conn[data-conn]            "live" | "disconnected"
@@ -18,6 +19,11 @@
 //                               button.set-position[data-position] (.current on the current one)
 //   #events li[data-seq][data-kind]
 //   #view[data-loaded]          how many frames have been shown
+//   #systems-time[data-sim-time]   the systems' time ("" without a systems node)
+//   #gauges .gauge[data-system]    data-value; #gear-nose/-left/-right[data-lamp] green|red|off
+//   #failures tr[data-failure]     data-inserted; button.insert, button.clear
+//   #procedures .procedure[data-name]  data-state, data-errors, data-started-s; its
+//                               li.step[data-status] (pending | done | missed), data-flags
 'use strict';
 
 const STATE_PERIOD_MS = 250;
@@ -411,6 +417,169 @@ async function pollEvents() {
   setTimeout(pollEvents, again ? 0 : EVENTS_PERIOD_MS);
 }
 
+// ---- the aircraft: gauges, gear lights, annunciators ----------------------------------------------
+
+// The readouts the page shows, if the aircraft has them (config/aircraft.yaml's names).
+const GAUGES = [
+  {system: 'engine', label: 'engine'},
+  {system: 'rpm', label: 'RPM', digits: 0, max: 110},
+  {system: 'egt', label: 'EGT', digits: 0, max: 900},
+  {system: 'fuel_flow', label: 'fuel flow', digits: 1, max: 70},
+  {system: 'flap_deg', label: 'flaps', digits: 0, max: 40},
+  {system: 'heading_bug_deg', label: 'hdg bug', digits: 0},
+  {system: 'bus', label: 'bus', words: ['off', 'on']},
+];
+
+function renderSystems(systems) {
+  const time = $('systems-time');
+  if (!systems || !systems.values) {
+    setText(time, 'no systems node');
+    time.dataset.simTime = '';
+    return;
+  }
+  setText(time, `at ${seconds(systems.sim_time_s)}`);
+  time.dataset.simTime = isNum(systems.sim_time_s) ? String(systems.sim_time_s) : '';
+  const values = systems.values;
+  const box = $('gauges');
+  for (const g of GAUGES) {
+    const v = values[g.system];
+    if (!v) continue;
+    let el = box.querySelector(`[data-system="${g.system}"]`);
+    if (!el) {
+      el = document.createElement('div');
+      el.className = 'gauge';
+      el.dataset.system = g.system;
+      el.innerHTML = '<span class="label"></span><span class="value"></span><span class="bar"><span></span></span>';
+      el.querySelector('.label').textContent = g.label;
+      box.append(el);
+    }
+    let text = '—';
+    if (v.state) text = v.state;
+    else if (g.words && isNum(v.value)) text = g.words[v.value ? 1 : 0];
+    else if (isNum(v.value)) text = `${v.value.toFixed(g.digits || 0)}${v.unit ? ' ' + v.unit : ''}`;
+    setText(el.querySelector('.value'), text);
+    el.dataset.value = isNum(v.value) ? String(v.value) : '';
+    const fill = el.querySelector('.bar span');
+    fill.style.width = g.max && isNum(v.value) ? `${Math.max(0, Math.min(100, 100 * v.value / g.max))}%` : '0';
+  }
+  const lamp = (id, on, colour) => {
+    const el = $(id);
+    const word = on ? colour : 'off';
+    el.dataset.lamp = word;
+    el.className = `lamp ${word}` + (id === 'master-caution' ? ' caution' : id === 'gear-horn' ? ' warning' : '');
+  };
+  const lit = (name) => values[name] && values[name].value > 0;
+  for (const leg of ['nose', 'left', 'right']) {
+    const red = lit(`gear_red_${leg}`);
+    lamp(`gear-${leg}`, red || lit(`gear_green_${leg}`), red ? 'red' : 'green');
+  }
+  lamp('master-caution', lit('master_caution_light'), 'amber');
+  lamp('gear-horn', lit('gear_horn'), 'red');
+  const ul = $('annunciators');
+  const lights = Object.keys(values).filter((n) => n.startsWith('ann_'));
+  const items = lights.map((n) => {
+    let li = ul.querySelector(`[data-system="${n}"]`);
+    if (!li) {
+      li = document.createElement('li');
+      li.dataset.system = n;
+      li.textContent = n.slice(4).replace(/_/g, ' ').toUpperCase();
+    }
+    li.classList.toggle('lit', lit(n));
+    return li;
+  });
+  placeRows(ul, items);
+}
+
+// ---- failures --------------------------------------------------------------------------------
+
+const failureRows = new Map();   // name -> tr
+
+function renderFailures(failures) {
+  const rows = failures.map((f) => {
+    let tr = failureRows.get(f.name);
+    if (!tr) {
+      tr = document.createElement('tr');
+      tr.dataset.failure = f.name;
+      const name = cell();
+      name.textContent = f.text || f.name;
+      name.title = f.name;
+      const state = cell('state');
+      const buttons = cell();
+      for (const [cls, label, inserted] of [['insert', 'Insert', true], ['clear', 'Clear', false]]) {
+        const b = document.createElement('button');
+        b.type = 'button';
+        b.className = cls;
+        b.textContent = label;
+        b.addEventListener('click', () => sendFailure(f.name, inserted));
+        buttons.append(b);
+      }
+      tr.append(name, state, buttons);
+      failureRows.set(f.name, tr);
+    }
+    tr.dataset.inserted = f.inserted ? 'true' : 'false';
+    tr.classList.toggle('inserted', !!f.inserted);
+    setText(tr.querySelector('.state'), f.inserted ? 'INSERTED' : 'clear');
+    return tr;
+  });
+  placeRows($('failures').querySelector('tbody'), rows);
+}
+
+async function sendFailure(name, inserted) {
+  const status = $('failure-status');
+  try {
+    const reply = await postJson('api/failure', {failure: name, inserted});
+    setText(status, `${inserted ? 'insert' : 'clear'} ${name}: sent (#${reply.seq})`);
+  } catch (e) {
+    setText(status, `${inserted ? 'insert' : 'clear'} ${name}: ${e.message}`);
+  }
+}
+
+// ---- procedures ------------------------------------------------------------------------------
+
+function stepFlags(step) {
+  return ['out_of_order', 'late', 'undone'].filter((k) => step[k]).join(' ');
+}
+
+function renderProcedures(procedures) {
+  const list = (procedures && procedures.list) || [];
+  setText($('lesson'), procedures && procedures.lesson ? procedures.lesson : 'no lesson');
+  const box = $('procedures');
+  const blocks = list.map((p) => {
+    let div = box.querySelector(`.procedure[data-name="${p.name}"]`);
+    if (!div) {
+      div = document.createElement('div');
+      div.className = 'procedure';
+      div.dataset.name = p.name;
+      div.innerHTML = '<h3><span class="title"></span> <span class="badge"></span> <span class="errors"></span></h3><ol class="steps"></ol>';
+      setText(div.querySelector('.title'), p.title);
+    }
+    div.dataset.state = p.state;
+    div.dataset.errors = String(p.errors);
+    div.dataset.startedS = isNum(p.started_s) ? String(p.started_s) : '';
+    const badge = div.querySelector('.badge');
+    setText(badge, p.state);
+    badge.className = `badge ${p.state}`;
+    setText(div.querySelector('.errors'), p.state === 'waiting' ? '' :
+      `${p.errors} error${p.errors === 1 ? '' : 's'}` + (isNum(p.started_s) && isNum(p.ended_s) ?
+        ` · ${(p.ended_s - p.started_s).toFixed(1)} s` : ''));
+    const ol = div.querySelector('.steps');
+    const items = p.steps.map((st, i) => {
+      const li = ol.children[i] || document.createElement('li');
+      li.className = `step ${st.status}`;
+      li.dataset.status = st.status;
+      li.dataset.flags = stepFlags(st);
+      const when = st.status === 'done' && isNum(st.done_s) ?
+        ` — ${st.done_s.toFixed(2)} s (+${isNum(st.since_previous_s) ? st.since_previous_s.toFixed(2) : '?'} s)` : '';
+      const flags = stepFlags(st) ? ` [${stepFlags(st).replace(/_/g, ' ')}]` : '';
+      setText(li, `${st.item}: ${st.action} — ${st.status}${when}${flags}`);
+      return li;
+    });
+    placeRows(ol, items);
+    return div;
+  });
+  placeRows(box, blocks);
+}
+
 // ---- state polling ---------------------------------------------------------------------------
 
 async function pollState() {
@@ -421,6 +590,9 @@ async function pollState() {
     renderHands(state.hands || []);
     renderControls(state.controls || []);
     renderViewCaption(state.view);
+    renderSystems(state.systems);
+    renderFailures(state.failures || []);
+    renderProcedures(state.procedures);
     lastStateOkMs = performance.now();
   } catch (e) {
     lastStateError = e.message;

@@ -60,6 +60,8 @@ class Node {
         info_reader_(participant.make_reader<cockpit::ControlInfo>("state")),
         frame_reader_(participant.make_reader<cockpit::ControlFrame>("event")),
         failure_reader_(participant.make_reader<cockpit::FailureCommand>("command")),
+        sim_reader_(participant.make_reader<cockpit::SimCommand>("command")),
+        sim_ack_writer_(participant.make_writer<cockpit::SimAck>("event")),
         info_writer_(participant.make_writer<cockpit::SystemsInfo>("state")),
         state_writer_(participant.make_writer<cockpit::SystemsState>("state")),
         event_writer_(participant.make_writer<cockpit::SystemsEvent>("event")),
@@ -86,6 +88,7 @@ class Node {
       if (session_) {
         drain_waiting();
         take_failure_commands();
+        take_sim_commands();
         maybe_checkpoint(false);
       }
       if (now >= next_status_ns) {
@@ -280,6 +283,35 @@ class Node {
     }
   }
 
+  // The instructor's reset to the start: the systems and the scores start again (the physics
+  // puts the controls back at the same time). Other sim commands are the physics' and the glove
+  // drivers': frozen, the physics sends no frames, and the systems wait.
+  void take_sim_commands() {
+    cockpit::SimCommand cmd;
+    while (sim_reader_.take(cmd)) {
+      if (cmd.kind() != cockpit::RESET_TO_START) continue;
+      session_->reset_to_start();
+      const Systems& s = session_->systems();
+      spdlog::info("sim command from '{}': reset to the start at {:.3f} s", cmd.source().to_string(),
+                   static_cast<double>(s.state().time_ns) * 1e-9);
+      publish_state(s);
+      if (session_->procedures() != nullptr)
+        for (std::size_t p = 0; p < session_->procedures()->scores().size(); ++p)
+          publish_score(*session_->procedures(), p);
+      cockpit::SimAck ack;
+      ack.command_seq(cmd.seq());
+      ack.command_source(cmd.source());
+      ack.kind(cmd.kind());
+      ack.node_name(clipped(options_.node_name, 32));
+      ack.accepted(true);
+      ack.detail("systems and procedure scores back to the start");
+      ack.sim_time_ns(s.state().time_ns);
+      ack.frozen(false);
+      sim_ack_writer_.write(ack);
+      maybe_checkpoint(true);
+    }
+  }
+
   void maybe_checkpoint(bool force) {
     if (options_.checkpoint_path.empty() || !session_->run_started()) return;
     const int64_t t = session_->systems().state().time_ns;
@@ -386,6 +418,8 @@ class Node {
   Reader<cockpit::ControlInfo> info_reader_;
   Reader<cockpit::ControlFrame> frame_reader_;
   Reader<cockpit::FailureCommand> failure_reader_;
+  Reader<cockpit::SimCommand> sim_reader_;
+  Writer<cockpit::SimAck> sim_ack_writer_;
   Writer<cockpit::SystemsInfo> info_writer_;
   Writer<cockpit::SystemsState> state_writer_;
   Writer<cockpit::SystemsEvent> event_writer_;

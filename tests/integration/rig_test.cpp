@@ -37,9 +37,11 @@ namespace {
 std::string config(const std::string& name) { return config_path(name); }
 
 // A rig file for this test's domain; `glove` is the glove driver's node block.
-// With `systems`, a systems node too, which the lockstep physics waits for.
+// With `systems`, a systems node too (with `systems_args` added), which the lockstep physics
+// waits for.
 std::string rig_yaml(const std::string& domain, bool lockstep, const std::string& glove,
-                     const std::string& log = "reach_grasp_lift_release", bool systems = false) {
+                     const std::string& log = "reach_grasp_lift_release", bool systems = false,
+                     const std::string& systems_args = "") {
   std::string text = "domain: " + domain + "\nqos: " + config("qos.xml") +
                      "\nparticipant: loopback\nlog: " + config("glove_logs/" + log + ".csv") +
                      "\nnodes:\n";
@@ -48,7 +50,7 @@ std::string rig_yaml(const std::string& domain, bool lockstep, const std::string
           (systems ? ", --wait-frame-readers, '1'" : "") + "], required: true, start_delay_s: 0.3}\n";
   if (systems)
     text += "  - {name: systems_node, command: [systems_node, --aircraft, " + config("aircraft.yaml") +
-            "], required: false, start_delay_s: 0.1}\n";
+            systems_args + "], required: false, start_delay_s: 0.1}\n";
   text += "  - {name: image_generator, command: [image_generator, --hmd, " + config("hmd.yaml") +
           ", --fps, '30', --out, '{out}/frames', --snapshot-every, '15', --video, "
           "'{out}/rig.mp4'], required: false, "
@@ -336,6 +338,53 @@ TEST_F(RigTest, FullRigReportsAControlLogsEventsAsTheOfflineRunnerWritesThem) {
   EXPECT_EQ(systems.value("heading_bug_deg", ""), bug_text) << summary;
   EXPECT_EQ(systems.value("nav_display", ""), "-1") << summary;  // the avionics master is off
   EXPECT_EQ(systems.value("gear_left", ""), "down") << summary;
+}
+
+// The procedures trainer's rig (config/rig_procedures.yaml's nodes) on the flaps-before-gear log:
+// summary.json has the lesson's score as systems_node --offline gives it (tests/data/procedures/
+// errors.json), and report.html (with report.png when Chromium is here) shows it.
+TEST_F(RigTest, ProceduresRigScoresTheLessonAndWritesItsReport) {
+  if (sanitized()) GTEST_SKIP() << "43 s of lockstep replay with rendering: the normal build's";
+  const std::string glove =
+      "  - {name: glove_driver, command: [glove_driver, --source, replay, --log, '{log}', "
+      "--lockstep, --rate, '0'], required: true, ends_run: true}\n";
+  ChildProcess rig = launch(rig_yaml(domain_, true, glove, "procedures_errors_right", true,
+                                     ", --lesson, " + config("lessons/default.yaml")));
+  const int code = rig.wait(150 * kSecond);
+  if (code == -1) rig.stop();
+  ASSERT_EQ(code, 0) << launcher_log();
+  const Json summary = parse_summary(read_text(dir_ + "/out/summary.json"));
+  const Json procedures = summary.value("procedures", Json::object());
+  const Json expected = parse_summary(read_text(source_dir() + "/tests/data/procedures/errors.json"));
+  EXPECT_EQ(procedures.value("complete", -1), expected.value("complete", -2)) << procedures.dump(1);
+  EXPECT_EQ(procedures.value("errors", -1), expected.value("errors", -2));
+  const Json list = procedures.value("list", Json::array());
+  const Json want = expected.value("procedures", Json::array());
+  ASSERT_EQ(list.size(), want.size());
+  for (std::size_t p = 0; p < list.size(); ++p) {
+    SCOPED_TRACE(want[p].value("name", ""));
+    EXPECT_EQ(list[p].value("state", ""), want[p].value("state", "?"));
+    EXPECT_EQ(list[p].value("errors", -1), want[p].value("errors", -2));
+    const Json steps = list[p].value("steps", Json::array());
+    const Json want_steps = want[p].value("steps", Json::array());
+    ASSERT_EQ(steps.size(), want_steps.size());
+    for (std::size_t i = 0; i < steps.size(); ++i) {
+      EXPECT_EQ(steps[i].value("status", ""), want_steps[i].value("status", "?")) << i;
+      EXPECT_EQ(steps[i].value("out_of_order", false), want_steps[i].value("out_of_order", true)) << i;
+      if (want_steps[i]["done_s"].is_number()) {  // the topic's ns, the file's ms
+        EXPECT_NEAR(steps[i].value("done_s", -1.0), want_steps[i]["done_s"].get<double>(), 1e-9) << i;
+      }
+    }
+  }
+  const std::string html = read_text(dir_ + "/out/report.html");
+  EXPECT_NE(html.find("data-complete=\"2\" data-errors=\"2\""), std::string::npos) << html.substr(0, 2000);
+  EXPECT_NE(html.find("<td class=\"missed\">missed</td>"), std::string::npos);
+  EXPECT_NE(html.find(">out of order</td>"), std::string::npos);
+  if (std::ifstream("/usr/bin/chromium").good()) {
+    const std::string png = read_text(dir_ + "/out/report.png");
+    ASSERT_GT(png.size(), 1000u) << launcher_log();
+    EXPECT_EQ(png.substr(1, 3), "PNG");
+  }
 }
 
 TEST_F(RigTest, KilledImageGeneratorIsRestartedAndRendersAgainWithinTwoSeconds) {

@@ -175,5 +175,97 @@ TEST(StationModel, TheViewIsTheNewestPicture) {
   EXPECT_EQ(view["width_px"], 640);
 }
 
+// The aircraft (systems_node): each system's value, a machine's with its state's name; the
+// failures and whether each is inserted; the lesson's procedures as their scores say; failure
+// changes and acknowledgements as events.
+TEST(StationModel, SystemsFailuresAndTheLessonsScoreAreShown) {
+  StationModel model;
+  EXPECT_FALSE(model.knows_failures());
+  EXPECT_TRUE(model.state_json(0)["systems"].is_null());
+  cockpit::SystemsInfo info;
+  cockpit::SystemInfo rpm;
+  rpm.name("rpm");
+  rpm.kind(cockpit::SYSTEM_LAG);
+  rpm.unit("%");
+  cockpit::SystemInfo engine;
+  engine.name("engine");
+  engine.kind(cockpit::SYSTEM_MACHINE);
+  engine.state_names("stopped|cranking|running|");
+  info.systems().push_back(rpm);
+  info.systems().push_back(engine);
+  cockpit::FailureInfo fire;
+  fire.name("engine_fire");
+  fire.text("Engine fire");
+  info.failures().push_back(fire);
+  model.on_systems_info(info);
+  cockpit::SystemsState state;
+  state.sim_time_ns(2 * kSecond);
+  state.values().push_back(22.5);
+  state.values().push_back(1.0);
+  state.failures().push_back(true);
+  model.on_systems_state(state);
+  EXPECT_TRUE(model.knows_failures());
+  EXPECT_TRUE(model.has_failure("engine_fire"));
+  EXPECT_FALSE(model.has_failure("fire"));
+  auto j = model.state_json(0);
+  EXPECT_DOUBLE_EQ(j["systems"]["sim_time_s"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(j["systems"]["values"]["rpm"]["value"].get<double>(), 22.5);
+  EXPECT_EQ(j["systems"]["values"]["rpm"]["unit"], "%");
+  EXPECT_EQ(j["systems"]["values"]["engine"]["state"], "cranking");
+  ASSERT_EQ(j["failures"].size(), 1u);
+  EXPECT_EQ(j["failures"][0]["inserted"], true);
+
+  cockpit::SystemsEvent cleared;
+  cleared.kind(cockpit::FAILURE_CLEARED);
+  cleared.name("engine_fire");
+  cleared.sim_time_ns(3 * kSecond);
+  model.on_systems_event(cleared);
+  EXPECT_EQ(model.state_json(0)["failures"][0]["inserted"], false);
+  cockpit::FailureAck ack;
+  ack.failure("engine_fire");
+  ack.accepted(true);
+  ack.detail("inserted");
+  ack.command_seq(4);
+  ack.command_source("instructor_station");
+  model.on_failure_ack(ack);
+  const auto events = model.events_json(-1)["events"];
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0]["text"], "FAILURE engine_fire cleared");
+  EXPECT_EQ(events[1]["text"], "FAILURE engine_fire: inserted (#4 from instructor_station)");
+
+  cockpit::ProcedureScore score;
+  score.index(1);
+  score.count(2);
+  score.lesson("Start and land");
+  score.name("engine_start");
+  score.title("Engine start");
+  score.state(cockpit::PROCEDURE_RUNNING);
+  score.started_time_ns(6 * kSecond);
+  score.ended_time_ns(-1);
+  score.errors(1);
+  cockpit::ProcedureStepScore step;
+  step.item("Start guard");
+  step.action("OPEN");
+  step.status(cockpit::STEP_DONE);
+  step.out_of_order(true);
+  step.done_time_ns(6 * kSecond);
+  step.since_previous_ns(0);
+  score.steps().push_back(step);
+  model.on_procedure_score(score);
+  j = model.state_json(0)["procedures"];
+  EXPECT_EQ(j["lesson"], "Start and land");
+  ASSERT_EQ(j["list"].size(), 1u);
+  EXPECT_EQ(j["list"][0]["state"], "running");
+  EXPECT_EQ(j["list"][0]["errors"], 1);
+  EXPECT_TRUE(j["list"][0]["ended_s"].is_null());
+  EXPECT_EQ(j["list"][0]["steps"][0]["status"], "done");
+  EXPECT_EQ(j["list"][0]["steps"][0]["out_of_order"], true);
+  // another lesson of one procedure: the second is dropped
+  score.count(1);
+  score.index(0);
+  model.on_procedure_score(score);
+  EXPECT_EQ(model.state_json(0)["procedures"]["list"].size(), 1u);
+}
+
 }  // namespace
 }  // namespace vcockpit::instructor
