@@ -54,6 +54,10 @@ int main(int argc, char** argv) {
   app.add_flag("--tracked-joints", options.show_tracked_joints,
                "draw what a hand tracker saw (cockpit/tracked_joints, from glove_driver --source "
                "joints) as small dots beside each hand");
+  app.add_option("--instruments", options.instruments_path,
+                 "draw the panel's live instruments (config/instruments.yaml) from the aircraft's "
+                 "systems (cockpit/systems_state)")
+      ->check(CLI::ExistingFile);
   app.add_option("--node-name", options.node_name, "name on cockpit/node_status")
       ->capture_default_str();
   std::string video_view = "left";

@@ -1,5 +1,8 @@
 #include "image_generator/node/ig_loop.hpp"
 
+#include "image_generator/node/instrument_values.hpp"
+#include "image_generator/node/instruments_yaml.hpp"
+
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
@@ -54,6 +57,15 @@ class ImageGenerator {
         domain_id_(participant.domain_id()),
         hmd_(hmd.hmd),
         participant_(participant) {
+    if (!options.instruments_path.empty()) {
+      instruments_ = load_instruments(options.instruments_path);
+      instrument_values_.emplace(*instruments_);
+      systems_info_reader_.emplace(participant.make_reader<cockpit::SystemsInfo>("state"));
+      systems_state_reader_.emplace(participant.make_reader<cockpit::SystemsState>("state"));
+      spdlog::info("{}: {} gauges, {} heading displays, {} lamps", options.instruments_path,
+                   instruments_->gauges.size(), instruments_->headings.size(),
+                   instruments_->lamps.size());
+    }
     cache_.set_ghost_threshold_m(options.ghost_threshold_m);
     cache_.set_show_tracked_joints(options.show_tracked_joints);
     if (options.show_tracked_joints)
@@ -73,6 +85,15 @@ class ImageGenerator {
     while (head_reader_.take(head_)) X_GHead_ = to_eigen(head_.X_GHead());
     while (control_info_reader_.take(control_info_)) cache_.on_control_info(control_info_);
     while (control_reader_.take(control_)) cache_.on_control_state(control_);
+    if (instrument_values_) {
+      while (systems_info_reader_->take(systems_info_)) {
+        instrument_values_->on_info(systems_info_);
+        for (const std::string& name : instrument_values_->unknown())
+          spdlog::warn("{}: the systems node has no system '{}': its instrument rests",
+                       options_.instruments_path, name);
+      }
+      while (systems_state_reader_->take(systems_state_)) instrument_values_->on_state(systems_state_);
+    }
   }
   void on_hand_info();
   bool wait_for_scene();
@@ -90,6 +111,12 @@ class ImageGenerator {
   Reader<cockpit::ObjectState> state_reader_;
   Reader<cockpit::HandState> hand_reader_;
   std::optional<Reader<cockpit::TrackedJoints>> joints_reader_;  // with show_tracked_joints
+  std::optional<render::InstrumentsSpec> instruments_;             // with instruments_path
+  std::optional<InstrumentValues> instrument_values_;
+  std::optional<Reader<cockpit::SystemsInfo>> systems_info_reader_;
+  std::optional<Reader<cockpit::SystemsState>> systems_state_reader_;
+  cockpit::SystemsInfo systems_info_;
+  cockpit::SystemsState systems_state_;
   Reader<cockpit::HeadPose> head_reader_;
   Reader<cockpit::ControlInfo> control_info_reader_;
   Reader<cockpit::ControlState> control_reader_;
@@ -383,6 +410,7 @@ int ImageGenerator::run() {
     // the background first (the static cockpit and the head: copied, or redrawn if they changed)
     drain();
     cache_.build_fixed(fixed_);
+    if (instruments_) render::append_instrument_faces(*instruments_, fixed_);
     renderer->begin_frame(fixed_, X_GHead_);
     // then, as late as possible, the newest hands and objects: latched here, rasterised at the
     // end_frame() flush a few ms later
@@ -390,6 +418,8 @@ int ImageGenerator::run() {
     const int64_t latch_ns = monotonic_now_ns();
     const int64_t display_ns = latch_ns + expected_tail_ns_;  // when this frame will be done
     cache_.build_moving(instances_, options_.predict_hand ? display_ns : 0);
+    if (instruments_)
+      render::append_instrument_indications(*instruments_, instrument_values_->values(), instances_);
     renderer->draw_moving(instances_);
     renderer->end_frame();
     const int64_t end_ns = monotonic_now_ns();

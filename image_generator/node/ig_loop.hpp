@@ -37,6 +37,7 @@ struct IgOptions {
   bool background_cache = true;  // the static cockpit drawn once (stereo_renderer.hpp)
   bool predict_hand = false;     // hands extrapolated to the frame's end (hand_prediction.hpp)
   std::string frame_log;         // per frame and hand: stamps and index fingertips (CSV); "": none
+  std::string instruments_path;  // the panel's live instruments (config/instruments.yaml); "": none
 };
 
 // Exit codes: 0 done, 3 no scene arrived in time, 4 rendering failed.

@@ -6,6 +6,7 @@
 #include "image_generator/render/hmd_config.hpp"       // IWYU pragma: export
 #include "image_generator/render/image_scale.hpp"      // IWYU pragma: export
 #include "image_generator/render/instance.hpp"         // IWYU pragma: export
+#include "image_generator/render/instrument_panel.hpp"  // IWYU pragma: export
 #include "image_generator/render/png_writer.hpp"       // IWYU pragma: export
 #include "image_generator/render/render_error.hpp"     // IWYU pragma: export
 #include "image_generator/render/stereo_renderer.hpp"  // IWYU pragma: export

@@ -161,7 +161,7 @@ check "[ $status -ne 0 ] && grep -q 'cannot create a writer on cockpit/hand_samp
 
 echo "== the default rig secured (rig_launcher --participant secure --pki, as scripts/rig --secure)"
 mkdir -p "$tmp/rigcfg"
-for f in qos.xml cockpit.yaml hmd.yaml hand.yaml glove_logs; do ln -s "$src/config/$f" "$tmp/rigcfg/$f"; done
+for f in qos.xml cockpit.yaml hmd.yaml hand.yaml aircraft.yaml instruments.yaml glove_logs; do ln -s "$src/config/$f" "$tmp/rigcfg/$f"; done
 sed -e "s/^domain: .*/domain: $domain/" -e "s/--rate, \"1\"/--rate, \"$rate\"/" \
   "$src/config/rig.yaml" > "$tmp/rigcfg/rig.yaml"
 check "grep -q -- '--rate, \"$rate\"' '$tmp/rigcfg/rig.yaml'" "the rig replays at rate $rate"

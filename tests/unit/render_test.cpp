@@ -876,5 +876,74 @@ TEST(WritePng, FailureNamesThePathAndLeavesNoPartial) {
                std::invalid_argument);
 }
 
+
+// ---- the panel's instruments (render/instrument_panel.hpp) ---------------------------------------
+
+TEST(InstrumentPanel, NeedleAngleIsLinearInItsRangeAndClamped) {
+  GaugeSpec g;
+  g.min = 0;
+  g.max = 100;
+  g.start_deg = -135;
+  g.end_deg = 135;
+  EXPECT_DOUBLE_EQ(needle_angle_deg(g, 0), -135);
+  EXPECT_DOUBLE_EQ(needle_angle_deg(g, 50), 0);
+  EXPECT_DOUBLE_EQ(needle_angle_deg(g, 75), 67.5);
+  EXPECT_DOUBLE_EQ(needle_angle_deg(g, 250), 135);
+  EXPECT_DOUBLE_EQ(needle_angle_deg(g, -5), -135);
+  EXPECT_DOUBLE_EQ(needle_angle_deg(g, std::nan("")), -135);  // not known: at rest
+}
+
+// A gauge and a lamp on a face 0.6 m ahead: the needle is where its value puts it and nowhere
+// else, the lamp is bright only when lit, and neither redraws the cached static layer.
+TEST_F(RenderTest, InstrumentNeedleAndLampFollowTheirValuesInTheMovingLayer) {
+  InstrumentsSpec spec;
+  spec.face.X_GF.linear().col(0) = Eigen::Vector3d(0, -1, 0);  // the pilot's right
+  spec.face.X_GF.linear().col(1) = Eigen::Vector3d(0, 0, 1);   // up
+  spec.face.X_GF.linear().col(2) = Eigen::Vector3d(-1, 0, 0);  // toward the pilot
+  spec.face.X_GF.translation() = Eigen::Vector3d(0.6, 0.0, kHeadHeightM);
+  GaugeSpec gauge;
+  gauge.system = "rpm";
+  gauge.radius_m = 0.05;
+  spec.gauges.push_back(gauge);
+  LampSpec lamp;
+  lamp.system = "fire";
+  lamp.at_m = {0.09, 0.0};
+  lamp.size_m = {0.03, 0.02};
+  lamp.rgb = {0.95f, 0.1f, 0.1f};
+  spec.lamps.push_back(lamp);
+  EXPECT_EQ(spec.systems(), (std::vector<std::string>{"rpm", "fire"}));
+
+  // a point on the needle's line for a value: 60 % out along it, on top of it
+  const auto needle_point = [&](double value) {
+    const double a = needle_angle_deg(gauge, value) * M_PI / 180.0;
+    return Eigen::Vector3d(spec.face.at({0.6 * 0.05 * std::sin(a), 0.6 * 0.05 * std::cos(a)}) *
+                           Eigen::Vector3d(0, 0, 0.0095));
+  };
+  const auto is_needle = [](const Rgb& c) { return c.r > 150 && c.g > 60 && c.b < 80 && c.r > c.g; };
+  const auto frame = [&](double rpm, double fire) {
+    std::vector<Instance> all;
+    append_instrument_faces(spec, all);
+    for (Instance& i : all) i.fixed = true;
+    append_instrument_indications(spec, {rpm, fire}, all);
+    renderer().render(all, head_pose());
+    EXPECT_EQ(renderer().gl_error_count(), 0u);
+  };
+  const Eigen::Vector3d lamp_centre = spec.face.at(lamp.at_m) * Eigen::Vector3d(0, 0, 0.004);
+  frame(0.0, 0.0);
+  const uint64_t redraws = renderer().background_redraws();
+  const Rgb lamp_off = pixel_at(renderer(), Eye::kLeft, projected(config(), Eye::kLeft, lamp_centre));
+  EXPECT_TRUE(is_needle(pixel_at(renderer(), Eye::kLeft, projected(config(), Eye::kLeft, needle_point(0)))));
+  EXPECT_FALSE(is_needle(pixel_at(renderer(), Eye::kLeft, projected(config(), Eye::kLeft, needle_point(100)))));
+  frame(100.0, 1.0);
+  EXPECT_FALSE(is_needle(pixel_at(renderer(), Eye::kLeft, projected(config(), Eye::kLeft, needle_point(0)))));
+  for (const Eye eye : {Eye::kLeft, Eye::kRight})
+    EXPECT_TRUE(is_needle(pixel_at(renderer(), eye, projected(config(), eye, needle_point(100)))));
+  const Rgb lamp_on = pixel_at(renderer(), Eye::kLeft, projected(config(), Eye::kLeft, lamp_centre));
+  EXPECT_GT(lamp_on.r, 2 * lamp_off.r + 40) << lamp_off << " -> " << lamp_on;
+  frame(50.0, 0.0);
+  EXPECT_TRUE(is_needle(pixel_at(renderer(), Eye::kLeft, projected(config(), Eye::kLeft, needle_point(50)))));
+  EXPECT_EQ(renderer().background_redraws(), redraws) << "the faces stay cached as values change";
+}
+
 }  // namespace
 }  // namespace vcockpit::render

@@ -1,0 +1,89 @@
+// config/instruments.yaml (image_generator --instruments): it loads, every system it draws is one
+// of config/aircraft.yaml's, its face frame is the instrument panel's; bad files are refused with
+// file, line and key; an instrument whose system the systems node lacks rests (NaN).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <set>
+#include <string>
+
+#include "common/config_error.hpp"
+#include "common/yaml_config.hpp"
+#include "image_generator/node/instrument_values.hpp"
+#include "image_generator/node/instruments_yaml.hpp"
+#include "systems/config/systems_yaml.hpp"
+
+namespace vcockpit {
+namespace {
+
+std::string source_dir() {
+  const char* dir = std::getenv("VCOCKPIT_SOURCE_DIR");
+  return dir != nullptr ? dir : ".";
+}
+
+TEST(InstrumentsYaml, TheBundledPanelDrawsTheDefaultAircraftsSystems) {
+  const render::InstrumentsSpec spec = load_instruments(source_dir() + "/config/instruments.yaml");
+  EXPECT_EQ(spec.gauges.size(), 4u);
+  EXPECT_EQ(spec.headings.size(), 1u);
+  EXPECT_EQ(spec.lamps.size(), 10u);
+  const systems::SystemsModel aircraft = load_systems_model(source_dir() + "/config/aircraft.yaml");
+  std::set<std::string> names;
+  for (const systems::Element& e : aircraft.elements) names.insert(e.name);
+  for (const std::string& s : spec.systems()) EXPECT_TRUE(names.count(s)) << s;
+  // the face: the instrument panel's (its slab's face, tilted 15 deg back, facing the pilot)
+  const Eigen::Vector3d normal = spec.face.X_GF.linear().col(2);
+  EXPECT_NEAR(normal.x(), -std::cos(15 * M_PI / 180), 1e-5);
+  EXPECT_NEAR(normal.z(), std::sin(15 * M_PI / 180), 1e-5);
+}
+
+std::string error_of(const std::string& yaml) {
+  try {
+    parse_instruments(ConfigNode::load_string(yaml, "instruments.yaml"));
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "loaded";
+}
+
+TEST(InstrumentsYaml, BadFilesNameTheLineAndKey) {
+  const std::string panel = "panel: {origin: [0, 0, 1], right: [0, -1, 0], up: [0, 0, 1]}\n";
+  EXPECT_EQ(error_of("panel: {origin: [0, 0, 1], right: [0, -1, 0], up: [0, 1, 0]}\n"),
+            "instruments.yaml:1:8: panel: right and up must be unit vectors at right angles");
+  EXPECT_EQ(error_of(panel + "gauges:\n  - {system: rpm, at: [0, 0], range: [10, 0]}\n"),
+            "instruments.yaml:3:38: gauges[0].range: [min, max] with max > min");
+  EXPECT_EQ(error_of(panel + "gauges:\n  - {system: rpm, at: [0, 0], range: [0, 1], radius: 2}\n"),
+            "instruments.yaml:3:54: gauges[0].radius: must be within 0..1 m");
+  EXPECT_EQ(error_of(panel + "lamps:\n  - {system: fire, at: [0, 0], color: [2, 0, 0]}\n"),
+            "instruments.yaml:3:39: lamps[0].color: colour components are within 0..1");
+  EXPECT_EQ(error_of(panel + "dials: []\n"),
+            "instruments.yaml:2:1: dials: unknown key 'dials' (allowed: panel, gauges, headings, lamps)");
+}
+
+TEST(InstrumentValues, NamesAreBoundToTheSystemsInfoAndUnknownOnesRest) {
+  render::InstrumentsSpec spec;
+  spec.gauges.push_back({});
+  spec.gauges.back().system = "rpm";
+  spec.lamps.push_back({});
+  spec.lamps.back().system = "no_such_light";
+  image_generator::InstrumentValues values(spec);
+  EXPECT_TRUE(std::isnan(values.values()[0]));
+  cockpit::SystemsInfo info;
+  for (const char* name : {"bus", "rpm"}) {
+    cockpit::SystemInfo si;
+    si.name(name);
+    info.systems().push_back(si);
+  }
+  values.on_info(info);
+  EXPECT_EQ(values.unknown(), std::vector<std::string>{"no_such_light"});
+  cockpit::SystemsState state;
+  state.values().push_back(1.0);
+  state.values().push_back(61.5);
+  values.on_state(state);
+  EXPECT_EQ(values.values()[0], 61.5);
+  EXPECT_TRUE(std::isnan(values.values()[1]));
+}
+
+}  // namespace
+}  // namespace vcockpit
