@@ -330,7 +330,7 @@ TEST_F(RigTest, FullRigReportsAControlLogsEventsAsTheOfflineRunnerWritesThem) {
   ASSERT_EQ(replay.wait(60 * kSecond), 0) << read_text(dir_ + "/systems_offline.log");
   const Json offline_systems = parse_summary(read_text(dir_ + "/systems/systems_summary.json"));
   const Json systems = json.value("systems", Json::object());
-  EXPECT_EQ(systems.size(), 31u) << summary;
+  EXPECT_EQ(systems.size(), 35u) << summary;
   const double bug_deg = offline_systems.value("final", Json::object()).value("heading_bug_deg", -1.0);
   EXPECT_GT(bug_deg, 0.0) << "the knob log turns the heading bug";
   char bug_text[32];

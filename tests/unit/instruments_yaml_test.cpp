@@ -27,7 +27,7 @@ TEST(InstrumentsYaml, TheBundledPanelDrawsTheDefaultAircraftsSystems) {
   const render::InstrumentsSpec spec = load_instruments(source_dir() + "/config/instruments.yaml");
   EXPECT_EQ(spec.gauges.size(), 4u);
   EXPECT_EQ(spec.headings.size(), 1u);
-  EXPECT_EQ(spec.lamps.size(), 10u);
+  EXPECT_EQ(spec.lamps.size(), 14u);
   const systems::SystemsModel aircraft = load_systems_model(source_dir() + "/config/aircraft.yaml");
   std::set<std::string> names;
   for (const systems::Element& e : aircraft.elements) names.insert(e.name);
