@@ -305,7 +305,7 @@ nlohmann::json StationModel::state_json(int64_t now_ns) const {
       nlohmann::json entry = {{"value", std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr)},
                               {"unit", systems_[i].unit}};
       const auto& states = systems_[i].states;
-      if (!states.empty() && v >= 0 && static_cast<std::size_t>(v) < states.size())
+      if (!states.empty() && v >= 0 && v < static_cast<double>(states.size()))
         entry["state"] = states[static_cast<std::size_t>(v)];
       values[systems_[i].name] = entry;
     }

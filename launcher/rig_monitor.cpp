@@ -159,7 +159,7 @@ void RigMonitor::poll() {
     p.lesson = score.lesson().to_string();
     p.name = score.name().to_string();
     p.title = score.title().to_string();
-    p.state = kStates[std::min<int>(static_cast<int>(score.state()), 3)];
+    p.state = kStates[std::clamp<int>(static_cast<int>(score.state()), 0, 3)];
     p.started_s = seconds(score.started_time_ns());
     p.ended_s = seconds(score.ended_time_ns());
     p.errors = score.errors();
@@ -167,7 +167,7 @@ void RigMonitor::poll() {
       SeenProcedure::Step step;
       step.item = st.item().to_string();
       step.action = st.action().to_string();
-      step.status = kStatus[std::min<int>(static_cast<int>(st.status()), 2)];
+      step.status = kStatus[std::clamp<int>(static_cast<int>(st.status()), 0, 2)];
       step.out_of_order = st.out_of_order();
       step.late = st.late();
       step.undone = st.undone();
@@ -248,8 +248,9 @@ std::map<std::string, std::string> RigMonitor::systems_values() const {
     const double v = systems_values_[i];
     const auto& states = systems_[i].states;
     if (!states.empty()) {
-      const auto s = static_cast<std::size_t>(v);
-      out[systems_[i].name] = v >= 0 && s < states.size() ? states[s] : "?";
+      out[systems_[i].name] = v >= 0 && v < static_cast<double>(states.size())
+                                  ? states[static_cast<std::size_t>(v)]
+                                  : "?";
     } else {
       char text[32];
       std::snprintf(text, sizeof text, "%.6g", v);

@@ -214,6 +214,11 @@ std::string write_report(const RunSummary& s, const std::string& out_dir, const 
       "--proxy-server=http://127.0.0.1:9", "--host-resolver-rules=MAP * ~NOTFOUND",
       "--user-data-dir=" + profile, "--window-size=1180," + std::to_string(height),
       "--screenshot=" + partial, "file://" + std::filesystem::absolute(html_path).string()};
+  // everything the child needs is made before fork(): the launcher has DDS threads, and after
+  // fork only async-signal-safe calls are safe
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
   const pid_t pid = fork();
   if (pid == 0) {
     setpgid(0, 0);
@@ -222,12 +227,12 @@ std::string write_report(const RunSummary& s, const std::string& out_dir, const 
       dup2(null, STDOUT_FILENO);
       dup2(null, STDERR_FILENO);
     }
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
+    // none of the launcher's files and sockets (DDS, logs) go with it
+    for (int fd = 3; fd < 1024; ++fd) ::close(fd);
     execv(argv[0], argv.data());
     _exit(127);
   }
+  if (pid > 0) setpgid(pid, pid);  // the group exists before the parent may signal it
   std::string result = html_path;
   if (pid < 0) return result + " (the PNG: cannot start " + chromium + ")";
   int status = 0;
@@ -238,10 +243,9 @@ std::string write_report(const RunSummary& s, const std::string& out_dir, const 
     if (r == pid) done = true;
     else sleep_until_ns(monotonic_now_ns() + 50'000'000);
   }
-  if (!done) {
-    kill(-pid, SIGKILL);
-    waitpid(pid, &status, 0);
-  }
+  // Chromium's helper processes share its group: none outlives the report
+  kill(-pid, SIGKILL);
+  if (!done) waitpid(pid, &status, 0);
   std::filesystem::remove_all(profile, ignored);
   if (done && WIFEXITED(status) && WEXITSTATUS(status) == 0 && std::filesystem::exists(partial)) {
     std::filesystem::rename(partial, png_path, ignored);

@@ -100,8 +100,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1.0, 10000.0) & kFinite)
       ->capture_default_str();
   app.add_option("--control-frame-hz", node_options.control_frame_hz,
-                 "DDS: cockpit/control_frame (the aircraft systems' input) per second of world "
-                 "time; 0: none")
+                 "cockpit/control_frame (the aircraft systems' input) per second of world time, and "
+                 "control_frames.csv's with --out (0: no topic; the file at 100)")
       ->check(CLI::Range(0.0, 10000.0) & kFinite)
       ->capture_default_str();
   app.add_option("--wait-frame-readers", node_options.wait_frame_readers,
@@ -184,6 +184,7 @@ int main(int argc, char** argv) {
     }
     node_options.out_dir = offline_options.out_dir;
     node_options.output_hz = offline_options.output_hz;
+    if (node_options.control_frame_hz > 0) offline_options.control_frame_hz = node_options.control_frame_hz;
     node_options.duration_s = offline_options.duration_s.value_or(0.0);
     if (input_delay_s && node_options.lockstep) {
       throw CLI::ValidationError("--input-delay belongs to real time (lockstep interpolates "

@@ -66,7 +66,18 @@ class ExpressionParser {
   }
   void emit(Op op, double value = 0.0, int name = -1) { out_.code_.push_back({op, value, name}); }
 
+  // Nesting (parentheses, unary operators, selects, function arguments) is bounded: a file of
+  // thousands of "(" must be an error, not a stack overflow.
+  struct Nest {
+    explicit Nest(ExpressionParser& p) : p_(p) {
+      if (++p_.nesting_ > kMaxDepth) p_.fail("nested too deeply");
+    }
+    ~Nest() { --p_.nesting_; }
+    ExpressionParser& p_;
+  };
+
   void select() {
+    const Nest nest(*this);
     logic_or();
     if (accept("?")) {
       select();
@@ -137,6 +148,7 @@ class ExpressionParser {
     }
   }
   void unary() {
+    const Nest nest(*this);
     if (accept("!")) {
       unary();
       emit(Op::kNot);
@@ -224,6 +236,7 @@ class ExpressionParser {
   Expression& out_;
   const std::string& s_;
   std::size_t pos_ = 0;
+  int nesting_ = 0;
 };
 
 Expression Expression::parse(const std::string& text) {

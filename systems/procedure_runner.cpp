@@ -1,5 +1,6 @@
 #include "systems/procedure_runner.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 
 namespace vcockpit::systems {
@@ -32,11 +33,26 @@ const char* status_name(StepStatus s) {
 }
 
 ProcedureRunner::ProcedureRunner(Lesson lesson, const Systems& systems) : lesson_(std::move(lesson)) {
+  std::string canonical;
+  char numbers[96];
   for (Procedure& p : lesson_.procedures) {
     if (p.steps.empty()) throw ModelError(p.origin + ": a procedure needs steps");
     systems.bind_expression(p.starts_when);
-    for (ProcedureStep& s : p.steps) systems.bind_expression(s.when);
+    std::snprintf(numbers, sizeof numbers, ":%a;", p.time_limit_s);
+    canonical += "p:" + p.name + ":" + p.starts_when.expression.text() + numbers;
+    for (ProcedureStep& s : p.steps) {
+      systems.bind_expression(s.when);
+      std::snprintf(numbers, sizeof numbers, ":%a:%d:%d:%d;", s.within_s, s.rises ? 1 : 0,
+                    s.momentary ? 1 : 0, s.group);
+      canonical += "s:" + s.when.expression.text() + numbers;
+    }
   }
+  uint64_t h = 1469598103934665603ull;  // FNV-1a
+  for (unsigned char c : canonical) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  lesson_hash_ = h;
   reset();
 }
 
@@ -101,8 +117,8 @@ void ProcedureRunner::score_steps(std::size_t p, const Systems& systems, int64_t
     const bool rose = holds && !st.held_last;
     st.held_last = holds;
     if (st.status == StepStatus::kPending) {
-      // a rises step: only a change after the start counts; the first step of a procedure
-      // that started on it (it held at the start) takes the start itself
+      // a rises step: only a change after the procedure started counts (a condition that
+      // already held then does not)
       const bool done = step.rises ? rose : holds;
       if (done) {
         st.status = StepStatus::kDone;

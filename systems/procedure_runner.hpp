@@ -32,8 +32,8 @@ struct StepScore {
   int64_t done_ns = -1;
   int64_t since_previous_ns = -1;
   int64_t undone_ns = -1;
-  bool held_at_start = false;  // rises: its condition at the procedure's start
-  bool held_last = false;      // rises: its condition at the last step
+  bool held_at_start = false;  // its condition at the procedure's start (for the record)
+  bool held_last = false;      // its condition at the last step (a rises step's edge)
 };
 
 struct ProcedureScore {
@@ -62,6 +62,8 @@ class ProcedureRunner {
   ProcedureRunner(Lesson lesson, const Systems& systems);
 
   const Lesson& lesson() const { return lesson_; }
+  // Fingerprint of the lesson's procedures and steps (a checkpoint of another lesson is refused).
+  uint64_t lesson_hash() const { return lesson_hash_; }
   const std::vector<ProcedureScore>& scores() const { return scores_; }
 
   // After a systems step: the score as that step leaves it; changes appended to `events`.
@@ -80,6 +82,7 @@ class ProcedureRunner {
   void end(std::size_t p, ProcedureState state, int64_t t, std::vector<ScoreEvent>& events);
 
   Lesson lesson_;
+  uint64_t lesson_hash_ = 0;
   std::vector<ProcedureScore> scores_;
 };
 

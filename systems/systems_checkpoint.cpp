@@ -42,7 +42,8 @@ void write_systems_checkpoint(const std::string& path, const Systems& systems,
   for (uint8_t f : s.failure) text += f != 0 ? " 1" : " 0";
   text += "\n";
   const std::size_t n = procedures != nullptr ? procedures->scores().size() : 0;
-  text += "procedures " + std::to_string(n) + "\n";
+  std::snprintf(buf, sizeof buf, " %016" PRIx64, procedures != nullptr ? procedures->lesson_hash() : 0);
+  text += "procedures " + std::to_string(n) + buf + "\n";
   for (std::size_t p = 0; p < n; ++p) {
     const ProcedureScore& score = procedures->scores()[p];
     text += "procedure " + std::to_string(static_cast<int>(score.state)) + " " +
@@ -83,12 +84,18 @@ SystemsCheckpoint read_systems_checkpoint(const std::string& path, const Systems
   };
   ++n;
   if (!std::getline(in, line) || line != kMagic) fail("not a systems checkpoint");
-  const auto number = [&](const std::string& text, bool integer) {
+  const auto number = [&](const std::string& text) {
     char* end = nullptr;
     errno = 0;
-    const double v = integer ? static_cast<double>(std::strtoll(text.c_str(), &end, 10))
-                             : std::strtod(text.c_str(), &end);
+    const double v = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0' || errno != 0 || !std::isfinite(v)) fail("'" + text + "' is not a number");
+    return v;
+  };
+  const auto whole = [&](const std::string& text) -> int64_t {
+    char* end = nullptr;
+    errno = 0;
+    const long long v = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno != 0) fail("'" + text + "' is not a whole number");
     return v;
   };
   const auto one = [&](const char* key) {
@@ -101,21 +108,20 @@ SystemsCheckpoint read_systems_checkpoint(const std::string& path, const Systems
   std::snprintf(expected, sizeof expected, "%016" PRIx64, systems.model_hash());
   if (hash != expected) fail("saved for another aircraft model or scene (model_hash " + hash + ", this one " + expected + ")");
   SystemsState s;
-  s.step = std::strtoll(one("step").c_str(), nullptr, 10);
-  s.time_ns = std::strtoll(one("time_ns").c_str(), nullptr, 10);
+  s.step = whole(one("step"));
+  s.time_ns = whole(one("time_ns"));
   const std::size_t systems_count = systems.model().elements.size();
-  const auto list = [&](const char* key, std::size_t count, bool integer) {
+  const auto words_of = [&](const char* key, std::size_t count) {
     const auto words = next(key);
     if (words.size() != count) fail(std::string(key) + ": " + std::to_string(count) + " values expected");
-    std::vector<double> out;
-    for (const std::string& w : words) out.push_back(number(w, integer));
-    return out;
+    return words;
   };
-  s.value = list("value", systems_count, false);
-  for (double v : list("since_step", systems_count, true)) s.since_step.push_back(static_cast<int64_t>(v));
-  s.last_input = list("last_input", systems_count, false);
-  for (double v : list("failure", systems.model().failures.size(), true)) {
-    if (v != 0.0 && v != 1.0) fail("failure: 0 or 1 expected");
+  for (const std::string& w : words_of("value", systems_count)) s.value.push_back(number(w));
+  for (const std::string& w : words_of("since_step", systems_count)) s.since_step.push_back(whole(w));
+  for (const std::string& w : words_of("last_input", systems_count)) s.last_input.push_back(number(w));
+  for (const std::string& w : words_of("failure", systems.model().failures.size())) {
+    const int64_t v = whole(w);
+    if (v != 0 && v != 1) fail("failure: 0 or 1 expected");
     s.failure.push_back(static_cast<uint8_t>(v));
   }
   if (s.step < 0) fail("step: negative");
@@ -123,9 +129,10 @@ SystemsCheckpoint read_systems_checkpoint(const std::string& path, const Systems
   out.state = std::move(s);
   const std::size_t count = procedures != nullptr ? procedures->scores().size() : 0;
   const auto counted = next("procedures");
-  if (counted.size() != 1 || number(counted[0], true) != static_cast<double>(count))
-    fail("procedures: saved for another lesson (this one has " + std::to_string(count) + ")");
-  const auto whole = [&](const std::string& w) { return static_cast<int64_t>(number(w, true)); };
+  char lesson[32];
+  std::snprintf(lesson, sizeof lesson, "%016" PRIx64, procedures != nullptr ? procedures->lesson_hash() : 0);
+  if (counted.size() != 2 || whole(counted[0]) != static_cast<int64_t>(count) || counted[1] != lesson)
+    fail("procedures: saved for another lesson");
   const auto flag = [&](const std::string& w) {
     const int64_t v = whole(w);
     if (v != 0 && v != 1) fail("'" + w + "': 0 or 1 expected");

@@ -11,7 +11,8 @@
 //   since_step <n> ...    one per system
 //   last_input <%a> ...   one per system
 //   failure <0|1> ...     one per failure (the line is "failure" alone when there are none)
-//   procedures <n>        the lesson's scores (0 without a lesson), then per procedure
+//   procedures <n> <h>    the lesson's scores (0 without a lesson) and its fingerprint, then per
+//                         procedure
 //   procedure <state> <started_ns> <ended_ns> <last_done_ns> <steps>, and per step
 //   step <status> <out_of_order> <late> <undone> <done_ns> <since_previous_ns> <undone_ns>
 //        <held_at_start> <held_last>

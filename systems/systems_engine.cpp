@@ -104,7 +104,8 @@ void Systems::bind() {
   const auto bind_expression = [&](SourceExpression& se) { this->bind_expression(se); };
 
   std::string canonical = std::to_string(period_ns_) + ";";
-  for (const ControlSpec& c : controls_) canonical += "c:" + c.name + ":" + joined(c.positions) + ";";
+  for (const ControlSpec& c : controls_)
+    canonical += "c:" + c.name + (c.revolute ? ":r:" : ":p:") + joined(c.positions) + ";";
   for (const Failure& f : model_.failures) canonical += "f:" + f.name + ";";
 
   lag_factor_.assign(model_.elements.size(), 0.0);
@@ -116,7 +117,12 @@ void Systems::bind() {
   state_.failure.assign(model_.failures.size(), 0);
   for (std::size_t i = 0; i < model_.elements.size(); ++i) {
     Element& el = model_.elements[i];
-    canonical += "e:" + el.name + ":" + element_kind_name(el.kind) + ":" + joined(el.states) + ";";
+    // everything that changes what a state means: a checkpoint of an edited model is refused
+    char numbers[128];
+    std::snprintf(numbers, sizeof numbers, ":%a:%a:%a:", el.tau_s, el.per_s, el.initial);
+    canonical += "e:" + el.name + ":" + element_kind_name(el.kind) + ":" + joined(el.states) + ":" +
+                 el.initial_state + numbers + el.input.expression.text() + ":" +
+                 el.reset.expression.text() + ";";
     bind_expression(el.input);
     bind_expression(el.reset);
     switch (el.kind) {
@@ -148,7 +154,7 @@ void Systems::bind() {
           }
           b.to = index_of(el.states, t.to);
           if (b.to < 0) fail(t.origin, "no state '" + t.to + "' (states: " + joined(el.states) + ")");
-          if (!(t.after_s >= 0.0 && std::isfinite(t.after_s))) fail(t.origin, "after_s must be >= 0");
+          if (!(t.after_s >= 0.0 && t.after_s <= 1e6)) fail(t.origin, "after_s must be within 0..1e6 s");
           // the first step at or past after_s (a whole number of steps, within rounding)
           b.after_steps = static_cast<int64_t>(std::ceil(t.after_s / period_s_ - 1e-9));
           for (const std::string& c : t.clears) {
@@ -157,7 +163,10 @@ void Systems::bind() {
             b.clears.push_back(f);
           }
           bind_expression(t.when);
-          canonical += "t:" + joined(t.from) + ">" + t.to + ";";
+          char after[40];
+          std::snprintf(after, sizeof after, ":%a:", t.after_s);
+          canonical += "t:" + joined(t.from) + ">" + t.to + after + t.when.expression.text() + ":" +
+                       joined(t.clears) + ";";
           transitions_[i].push_back(std::move(b));
         }
         break;
@@ -339,14 +348,23 @@ std::string Systems::value_text(int element, double value) const {
   return text;
 }
 
-void Systems::reset_to_start() {
+void Systems::reset_to_start(std::vector<SystemsEvent>& events) {
   const int64_t step = state_.step;
   const int64_t time_ns = state_.time_ns;
+  const SystemsState before = state_;
   state_ = initial_;
   state_.step = step;
   state_.time_ns = time_ns;
-  for (std::size_t e = 0; e < model_.elements.size(); ++e)
-    if (model_.elements[e].kind == ElementKind::kMachine) state_.since_step[e] = step;
+  for (std::size_t e = 0; e < model_.elements.size(); ++e) {
+    const Element& el = model_.elements[e];
+    if (el.kind == ElementKind::kMachine) state_.since_step[e] = step;
+    const bool reports = el.kind == ElementKind::kMachine || el.kind == ElementKind::kLatch || el.events;
+    if (reports && before.value[e] != state_.value[e])
+      events.push_back({time_ns, SystemsEventKind::kChange, static_cast<int>(e), before.value[e], state_.value[e]});
+  }
+  for (std::size_t f = 0; f < state_.failure.size(); ++f)
+    if (before.failure[f] != 0 && state_.failure[f] == 0)
+      events.push_back({time_ns, SystemsEventKind::kFailureCleared, static_cast<int>(f), 1.0, 0.0});
 }
 
 void Systems::restore(const SystemsState& saved) {

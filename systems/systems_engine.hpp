@@ -79,8 +79,9 @@ class Systems {
   // Puts back a saved state (std::invalid_argument if it does not fit this model).
   void restore(const SystemsState& saved);
   // An instructor's reset to the start: every system as it starts, no failure inserted; the step
-  // count and time go on (machines enter their initial states now).
-  void reset_to_start();
+  // count and time go on (machines enter their initial states now). The changes that reports
+  // (machines, latches, logic with events, failures cleared) are appended to `events`.
+  void reset_to_start(std::vector<SystemsEvent>& events);
   // Fingerprint of the model and the control list (a checkpoint of another model is refused).
   uint64_t model_hash() const { return model_hash_; }
 

@@ -17,6 +17,14 @@ int SystemsRun::take(const ControlFrame& frame, const StepStart& before_step,
   ++counts_.taken;
   int steps = 0;
   stepping_ = frame;
+  if (started() && (frame.time_ns - last) / period > kMaxCatchUpPeriods) {
+    ++counts_.jumped;
+    if (before_step) before_step(frame.time_ns);
+    events_.clear();
+    systems_.step(frame, events_);
+    if (after_step) after_step(systems_, events_);
+    return 1;
+  }
   // the periods the frames skipped, each with this frame's controls at its own time
   for (int64_t t = started() ? last + period : frame.time_ns; t < frame.time_ns; t += period) {
     stepping_.time_ns = t;

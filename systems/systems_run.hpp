@@ -4,7 +4,7 @@
 // period of the grid up to a frame's time, with that frame's controls. So a frame that never
 // came (lost, or the node was down) costs the steps their controls, not their time, and is
 // counted. A frame off the grid, or not after the last one taken (a late joiner's history
-// replayed), is skipped and counted.
+// replayed), is skipped and counted; one far beyond the last (kMaxCatchUpPeriods) is one step.
 
 #include <cstdint>
 #include <functional>
@@ -19,7 +19,12 @@ struct FrameCounts {
   uint64_t missed = 0;    // grid periods with no frame of their own (stepped with the next one)
   uint64_t off_grid = 0;  // frames whose time is not on the systems' period
   uint64_t stale = 0;     // frames at or before the last step's time
+  uint64_t jumped = 0;    // frames over kMaxCatchUpPeriods after the last: one step, no catching up
 };
+
+// A gap this long (1 h at 100 Hz) is not stepped through period by period: the frame is taken as
+// a jump of time (a world resumed from an old checkpoint, a bad stamp), one step at its time.
+inline constexpr int64_t kMaxCatchUpPeriods = 360'000;
 
 class SystemsRun {
  public:

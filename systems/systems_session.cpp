@@ -96,11 +96,22 @@ void SystemsSession::record_scores() {
     score_log_->write(score_event_json(*procedures_, e) + "\n");
 }
 
-void SystemsSession::reset_to_start() {
-  systems_.reset_to_start();
+void SystemsSession::restore(const SystemsState& state) {
+  systems_.restore(state);
+  next_scheduled_ = 0;
+  while (next_scheduled_ < schedule_.size() && schedule_[next_scheduled_].first <= state.time_ns)
+    ++next_scheduled_;
+}
+
+void SystemsSession::reset_to_start(const Sink& sink) {
+  outcome_.events.clear();
+  outcome_.score_events.clear();
+  systems_.reset_to_start(outcome_.events);
+  for (const SystemsEvent& e : outcome_.events) record(e);
   if (procedures_) procedures_->reset();
   if (score_log_)
     score_log_->write("{\"t_ns\":" + std::to_string(systems_.state().time_ns) + ",\"event\":\"reset\"}\n");
+  if (sink) sink(systems_, outcome_);
 }
 
 std::optional<SystemsEvent> SystemsSession::set_failure(int failure, bool inserted) {
@@ -174,7 +185,7 @@ void SystemsSession::finish(const Sink& sink) {
   summary["last_step_t_s"] = static_cast<double>(s.time_ns) * 1e-9;
   const FrameCounts& c = run_.counts();
   summary["frames"] = {{"taken", c.taken}, {"missed", c.missed}, {"off_grid", c.off_grid},
-                       {"stale", c.stale}};
+                       {"stale", c.stale}, {"jumped", c.jumped}};
   summary["events"] = events_;
   nlohmann::ordered_json final_values = nlohmann::ordered_json::object();
   for (std::size_t e = 0; e < s.value.size(); ++e) {

@@ -58,11 +58,13 @@ class SystemsSession {
   int take(const ControlFrame& frame, const Sink& sink = {});
   // An instructor's failure now: its event (recorded), or nothing when it already was so.
   std::optional<SystemsEvent> set_failure(int failure, bool inserted);
-  // Continues from a saved state (after kill -9).
-  void restore(const SystemsState& state) { systems_.restore(state); }
-  // An instructor's reset to the start: the systems as they start and the scoring from nothing
-  // (recorded as events in procedure_events.jsonl and the log); the time goes on.
-  void reset_to_start();
+  // Continues from a saved state (after kill -9); the failures scheduled at or before its time
+  // are not inserted again (a cleared one stays cleared).
+  void restore(const SystemsState& state);
+  // An instructor's reset to the start: the systems as they start (their changes recorded and
+  // given to `sink`) and the scoring from nothing (a "reset" line in procedure_events.jsonl); the
+  // time goes on.
+  void reset_to_start(const Sink& sink = {});
   // The lesson's scoring; null without a lesson.
   ProcedureRunner* procedures() { return procedures_.get(); }
   const ProcedureRunner* procedures() const { return procedures_.get(); }

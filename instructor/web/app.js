@@ -444,7 +444,7 @@ function renderSystems(systems) {
   for (const g of GAUGES) {
     const v = values[g.system];
     if (!v) continue;
-    let el = box.querySelector(`[data-system="${g.system}"]`);
+    let el = box.querySelector(`[data-system="${CSS.escape(g.system)}"]`);
     if (!el) {
       el = document.createElement('div');
       el.className = 'gauge';
@@ -478,7 +478,7 @@ function renderSystems(systems) {
   const ul = $('annunciators');
   const lights = Object.keys(values).filter((n) => n.startsWith('ann_'));
   const items = lights.map((n) => {
-    let li = ul.querySelector(`[data-system="${n}"]`);
+    let li = ul.querySelector(`[data-system="${CSS.escape(n)}"]`);
     if (!li) {
       li = document.createElement('li');
       li.dataset.system = n;
@@ -545,7 +545,7 @@ function renderProcedures(procedures) {
   setText($('lesson'), procedures && procedures.lesson ? procedures.lesson : 'no lesson');
   const box = $('procedures');
   const blocks = list.map((p) => {
-    let div = box.querySelector(`.procedure[data-name="${p.name}"]`);
+    let div = box.querySelector(`.procedure[data-name="${CSS.escape(p.name)}"]`);
     if (!div) {
       div = document.createElement('div');
       div.className = 'procedure';

@@ -1,6 +1,8 @@
 #include "physics_node/io/control_frames.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace vcockpit::physics_io {
 
@@ -12,6 +14,16 @@ std::vector<systems::ControlSpec> control_specs(const physics::Scene& scene) {
     out.push_back(std::move(spec));
   }
   return out;
+}
+
+int64_t control_frame_interval_ns(double hz, const physics::Scene& scene) {
+  const int64_t step_ns = std::llround(scene.step_s * 1e9);
+  const int64_t period_ns = std::isfinite(hz) && hz > 0.0 ? std::llround(1e9 / hz) : 0;
+  if (period_ns <= 0 || step_ns <= 0 || period_ns % step_ns != 0)
+    throw std::invalid_argument("--control-frame-hz " + std::to_string(hz) +
+                                " is not a whole number of steps of " +
+                                std::to_string(scene.step_s) + " s");
+  return period_ns;
 }
 
 bool control_frame(const physics::World& world, systems::ControlFrame& frame) {

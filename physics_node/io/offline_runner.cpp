@@ -14,6 +14,7 @@
 #include "hand/sample_validator.hpp"
 #include "physics_node/io/hand_motion_peak.hpp"
 #include "physics_node/io/hand_timeline.hpp"
+#include "physics_node/io/control_frames.hpp"
 #include "physics_node/io/run_recorder.hpp"
 
 namespace vcockpit::physics_io {
@@ -84,7 +85,8 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
                                           : HandTimeline::span_ns(inputs);
   const int64_t interval_ns = output_interval_ns(options.output_hz, scene);
 
-  RunRecorder recorder(options.out_dir, interval_ns, scene);
+  RunRecorder recorder(options.out_dir, interval_ns,
+                       control_frame_interval_ns(options.control_frame_hz, scene), scene);
 
   RunSummary summary;
   summary.scene_path = options.scene_path;

@@ -29,6 +29,7 @@ struct OfflineOptions {
   std::optional<double> duration_s;  // default: the log's span
   std::string out_dir;
   double output_hz = 100.0;
+  double control_frame_hz = 100.0;  // control_frames.csv (the aircraft systems' input)
   InputTiming timing;  // --max-gap, --glove-timeout
 };
 

@@ -28,8 +28,9 @@ const std::string& created(const std::string& dir) {
 }  // namespace
 
 RunRecorder::RunRecorder(const std::string& out_dir, int64_t interval_ns,
-                         const physics::Scene& scene)
+                         int64_t frame_interval_ns, const physics::Scene& scene)
     : interval_ns_(interval_ns),
+      frame_interval_ns_(frame_interval_ns),
       trajectories_(created(out_dir) + "/trajectories.csv"),
       events_(out_dir + "/events.jsonl"),
       control_frames_(out_dir + "/control_frames.csv", control_specs(scene)) {}

@@ -1,6 +1,6 @@
 #pragma once
 // What a run writes as it steps (run_outputs.hpp): a trajectory row at the start and every
-// output interval, each step's grasp and control events, and a control frame every output
+// output interval, each step's grasp and control events, and a control frame every frame
 // interval after the start (control_frames.csv, systems/control_frames_file.hpp: the aircraft
 // systems' input, as cockpit/control_frame carries it in a rig). The offline runner and a lockstep
 // node both record through it, so a lockstep replay's trajectories.csv and events.jsonl are the
@@ -23,15 +23,17 @@ int64_t output_interval_ns(double output_hz, const physics::Scene& scene);
 class RunRecorder {
  public:
   // Creates `out_dir`; the files appear there (renamed from .partial) on commit().
-  RunRecorder(const std::string& out_dir, int64_t interval_ns, const physics::Scene& scene);
+  // `frame_interval_ns`: control_frames.csv's period (the node's --control-frame-hz: the same
+  // frames as cockpit/control_frame whatever --output-hz is).
+  RunRecorder(const std::string& out_dir, int64_t interval_ns, int64_t frame_interval_ns,
+              const physics::Scene& scene);
 
   void start(const physics::World& world) { trajectories_.write(world); }  // the first row
   void after_step(const physics::World& world) {
     events_.write(world);
-    if (world.time_ns() % interval_ns_ == 0) {
-      trajectories_.write(world);
-      if (physics_io::control_frame(world, frame_)) control_frames_.write(frame_);
-    }
+    if (world.time_ns() % interval_ns_ == 0) trajectories_.write(world);
+    if (world.time_ns() % frame_interval_ns_ == 0 && physics_io::control_frame(world, frame_))
+      control_frames_.write(frame_);
   }
   void commit() {
     trajectories_.commit();
@@ -44,6 +46,7 @@ class RunRecorder {
 
  private:
   int64_t interval_ns_;
+  int64_t frame_interval_ns_;
   TrajectoryWriter trajectories_;
   EventWriter events_;
   systems::ControlFramesWriter control_frames_;

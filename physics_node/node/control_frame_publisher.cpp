@@ -12,12 +12,7 @@ ControlFramePublisher::ControlFramePublisher(DdsParticipant& participant,
                                              const physics::Scene& scene, double hz)
     : writer_(participant.make_writer<cockpit::ControlFrame>("event")) {
   if (hz == 0.0) return;
-  const int64_t step_ns = std::llround(scene.step_s * 1e9);
-  const int64_t period_ns = std::isfinite(hz) && hz > 0.0 ? std::llround(1e9 / hz) : 0;
-  if (period_ns <= 0 || period_ns % step_ns != 0)
-    throw std::invalid_argument("--control-frame-hz " + std::to_string(hz) +
-                                " is not a whole number of steps of " +
-                                std::to_string(scene.step_s) + " s");
+  const int64_t period_ns = physics_io::control_frame_interval_ns(hz, scene);
   if (scene.controls.size() > 64)
     throw std::invalid_argument("cockpit/control_frame carries at most 64 controls; the scene has " +
                                 std::to_string(scene.controls.size()));
@@ -26,11 +21,21 @@ ControlFramePublisher::ControlFramePublisher(DdsParticipant& participant,
 
 void ControlFramePublisher::after_step(const physics::World& world) {
   if (period_ns_ == 0 || world.time_ns() % period_ns_ != 0) return;
+  publish(world);
+}
+
+void ControlFramePublisher::after_reset_to_start(const physics::World& world) {
+  ++start_resets_;
+  if (period_ns_ != 0) publish(world);
+}
+
+void ControlFramePublisher::publish(const physics::World& world) {
   if (!physics_io::control_frame(world, frame_)) return;
   msg_.seq(++seq_);
   msg_.sim_time_ns(world.time_ns());
   msg_.position().assign(frame_.position.begin(), frame_.position.end());
   msg_.coordinate().assign(frame_.q.begin(), frame_.q.end());
+  msg_.start_resets(start_resets_);
   writer_.write(msg_);
 }
 

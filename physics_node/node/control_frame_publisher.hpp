@@ -20,6 +20,9 @@ class ControlFramePublisher {
   ControlFramePublisher(DdsParticipant& participant, const physics::Scene& scene, double hz);
   // After a step: a frame when the world's time is on the period.
   void after_step(const physics::World& world);
+  // The world was reset to the scene's start (an instructor's reset): a frame at once, at the
+  // world's time, with the reset counted, so the systems start again at that point of the stream.
+  void after_reset_to_start(const physics::World& world);
   uint64_t published() const { return seq_; }
   // Lockstep with a systems node (--wait-frame-readers): until `count` readers have matched, or
   // the timeout; false on the timeout.
@@ -33,6 +36,8 @@ class ControlFramePublisher {
   cockpit::ControlFrame msg_;
   systems::ControlFrame frame_;
   uint64_t seq_ = 0;
+  uint32_t start_resets_ = 0;
+  void publish(const physics::World& world);
 };
 
 }  // namespace vcockpit::physics_node

@@ -61,6 +61,7 @@ class Node {
     const bool was_frozen = sim_.frozen();
     const SimCommands::Taken taken = sim_.take(world_);
     if (taken.reset || sim_.frozen() != was_frozen) stepper_.maybe_checkpoint(true);
+    if (taken.reset_to_start) stepper_.control_frames().after_reset_to_start(world_);
     if (taken.reset) {
       stepper_.publish_events();
       if (options_.lockstep) {

@@ -72,6 +72,7 @@ bool SimCommands::apply(const cockpit::SimCommand& command, physics::World& worl
     case cockpit::RESET_TO_START:
       world.reset_objects(start_);
       taken.reset = true;
+      taken.reset_to_start = true;
       detail = std::string("objects and controls back to the start at ") + at;
       return true;
     case cockpit::SAVE_CHECKPOINT:

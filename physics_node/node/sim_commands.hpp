@@ -25,6 +25,7 @@ class SimCommands {
   // What the loop must do after take().
   struct Taken {
     bool reset = false;     // the objects were put back: publish their events and the world now
+    bool reset_to_start = false;  // ... to the scene's start (the aircraft's systems start again)
     bool unfrozen = false;  // time goes on again: the hands follow their gloves from now
   };
   // Takes every pending command (no blocking).

@@ -36,6 +36,8 @@ WorldStepper::WorldStepper(DdsParticipant& participant, physics::World& world,
   if (!options.out_dir.empty()) {
     recorder_ = std::make_unique<physics_io::RunRecorder>(
         options.out_dir, physics_io::output_interval_ns(options.output_hz, world_.scene()),
+        physics_io::control_frame_interval_ns(
+            options.control_frame_hz > 0 ? options.control_frame_hz : 100.0, world_.scene()),
         world_.scene());
   }
 }

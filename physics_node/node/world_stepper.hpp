@@ -54,6 +54,7 @@ class WorldStepper {
   const physics_io::HandMotionPeak& hand_peak() const { return hand_peak_; }
   uint64_t commands_refused() const { return commands_refused_; }
   const ControlFramePublisher& control_frames() const { return frames_; }
+  ControlFramePublisher& control_frames() { return frames_; }
 
   // For node_status: the steps and their stages' summed times since the last take.
   uint64_t steps_in_period() const { return steps_in_period_; }

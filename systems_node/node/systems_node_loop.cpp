@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <deque>
 #include <filesystem>
 #include <map>
@@ -30,12 +31,33 @@ std::vector<std::string> split_names(const std::string& joined) {
   return out;
 }
 
-systems::ControlFrame from_msg(const cockpit::ControlFrame& msg) {
-  systems::ControlFrame f;
-  f.time_ns = msg.sim_time_ns();
-  f.position.assign(msg.position().begin(), msg.position().end());
-  f.q.assign(msg.coordinate().begin(), msg.coordinate().end());
+// A frame from DDS and the world's resets to the start when it was sent.
+struct Frame {
+  systems::ControlFrame controls;
+  uint32_t start_resets = 0;
+};
+
+Frame from_msg(const cockpit::ControlFrame& msg) {
+  Frame f;
+  f.controls.time_ns = msg.sim_time_ns();
+  f.controls.position.assign(msg.position().begin(), msg.position().end());
+  f.controls.q.assign(msg.coordinate().begin(), msg.coordinate().end());
+  f.start_resets = msg.start_resets();
   return f;
+}
+
+// Whether a frame can be stepped on: the bound controls' count, each position one of its
+// control's, every coordinate finite, a time that is not negative (what control_frames.csv's
+// reader demands of a file).
+bool valid(const systems::ControlFrame& f, const std::vector<systems::ControlSpec>& controls) {
+  if (f.time_ns < 0 || f.position.size() != controls.size() || f.q.size() != controls.size())
+    return false;
+  for (std::size_t c = 0; c < controls.size(); ++c) {
+    if (f.position[c] < 0 || static_cast<std::size_t>(f.position[c]) >= controls[c].positions.size())
+      return false;
+    if (!std::isfinite(f.q[c])) return false;
+  }
+  return true;
 }
 
 cockpit::SystemKind kind_of(systems::ElementKind k) {
@@ -50,7 +72,13 @@ cockpit::SystemKind kind_of(systems::ElementKind k) {
   return cockpit::SYSTEM_LOGIC;
 }
 
-std::string clipped(const std::string& s, std::size_t n) { return s.size() <= n ? s : s.substr(0, n); }
+// At most n bytes, never splitting a UTF-8 character (a split one makes invalid JSON downstream).
+std::string clipped(const std::string& s, std::size_t n) {
+  if (s.size() <= n) return s;
+  std::size_t end = n;
+  while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xC0) == 0x80) --end;
+  return s.substr(0, end);
+}
 
 class Node {
  public:
@@ -132,14 +160,19 @@ class Node {
   void take_frames() {
     cockpit::ControlFrame msg;
     while (frame_reader_.take(msg)) {
-      expected_controls_ = static_cast<int>(msg.position().size());
       if (msg.position().size() != msg.coordinate().size()) {
-        ++malformed_;
+        refuse("its positions and coordinates differ in number");
         continue;
       }
+      // before binding, the first frames say how many controls to wait for
+      if (!session_) expected_controls_ = static_cast<int>(msg.position().size());
       if (waiting_.size() >= kMaxWaitingFrames) waiting_.pop_front();
       waiting_.push_back(from_msg(msg));
     }
+  }
+
+  void refuse(const char* why) {
+    if (malformed_++ == 0) spdlog::warn("a control frame refused: {} (counted from now on)", why);
   }
 
   // True when it tried (bound, or failed: session_ stays empty and the node exits).
@@ -189,13 +222,33 @@ class Node {
   }
 
   void drain_waiting() {
+    const auto publish = [this](const Systems& s, const systems::StepOutcome& outcome) {
+      for (const SystemsEvent& e : outcome.events) publish_event(s, e);
+      publish_state(s);
+      publish_scores(outcome.score_events);
+    };
     while (!waiting_.empty()) {
-      session_->take(waiting_.front(), [this](const Systems& s, const systems::StepOutcome& outcome) {
-        for (const SystemsEvent& e : outcome.events) publish_event(s, e);
-        publish_state(s);
-        publish_scores(outcome.score_events);
-      });
+      const Frame frame = std::move(waiting_.front());
       waiting_.pop_front();
+      if (!valid(frame.controls, session_->systems().controls())) {
+        refuse("not the bound controls' count, a position out of range, a coordinate not "
+               "finite or a negative time");
+        continue;
+      }
+      // the world went back to the scene's start (an instructor's reset): so do the systems and
+      // the scores, at this point of the stream
+      if (seen_resets_ && frame.start_resets != start_resets_) {
+        session_->reset_to_start(publish);
+        spdlog::info("the world was reset to its start: the systems and the scores start again at "
+                     "{:.3f} s", static_cast<double>(session_->systems().state().time_ns) * 1e-9);
+        if (session_->procedures() != nullptr)
+          for (std::size_t p = 0; p < session_->procedures()->scores().size(); ++p)
+            publish_score(*session_->procedures(), p);
+        maybe_checkpoint(true);
+      }
+      seen_resets_ = true;
+      start_resets_ = frame.start_resets;
+      session_->take(frame.controls, publish);
     }
   }
 
@@ -283,32 +336,27 @@ class Node {
     }
   }
 
-  // The instructor's reset to the start: the systems and the scores start again (the physics
-  // puts the controls back at the same time). Other sim commands are the physics' and the glove
+  // The instructor's reset to the start is the physics': the systems and the scores start again
+  // with the first control frame that counts it (drain_waiting), so they reset exactly where the
+  // controls did. Here it is acknowledged. Other sim commands are the physics' and the glove
   // drivers': frozen, the physics sends no frames, and the systems wait.
   void take_sim_commands() {
     cockpit::SimCommand cmd;
     while (sim_reader_.take(cmd)) {
       if (cmd.kind() != cockpit::RESET_TO_START) continue;
-      session_->reset_to_start();
       const Systems& s = session_->systems();
-      spdlog::info("sim command from '{}': reset to the start at {:.3f} s", cmd.source().to_string(),
-                   static_cast<double>(s.state().time_ns) * 1e-9);
-      publish_state(s);
-      if (session_->procedures() != nullptr)
-        for (std::size_t p = 0; p < session_->procedures()->scores().size(); ++p)
-          publish_score(*session_->procedures(), p);
+      spdlog::info("sim command from '{}': reset to the start, with the physics' reset",
+                   cmd.source().to_string());
       cockpit::SimAck ack;
       ack.command_seq(cmd.seq());
       ack.command_source(cmd.source());
       ack.kind(cmd.kind());
       ack.node_name(clipped(options_.node_name, 32));
       ack.accepted(true);
-      ack.detail("systems and procedure scores back to the start");
+      ack.detail("systems and procedure scores back to the start with the physics' reset");
       ack.sim_time_ns(s.state().time_ns);
       ack.frozen(false);
       sim_ack_writer_.write(ack);
-      maybe_checkpoint(true);
     }
   }
 
@@ -428,7 +476,9 @@ class Node {
   Writer<cockpit::NodeStatus> status_writer_;
   std::map<uint32_t, systems::ControlSpec> controls_;
   int expected_controls_ = -1;
-  std::deque<systems::ControlFrame> waiting_;
+  std::deque<Frame> waiting_;
+  bool seen_resets_ = false;    // a frame has said how many resets the world has had
+  uint32_t start_resets_ = 0;
   std::unique_ptr<systems::SystemsSession> session_;
   cockpit::SystemsState state_msg_;
   uint64_t event_seq_ = 0;

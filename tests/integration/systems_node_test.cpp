@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <csignal>
 #include <fstream>
 #include <map>
@@ -158,6 +159,20 @@ TEST_F(SystemsNodeTest, KilledDuringAGearTransitResumesWhereItWas) {
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
   };
+  publish_until(2 * kSecond);
+  // frames no physics node would send: refused and counted, and the node goes on
+  cockpit::ControlFrame bad = frame;
+  bad.sim_time_ns(frame.sim_time_ns() + 10'000'000);
+  bad.position().pop_back();
+  bad.coordinate().pop_back();
+  frames.write(bad);
+  bad = frame;
+  bad.sim_time_ns(frame.sim_time_ns() + 10'000'000);
+  bad.coordinate()[0] = std::nan("");
+  frames.write(bad);
+  bad.coordinate()[0] = 0.0;
+  bad.position()[0] = 7;
+  frames.write(bad);
   publish_until(3 * kSecond);
   // the last checkpoint is at most 0.5 s old: wait for one past 2.5 s, then kill
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
@@ -170,6 +185,7 @@ TEST_F(SystemsNodeTest, KilledDuringAGearTransitResumesWhereItWas) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   ASSERT_TRUE(saved) << text("systems1.log");
+  EXPECT_NE(text("systems1.log").find("a control frame refused"), std::string::npos) << text("systems1.log");
   systems->signal(SIGKILL);
   EXPECT_EQ(systems->wait(10 * kSecond), 128 + SIGKILL);
   expect_clean_shm_ = false;  // a killed process leaves its DDS files

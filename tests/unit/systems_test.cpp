@@ -12,12 +12,14 @@
 #include "common/config_error.hpp"
 #include "common/yaml_config.hpp"
 #include "physics_node/config/scene_config.hpp"
+#include "physics_node/io/offline_runner.hpp"
 #include "systems/config/procedure_yaml.hpp"
 #include "systems/config/systems_yaml.hpp"
 #include "systems/procedure_runner.hpp"
 #include "systems/control_frames_file.hpp"
 #include "systems/systems_checkpoint.hpp"
 #include "systems/systems_run.hpp"
+#include "systems/systems_session.hpp"
 #include "systems/systems_engine.hpp"
 
 namespace vcockpit::systems {
@@ -388,6 +390,63 @@ TEST_F(DefaultAircraft, GearHornAndFlapMotor) {
   EXPECT_EQ(value("gear_horn"), 0.0);
 }
 
+TEST_F(DefaultAircraft, AResetToTheStartReportsWhatItChanged) {
+  set("avionics_master", "on");
+  set("engine_start", "start");
+  step();
+  ASSERT_TRUE(systems_->set_failure(systems_->failure_index("engine_fire"), true));
+  step();
+  events_.clear();
+  systems_->reset_to_start(events_);
+  EXPECT_EQ(text("engine"), "stopped");
+  EXPECT_EQ(value("bus"), 0.0);
+  EXPECT_EQ(systems_->state().failure[static_cast<std::size_t>(systems_->failure_index("engine_fire"))], 0);
+  bool engine = false, fire = false, caution = false;
+  for (const SystemsEvent& e : events_) {
+    if (e.kind == SystemsEventKind::kChange && e.index == systems_->element_index("engine"))
+      engine = systems_->value_text(e.index, e.from) == "cranking" && systems_->value_text(e.index, e.to) == "stopped";
+    fire |= e.kind == SystemsEventKind::kFailureCleared && e.index == systems_->failure_index("engine_fire");
+    caution |= e.kind == SystemsEventKind::kChange && e.index == systems_->element_index("master_caution_light");
+    EXPECT_EQ(e.time_ns, systems_->state().time_ns);
+  }
+  EXPECT_TRUE(engine);
+  EXPECT_TRUE(fire);
+  EXPECT_TRUE(caution);
+  const int64_t step_before = systems_->state().step;
+  step();  // time goes on from where it was
+  EXPECT_EQ(systems_->state().step, step_before + 1);
+}
+
+// A failure scheduled at a time and since cleared by the crew stays cleared after a resume.
+TEST_F(DefaultAircraft, AResumedSessionDoesNotInsertPastScheduledFailuresAgain) {
+  SessionOptions options;
+  options.failures.push_back(parse_scheduled_failure("0.05:gear_unsafe_left"));
+  const auto model = [&] { return load_systems_model(source_dir() + "/config/aircraft.yaml"); };
+  SystemsSession first(model(), controls_, options);
+  const int failure = first.systems().failure_index("gear_unsafe_left");
+  set("avionics_master", "on");
+  const auto fly = [&](SystemsSession& s, int steps) {
+    for (int i = 0; i < steps; ++i) {
+      frame_.time_ns += 10'000'000;
+      s.take(frame_);
+    }
+  };
+  fly(first, 10);
+  ASSERT_EQ(first.systems().value_text(first.systems().element_index("gear_left"),
+                                       first.systems().value(first.systems().element_index("gear_left"))),
+            "unsafe");
+  set("gear", "up");  // the recycle clears it
+  fly(first, 10);
+  ASSERT_EQ(first.systems().state().failure[static_cast<std::size_t>(failure)], 0);
+  SystemsSession second(model(), controls_, options);
+  second.restore(first.systems().state());
+  set("gear", "down");
+  fly(second, 800);
+  EXPECT_EQ(second.systems().state().failure[static_cast<std::size_t>(failure)], 0);
+  const int left = second.systems().element_index("gear_left");
+  EXPECT_EQ(second.systems().value_text(left, second.systems().value(left)), "down");
+}
+
 TEST_F(DefaultAircraft, RestoredStateGoesOnIdentically) {
   power_up();
   set("engine_start", "start");
@@ -655,12 +714,40 @@ TEST(SystemsCheckpoint, RoundTripsEveryBitAndRefusesAnotherModel) {
   std::vector<ControlSpec> other = controls;  // a scene with one more control
   other.push_back({"parking_brake", false, {"off", "set"}});
   Systems c(load_systems_model(aircraft), other);
-  try {
-    read_systems_checkpoint(path, c);
-    ADD_FAILURE() << "another model's checkpoint was read";
-  } catch (const CheckpointError& e) {
-    EXPECT_NE(std::string(e.what()).find(":2: saved for another aircraft model or scene"), std::string::npos) << e.what();
+  // ... and the same aircraft with one time constant edited
+  SystemsModel edited = load_systems_model(aircraft);
+  for (Element& e : edited.elements)
+    if (e.name == "rpm") e.tau_s = 1.3;
+  Systems d(std::move(edited), controls);
+  for (const Systems* s : {&c, &d}) {
+    try {
+      read_systems_checkpoint(path, *s);
+      ADD_FAILURE() << "another model's checkpoint was read";
+    } catch (const CheckpointError& e) {
+      EXPECT_NE(std::string(e.what()).find(":2: saved for another aircraft model or scene"), std::string::npos) << e.what();
+    }
   }
+}
+
+// control_frames.csv follows the frame rate (100 Hz), not the trajectories' --output-hz.
+TEST(ControlFramesFile, TheOfflineRunnerWritesFramesEveryTenMillisecondsWhateverTheOutputRate) {
+  physics_io::OfflineOptions options;
+  options.scene_path = source_dir() + "/config/cockpit.yaml";
+  options.duration_s = 0.1;
+  options.output_hz = 50.0;
+  options.out_dir = temp_path("offline_50hz");
+  physics_io::run_offline(load_scene(options.scene_path), options);
+  const ControlFrames frames = read_control_frames(options.out_dir + "/control_frames.csv");
+  ASSERT_EQ(frames.frames.size(), 10u);
+  for (std::size_t i = 0; i < frames.frames.size(); ++i)
+    EXPECT_EQ(frames.frames[i].time_ns, static_cast<int64_t>(i + 1) * 10'000'000);
+  EXPECT_EQ(frames.controls.size(), 11u);
+}
+
+TEST(SystemsExpression, DeepNestingIsAnErrorNotACrash) {
+  EXPECT_THROW(Expression::parse(std::string(5000, '(') + "1" + std::string(5000, ')')), ExpressionError);
+  EXPECT_THROW(Expression::parse(std::string(5000, '!') + "1"), ExpressionError);
+  EXPECT_NO_THROW(Expression::parse("((((1)))) + !!!!0"));
 }
 
 }  // namespace
