@@ -123,7 +123,8 @@ class Node {
         publish_status(now);
         next_status_ns = now + 1'000'000'000;
       }
-      sleep_until_ns(monotonic_now_ns() + 2'000'000);
+      // asleep until a frame comes (or 20 ms: commands, status); no polling on a busy machine
+      frame_reader_.wait_for_data(20'000'000);
     }
     // what has arrived is taken before stopping
     take_frames();
@@ -224,7 +225,7 @@ class Node {
   void drain_waiting() {
     const auto publish = [this](const Systems& s, const systems::StepOutcome& outcome) {
       for (const SystemsEvent& e : outcome.events) publish_event(s, e);
-      publish_state(s);
+      publish_state_if_changed(s);
       publish_scores(outcome.score_events);
     };
     while (!waiting_.empty()) {
@@ -353,7 +354,7 @@ class Node {
       ack.kind(cmd.kind());
       ack.node_name(clipped(options_.node_name, 32));
       ack.accepted(true);
-      ack.detail("systems and procedure scores back to the start with the physics' reset");
+      ack.detail("systems and procedure scores back to the start with the physics reset");
       ack.sim_time_ns(s.state().time_ns);
       ack.frozen(false);
       sim_ack_writer_.write(ack);
@@ -399,7 +400,21 @@ class Node {
     info_writer_.write(info);
   }
 
+  // After every step whose values or failures changed, and at least every second of simulated
+  // time (a resting aircraft costs its readers one sample a second: at 100 a second beside the
+  // renderer and the monitor, the rig's glove-to-frame p99 rose from 35 to 54 ms on two cores);
+  // after a command or a reset too. A reader keeps the last (transient local).
+  void publish_state_if_changed(const Systems& s) {
+    if (s.state().value == last_values_ && s.state().failure == last_failures_ &&
+        s.state().time_ns - last_state_ns_ < 1'000'000'000)
+      return;
+    publish_state(s);
+  }
+
   void publish_state(const Systems& s) {
+    last_values_ = s.state().value;
+    last_failures_ = s.state().failure;
+    last_state_ns_ = s.state().time_ns;
     state_msg_.step(static_cast<uint64_t>(s.state().step));
     state_msg_.sim_time_ns(s.state().time_ns);
     state_msg_.values().assign(s.state().value.begin(), s.state().value.end());
@@ -481,6 +496,9 @@ class Node {
   uint32_t start_resets_ = 0;
   std::unique_ptr<systems::SystemsSession> session_;
   cockpit::SystemsState state_msg_;
+  std::vector<double> last_values_;    // what the last systems_state said
+  std::vector<uint8_t> last_failures_;
+  int64_t last_state_ns_ = 0;
   uint64_t event_seq_ = 0;
   uint64_t states_published_ = 0;
   uint64_t malformed_ = 0;
