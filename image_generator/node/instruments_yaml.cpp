@@ -39,7 +39,7 @@ std::array<float, 3> colour(const ConfigNode& node) {
 }  // namespace
 
 render::InstrumentsSpec parse_instruments(const ConfigNode& root) {
-  root.expect_keys({"panel", "gauges", "headings", "lamps"});
+  root.expect_keys({"panel", "gauges", "headings", "lamps", "labels"});
   render::InstrumentsSpec spec;
   const ConfigNode panel = root["panel"];
   panel.expect_keys({"origin", "right", "up"});
@@ -100,6 +100,21 @@ render::InstrumentsSpec parse_instruments(const ConfigNode& root) {
       }
       s.rgb = colour(l["color"]);
       spec.lamps.push_back(s);
+    }
+  }
+  if (auto labels = root.find("labels")) {
+    for (const ConfigNode& l : labels->elements()) {
+      l.expect_keys({"text", "at", "height", "color"});
+      render::LabelSpec s;
+      s.text = l.get_string("text");
+      if (s.text.empty() || s.text.size() > 24) l["text"].fail("1 to 24 characters");
+      for (char c : s.text)
+        if (c < 32 || c > 126) l["text"].fail("printable ASCII only (the panel font's)");
+      s.at_m = vec2(l["at"]);
+      s.height_m = l.get_double("height", 0.008);
+      if (!(s.height_m >= 0.003 && s.height_m <= 0.05)) l["height"].fail("within 0.003..0.05 m");
+      if (auto c = l.find("color")) s.rgb = colour(*c);
+      spec.labels.push_back(s);
     }
   }
   return spec;

@@ -1,5 +1,7 @@
 #include "image_generator/render/instrument_panel.hpp"
 
+#include "image_generator/render/text_overlay.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -67,7 +69,39 @@ double needle_angle_deg(const GaugeSpec& g, double value) {
   return g.start_deg + s * (g.end_deg - g.start_deg);
 }
 
+void append_label(const PanelFace& face, const LabelSpec& label, std::vector<Instance>& out) {
+  constexpr int kRows = 7, kColumns = 5, kAdvance = 6;
+  const double px = label.height_m / kRows;
+  const int n = static_cast<int>(label.text.size());
+  const double width = (n * kAdvance - 1) * px;
+  const std::array<float, 4> rgba{label.rgb[0], label.rgb[1], label.rgb[2], 1.0f};
+  for (int k = 0; k < n; ++k) {
+    const auto& rows = glyph_rows(label.text[static_cast<std::size_t>(k)]);
+    for (int r = 0; r < kRows; ++r) {
+      for (int c = 0; c < kColumns;) {
+        if ((rows[static_cast<std::size_t>(r)] >> (kColumns - 1 - c) & 1) == 0) {
+          ++c;
+          continue;
+        }
+        int end = c;
+        while (end < kColumns && (rows[static_cast<std::size_t>(r)] >> (kColumns - 1 - end) & 1) != 0) ++end;
+        // the run's centre in the face (x right, y up), the label centred on `at`
+        const double x = label.at_m.x() - width / 2 + (k * kAdvance + (c + end) / 2.0) * px;
+        const double y = label.at_m.y() + label.height_m / 2 - (r + 0.5) * px;
+        Instance i;
+        i.primitive = Primitive::kBox;
+        i.X_GO = face.at({x, y}) * Eigen::Translation3d(0, 0, 0.0004);
+        i.size_m = {(end - c) * px, px, 0.0008};
+        i.rgba = rgba;
+        out.push_back(i);
+        c = end;
+      }
+    }
+  }
+}
+
 void append_instrument_faces(const InstrumentsSpec& spec, std::vector<Instance>& out) {
+  for (const LabelSpec& l : spec.labels) append_label(spec.face, l, out);
   for (const GaugeSpec& g : spec.gauges) {
     const Eigen::Isometry3d X_GD = spec.face.at(g.at_m);
     const double r = g.radius_m;

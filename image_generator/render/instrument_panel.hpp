@@ -50,8 +50,18 @@ struct LampSpec {
   std::array<float, 3> rgb{0.1f, 0.9f, 0.2f};
 };
 
+// A label painted on the face: the 5x7 font of text_overlay.hpp, each row's run of lit pixels a
+// thin box, `height_m` the glyphs' height, centred on `at`.
+struct LabelSpec {
+  std::string text;
+  Eigen::Vector2d at_m = Eigen::Vector2d::Zero();
+  double height_m = 0.008;
+  std::array<float, 3> rgb{0.85f, 0.85f, 0.82f};
+};
+
 struct InstrumentsSpec {
   PanelFace face;
+  std::vector<LabelSpec> labels;
   std::vector<GaugeSpec> gauges;
   std::vector<HeadingSpec> headings;
   std::vector<LampSpec> lamps;
@@ -59,8 +69,10 @@ struct InstrumentsSpec {
   std::vector<std::string> systems() const;
 };
 
-// The static layer's instances (appended).
+// The static layer's instances (appended), the labels with them.
 void append_instrument_faces(const InstrumentsSpec& spec, std::vector<Instance>& out);
+// One label's boxes (appended): a box per run of lit pixels in a glyph row.
+void append_label(const PanelFace& face, const LabelSpec& label, std::vector<Instance>& out);
 // The moving layer's (appended): `values` in spec.systems()'s order (shorter: the rest unknown).
 void append_instrument_indications(const InstrumentsSpec& spec, const std::vector<double>& values,
                                    std::vector<Instance>& out);

@@ -120,6 +120,8 @@ const Rows& glyph(char c) {
 
 }  // namespace
 
+const std::array<uint8_t, 7>& glyph_rows(char c) { return glyph(c); }
+
 TextBox text_box(int x, int y, int scale, std::string_view text) {
   const int n = static_cast<int>(text.size());
   const int inner_width = n > 0 ? n * kAdvance - 1 : 0;

@@ -2,6 +2,7 @@
 // Short labels burned into frames (the sim time in the run's video): a built-in 5x7 bitmap font,
 // white glyphs on a dark semi-opaque box, so a label reads on any background. No allocation.
 
+#include <array>
 #include <cstdint>
 #include <string_view>
 
@@ -23,5 +24,9 @@ TextBox text_box(int x, int y, int scale, std::string_view text);
 // . : - / _ + = , ( ) % ? are drawn; any other character shows as '?'.
 void draw_text(uint8_t* pixels, int width, int height, int channels, int x, int y, int scale,
                std::string_view text);
+
+// The font's glyph for `c`: 7 rows top down, 5 columns each, bit 4 the leftmost ('?' for a
+// character the font lacks). Labels drawn as geometry use it too (instrument_panel.hpp).
+const std::array<uint8_t, 7>& glyph_rows(char c);
 
 }  // namespace vcockpit::render

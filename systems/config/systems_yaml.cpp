@@ -2,7 +2,7 @@
 
 #include <array>
 #include <cmath>
-#include <regex>
+#include <cctype>
 #include <set>
 
 #include "common/yaml_config.hpp"
@@ -17,10 +17,17 @@ systems::Origin origin_of(const ConfigNode& node) {
          ": " + (node.key_path().empty() ? std::string("(top level)") : node.key_path());
 }
 
+// [A-Za-z_][A-Za-z0-9_]*, as the expressions' names are
+bool is_name(const std::string& s) {
+  if (s.empty() || std::isdigit(static_cast<unsigned char>(s[0]))) return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  return true;
+}
+
 std::string name_of(const ConfigNode& node) {
-  static const std::regex kName("[A-Za-z_][A-Za-z0-9_]*");
   const std::string name = node.as_string();
-  if (!std::regex_match(name, kName))
+  if (!is_name(name))
     node.fail("'" + name + "' is not a name (letters, digits and _, not starting with a digit)");
   return name;
 }

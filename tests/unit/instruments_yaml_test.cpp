@@ -28,6 +28,7 @@ TEST(InstrumentsYaml, TheBundledPanelDrawsTheDefaultAircraftsSystems) {
   EXPECT_EQ(spec.gauges.size(), 4u);
   EXPECT_EQ(spec.headings.size(), 1u);
   EXPECT_EQ(spec.lamps.size(), 14u);
+  EXPECT_EQ(spec.labels.size(), 17u);
   const systems::SystemsModel aircraft = load_systems_model(source_dir() + "/config/aircraft.yaml");
   std::set<std::string> names;
   for (const systems::Element& e : aircraft.elements) names.insert(e.name);
@@ -58,7 +59,9 @@ TEST(InstrumentsYaml, BadFilesNameTheLineAndKey) {
   EXPECT_EQ(error_of(panel + "lamps:\n  - {system: fire, at: [0, 0], color: [2, 0, 0]}\n"),
             "instruments.yaml:3:39: lamps[0].color: colour components are within 0..1");
   EXPECT_EQ(error_of(panel + "dials: []\n"),
-            "instruments.yaml:2:1: dials: unknown key 'dials' (allowed: panel, gauges, headings, lamps)");
+            "instruments.yaml:2:1: dials: unknown key 'dials' (allowed: panel, gauges, headings, lamps, labels)");
+  EXPECT_EQ(error_of(panel + "labels:\n  - {text: \"\\u00e9t\u00e9\", at: [0, 0]}\n"),
+            "instruments.yaml:3:12: labels[0].text: printable ASCII only (the panel font's)");
 }
 
 TEST(InstrumentValues, NamesAreBoundToTheSystemsInfoAndUnknownOnesRest) {

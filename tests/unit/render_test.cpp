@@ -893,6 +893,29 @@ TEST(InstrumentPanel, NeedleAngleIsLinearInItsRangeAndClamped) {
   EXPECT_DOUBLE_EQ(needle_angle_deg(g, std::nan("")), -135);  // not known: at rest
 }
 
+// A label is the panel font's glyphs as boxes, one per run of lit pixels in a row, centred.
+TEST(InstrumentPanel, LabelsAreTheFontsGlyphsAsRunsOfBoxes) {
+  PanelFace face;  // identity: x right, y up, z out
+  std::vector<Instance> boxes;
+  append_label(face, {"I", {0.0, 0.0}, 0.007, {1, 1, 1}}, boxes);
+  // 'I': a bar of 3 at the top and bottom, a single pixel in the 5 rows between
+  ASSERT_EQ(boxes.size(), 7u);
+  EXPECT_NEAR(boxes[0].size_m.x(), 0.003, 1e-12);
+  EXPECT_NEAR(boxes[0].X_GO.translation().x(), 0.0, 1e-12);  // centred
+  EXPECT_NEAR(boxes[0].X_GO.translation().y(), 0.003, 1e-12);  // the top row
+  EXPECT_NEAR(boxes[6].X_GO.translation().y(), -0.003, 1e-12);
+  EXPECT_NEAR(boxes[3].size_m.x(), 0.001, 1e-12);
+  boxes.clear();
+  append_label(face, {"RPM", {0.1, 0.2}, 0.007, {1, 1, 1}}, boxes);
+  double left = 1, right = -1;
+  for (const Instance& b : boxes) {
+    left = std::min(left, b.X_GO.translation().x() - b.size_m.x() / 2);
+    right = std::max(right, b.X_GO.translation().x() + b.size_m.x() / 2);
+  }
+  EXPECT_NEAR(left + right, 0.2, 1e-12);      // centred on x = 0.1
+  EXPECT_NEAR(right - left, 0.017, 1e-12);    // 3 glyphs of 5 and 2 gaps, 1 mm pixels
+}
+
 // A gauge and a lamp on a face 0.6 m ahead: the needle is where its value puts it and nowhere
 // else, the lamp is bright only when lit, and neither redraws the cached static layer.
 TEST_F(RenderTest, InstrumentNeedleAndLampFollowTheirValuesInTheMovingLayer) {
