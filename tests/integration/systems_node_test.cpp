@@ -92,7 +92,10 @@ TEST_F(SystemsNodeTest, LockstepRigWritesTheOfflineSystemsFilesAndScoreByteForBy
     for (const char* file : {"systems_events.jsonl", "systems.csv", "systems_summary.json",
                              "procedures.json", "procedure_events.jsonl"}) {
       const std::string rig = read_text(dir_ + "/rig_systems_" + c.log + "/" + file);
-      EXPECT_FALSE(rig.empty()) << file;
+      // (the knob log changes no reported system: the avionics master stays off)
+      if (!(c.log == "panel_knobs" && std::string(file) == "systems_events.jsonl")) {
+        EXPECT_FALSE(rig.empty()) << file;
+      }
       EXPECT_TRUE(rig == read_text(dir_ + "/offline_systems_" + c.log + "/" + file))
           << file << " differs from systems_node --offline's";
     }
