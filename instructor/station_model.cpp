@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "common/clock.hpp"
+#include "idl/topics/bar_list.hpp"
 
 namespace vcockpit::instructor {
 namespace {
@@ -45,16 +46,10 @@ const char* control_cause_name(cockpit::ControlCause cause) {
 
 const char* side_name(int64_t hand_id) { return hand_id == 1 ? "left" : "right"; }
 
-// ControlInfo.position_names: each name ended by '|'
+// ControlInfo.position_names, padded to the control's count ("#k" for a name it lacks)
 std::vector<std::string> split_positions(const std::string& names, uint32_t count) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (out.size() < count) {
-    const std::size_t bar = names.find('|', start);
-    if (bar == std::string::npos) break;
-    out.push_back(names.substr(start, bar - start));
-    start = bar + 1;
-  }
+  std::vector<std::string> out = split_bar_list(names);
+  if (out.size() > count) out.resize(count);
   while (out.size() < count) out.push_back("#" + std::to_string(out.size()));
   return out;
 }
@@ -62,14 +57,6 @@ std::vector<std::string> split_positions(const std::string& names, uint32_t coun
 }  // namespace
 
 namespace {
-std::vector<std::string> split_bars(const std::string& joined) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (std::size_t bar; (bar = joined.find('|', start)) != std::string::npos; start = bar + 1)
-    out.push_back(joined.substr(start, bar - start));
-  return out;
-}
-
 const char* procedure_state_word(cockpit::ProcedureRunState s) {
   switch (s) {
     case cockpit::PROCEDURE_WAITING: return "waiting";
@@ -354,7 +341,7 @@ void StationModel::on_systems_info(const cockpit::SystemsInfo& info) {
   std::lock_guard<std::mutex> lock(mutex_);
   systems_.clear();
   for (const cockpit::SystemInfo& si : info.systems())
-    systems_.push_back({si.name().to_string(), si.unit().to_string(), split_bars(si.state_names().to_string())});
+    systems_.push_back({si.name().to_string(), si.unit().to_string(), split_bar_list(si.state_names().to_string())});
   std::vector<FailureEntry> failures;
   for (const cockpit::FailureInfo& fi : info.failures()) {
     FailureEntry f{fi.name().to_string(), fi.text().to_string(), false};

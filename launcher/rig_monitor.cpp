@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "hand/hand_joints.hpp"
+#include "idl/topics/bar_list.hpp"
 
 namespace vcockpit::rig {
 
@@ -19,17 +20,6 @@ const char* cause_name(cockpit::ControlCause cause) {
     case cockpit::OBJECT_PUSHED: return "object";
   }
   return "unknown";
-}
-
-// ControlInfo.position_names: each name ended by '|'
-std::vector<std::string> split_position_names(const std::string& text) {
-  std::vector<std::string> names;
-  std::size_t start = 0;
-  for (std::size_t bar = text.find('|'); bar != std::string::npos; bar = text.find('|', start)) {
-    names.push_back(text.substr(start, bar - start));
-    start = bar + 1;
-  }
-  return names;
 }
 
 }  // namespace
@@ -89,7 +79,7 @@ void RigMonitor::poll() {
   cockpit::ControlInfo control_info;
   while (control_info_reader_.take(control_info)) {
     controls_[control_info.control_id()] = {control_info.name().to_string(),
-                                             split_position_names(control_info.position_names().to_string())};
+                                             split_bar_list(control_info.position_names().to_string())};
   }
   // a position by index, or its number when the control's info has not come (yet)
   auto position_name = [&](uint32_t control, uint32_t position) {
@@ -122,17 +112,7 @@ void RigMonitor::poll() {
   while (systems_info_reader_.take(systems_info)) {
     systems_.clear();
     for (const cockpit::SystemInfo& si : systems_info.systems()) {
-      SystemNames names{si.name().to_string(), {}};
-      std::string state;
-      for (char c : si.state_names().to_string()) {
-        if (c != '|') {
-          state += c;
-        } else {
-          names.states.push_back(state);
-          state.clear();
-        }
-      }
-      systems_.push_back(names);
+      systems_.push_back({si.name().to_string(), split_bar_list(si.state_names().to_string())});
     }
   }
   cockpit::SystemsState systems_state;

@@ -15,30 +15,27 @@ int SystemsRun::take(const ControlFrame& frame, const StepStart& before_step,
     return 0;
   }
   ++counts_.taken;
+  const auto step = [&](const ControlFrame& f) {
+    if (before_step) before_step(f.time_ns);
+    events_.clear();
+    systems_.step(f, events_);
+    if (after_step) after_step(systems_, events_);
+  };
   int steps = 0;
-  stepping_ = frame;
+  // the periods the frames skipped, each with this frame's controls at its own time (a jump far
+  // beyond the last is taken as one step)
   if (started() && (frame.time_ns - last) / period > kMaxCatchUpPeriods) {
     ++counts_.jumped;
-    if (before_step) before_step(frame.time_ns);
-    events_.clear();
-    systems_.step(frame, events_);
-    if (after_step) after_step(systems_, events_);
-    return 1;
+  } else {
+    stepping_ = frame;
+    for (int64_t t = started() ? last + period : frame.time_ns; t < frame.time_ns; t += period) {
+      stepping_.time_ns = t;
+      step(stepping_);
+      ++counts_.missed;
+      ++steps;
+    }
   }
-  // the periods the frames skipped, each with this frame's controls at its own time
-  for (int64_t t = started() ? last + period : frame.time_ns; t < frame.time_ns; t += period) {
-    stepping_.time_ns = t;
-    if (before_step) before_step(t);
-    events_.clear();
-    systems_.step(stepping_, events_);
-    if (after_step) after_step(systems_, events_);
-    ++counts_.missed;
-    ++steps;
-  }
-  if (before_step) before_step(frame.time_ns);
-  events_.clear();
-  systems_.step(frame, events_);
-  if (after_step) after_step(systems_, events_);
+  step(frame);
   return steps + 1;
 }
 

@@ -59,6 +59,7 @@ class ImageGenerator {
         participant_(participant) {
     if (!options.instruments_path.empty()) {
       instruments_ = load_instruments(options.instruments_path);
+      render::append_instrument_faces(*instruments_, instrument_faces_);  // once: they never change
       instrument_values_.emplace(*instruments_);
       systems_info_reader_.emplace(participant.make_reader<cockpit::SystemsInfo>("state"));
       systems_state_reader_.emplace(participant.make_reader<cockpit::SystemsState>("state"));
@@ -113,6 +114,7 @@ class ImageGenerator {
   std::optional<Reader<cockpit::TrackedJoints>> joints_reader_;  // with show_tracked_joints
   std::optional<render::InstrumentsSpec> instruments_;             // with instruments_path
   std::optional<InstrumentValues> instrument_values_;
+  std::vector<render::Instance> instrument_faces_;  // the instruments' static layer
   std::optional<Reader<cockpit::SystemsInfo>> systems_info_reader_;
   std::optional<Reader<cockpit::SystemsState>> systems_state_reader_;
   cockpit::SystemsInfo systems_info_;
@@ -410,7 +412,7 @@ int ImageGenerator::run() {
     // the background first (the static cockpit and the head: copied, or redrawn if they changed)
     drain();
     cache_.build_fixed(fixed_);
-    if (instruments_) render::append_instrument_faces(*instruments_, fixed_);
+    fixed_.insert(fixed_.end(), instrument_faces_.begin(), instrument_faces_.end());
     renderer->begin_frame(fixed_, X_GHead_);
     // then, as late as possible, the newest hands and objects: latched here, rasterised at the
     // end_frame() flush a few ms later

@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <sstream>
 
 #include "common/clock.hpp"
 #include "common/signals.hpp"
+#include "idl/topics/bar_list.hpp"
 #include "idl/topics/systems_topics.hpp"
 #include "systems/systems_checkpoint.hpp"
 
@@ -21,15 +21,6 @@ using systems::Systems;
 using systems::SystemsEvent;
 
 constexpr std::size_t kMaxWaitingFrames = 1000;  // 10 s at 100 Hz
-
-std::vector<std::string> split_names(const std::string& joined) {
-  std::vector<std::string> out;
-  std::string name;
-  std::istringstream in(joined);
-  while (std::getline(in, name, '|'))
-    if (!name.empty()) out.push_back(name);
-  return out;
-}
 
 // A frame from DDS and the world's resets to the start when it was sent.
 struct Frame {
@@ -153,7 +144,7 @@ class Node {
       systems::ControlSpec spec;
       spec.name = info.name().to_string();
       spec.revolute = info.joint() == cockpit::REVOLUTE;
-      spec.positions = split_names(info.position_names().to_string());
+      spec.positions = split_bar_list(info.position_names().to_string());
       controls_[info.control_id()] = spec;
     }
   }

@@ -23,6 +23,7 @@ host.
 """
 import argparse
 import base64
+import contextlib
 import ipaddress
 import json
 import os
@@ -451,33 +452,27 @@ class Station:
         return f"{moved}, the row shows {seen} after {waited:.1f} s"
 
 
-def run(args):
-    deadline = time.monotonic() + args.timeout
+@contextlib.contextmanager
+def browser(args, url, prefix):
+    """Headless Chromium under chromedriver, for a page at `url` (its host the only one that
+    resolves); Skip when it cannot start here. Everything it started ends with the block."""
     for tool in (args.chromium, args.chromedriver):
         if not (os.path.isfile(tool) and os.access(tool, os.X_OK)):
             raise Skip(f"{tool} is not installed (or not executable)")
-    workdir = Path(tempfile.mkdtemp(prefix="vcockpit-instructor-browser-"))
+    workdir = Path(tempfile.mkdtemp(prefix=prefix))
     proc = driver = None
     try:
         port = args.driver_port or free_port()
         proc, driver = start_chromedriver(args.chromedriver, port, workdir)
         try:
             driver.start(args.chromium, chromium_args(workdir / "profile",
-                                                      urllib.parse.urlsplit(args.url).hostname))
+                                                      urllib.parse.urlsplit(url).hostname))
         except WebDriverError as e:
             if e.error == "session not created":
                 raise Skip(f"chromium cannot start here: {e}"
                            f"{chromium_says(args.chromium, workdir)}") from None
             raise
-        station = Station(driver, args, deadline)
-        station.run(1, "page live", station.page_live)
-        station.run(2, "nodes alive", station.nodes_alive)
-        station.run(3, "view not blank", station.view_not_blank)
-        station.run(4, "screenshot", station.screenshot)
-        station.run(5, "freeze holds sim time", station.freeze_holds)
-        station.run(6, "unfreeze runs", station.unfreeze_runs)
-        station.run(7, "control moves", station.control_moves)
-        print("PASS: the instructor station's page passed all 7 checks")
+        yield driver
     finally:
         if driver and driver.session:
             try:
@@ -487,6 +482,20 @@ def run(args):
         if proc:
             stop_group(proc)
         shutil.rmtree(workdir, ignore_errors=True)
+
+
+def run(args):
+    deadline = time.monotonic() + args.timeout
+    with browser(args, args.url, "vcockpit-instructor-browser-") as driver:
+        station = Station(driver, args, deadline)
+        station.run(1, "page live", station.page_live)
+        station.run(2, "nodes alive", station.nodes_alive)
+        station.run(3, "view not blank", station.view_not_blank)
+        station.run(4, "screenshot", station.screenshot)
+        station.run(5, "freeze holds sim time", station.freeze_holds)
+        station.run(6, "unfreeze runs", station.unfreeze_runs)
+        station.run(7, "control moves", station.control_moves)
+        print("PASS: the instructor station's page passed all 7 checks")
 
 
 # ---- self-test against the mock --------------------------------------------------------------

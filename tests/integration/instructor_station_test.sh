@@ -42,23 +42,7 @@ launched_s=$(date +%s.%N)
   > "$tmp/rig.log" 2>&1 &
 rig_pid=$!
 
-# api METHOD PATH [BODY]: prints "STATUS BODY"
-api() {
-  $py - "$1" "$url$2" "${3:-}" <<'PY'
-import sys, urllib.request, urllib.error
-method, url, body = sys.argv[1], sys.argv[2], sys.argv[3]
-req = urllib.request.Request(url, data=body.encode() if body else None, method=method,
-                             headers={"Content-Type": "application/json"})
-opener = urllib.request.build_opener(urllib.request.ProxyHandler({}))
-try:
-    with opener.open(req, timeout=5) as r:
-        print(r.status, r.read().decode(errors="replace"))
-except urllib.error.HTTPError as e:
-    print(e.code, e.read().decode(errors="replace"))
-except Exception as e:
-    print(0, e)
-PY
-}
+source "$src/tests/integration/station_api.sh"  # api METHOD PATH [BODY]
 for _ in $(seq 1 100); do
   api GET /api/state | grep -q '^200 ' && break
   sleep 0.2

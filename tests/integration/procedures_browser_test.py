@@ -19,18 +19,14 @@ procedures trainer's rig flying config/glove_logs/procedures_right.csv. One scen
 Exit status: 0 pass, 1 fail (which check, what it saw), 77 skip (Chromium cannot run here).
 """
 import argparse
-import os
-import shutil
 import sys
-import tempfile
 import time
 import urllib.parse
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from instructor_browser_test import (  # noqa: E402  (the helpers of the station's own test)
-    FAIL, PASS, SKIP, CheckFailed, Skip, WebDriverError, chromium_args, chromium_says,
-    free_port, start_chromedriver, stop_group)
+    FAIL, PASS, SKIP, CheckFailed, Skip, browser)
 
 STATE_JS = """
 const q = (s) => document.querySelector(s);
@@ -168,21 +164,7 @@ def reset(page, args):
 
 def run(args):
     deadline = time.monotonic() + args.timeout + 60
-    for tool in (args.chromium, args.chromedriver):
-        if not (os.path.isfile(tool) and os.access(tool, os.X_OK)):
-            raise Skip(f"{tool} is not installed (or not executable)")
-    workdir = Path(tempfile.mkdtemp(prefix="vcockpit-procedures-browser-"))
-    proc = driver = None
-    try:
-        proc, driver = start_chromedriver(args.chromedriver, args.driver_port or free_port(), workdir)
-        try:
-            driver.start(args.chromium, chromium_args(workdir / "profile",
-                                                      urllib.parse.urlsplit(args.url).hostname))
-        except WebDriverError as e:
-            if e.error == "session not created":
-                raise Skip(f"chromium cannot start here: {e}"
-                           f"{chromium_says(args.chromium, workdir)}") from None
-            raise
+    with browser(args, args.url, "vcockpit-procedures-browser-") as driver:
         driver.navigate(args.url)
         page = Page(driver, deadline)
         (gear_unsafe if args.scenario == "gear_unsafe" else reset)(page, args)
@@ -190,15 +172,6 @@ def run(args):
             Path(args.screenshot).write_bytes(driver.screenshot())
             print(f"ok check 4 (screenshot): {args.screenshot}", flush=True)
         print(f"PASS: scenario {args.scenario}")
-    finally:
-        if driver and driver.session:
-            try:
-                driver.quit()
-            except (OSError, WebDriverError):
-                pass
-        if proc:
-            stop_group(proc)
-        shutil.rmtree(workdir, ignore_errors=True)
 
 
 def main():
