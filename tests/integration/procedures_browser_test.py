@@ -5,10 +5,12 @@ procedures trainer's rig flying config/glove_logs/procedures_right.csv. One scen
 
   --scenario gear_unsafe  the instructor inserts "gear unsafe" from the page's Failures panel:
       1. the page is live and the systems node's values arrive;
-      2. the failure's row says INSERTED and the left gear lamp turns red;
-      3. the gear-unsafe abnormal starts and is scored: its steps are done as the hand raises and
-         lowers the gear (out of order when that comes before the log's master caution press),
-         and the gear lamps end green;
+      2. once the gear is down again before landing (three green), the failure is inserted:
+         its row says INSERTED and the left gear lamp turns red. The log presses the master
+         caution and recycles the gear about 19 s of simulated time later (10 s of wall time at
+         the test's rate 2): the margin for a slow page or a loaded machine;
+      3. the gear-unsafe abnormal starts and is scored: its steps are done as the hand presses
+         the master caution and raises and lowers the gear, and the gear lamps end green;
       4. a screenshot.
   --scenario reset        a run frozen, reset and scored again:
       1. the page is live; "Before start" is complete;
@@ -108,10 +110,14 @@ def gear_unsafe(page, args):
         "gear_unsafe_left" in s["failures"], 60, "systems")["systemsTime"])
 
     def insert():
+        # not earlier: the log's "after take-off" gear raise would clear the failure at once
+        ready = page.until(lambda s: done_steps(s["procedures"].get("before_landing")) >= 2,
+                           args.timeout, "before landing: gear down, three green")
         page.click('#failures tr[data-failure="gear_unsafe_left"] button.insert')
         s = page.until(lambda s: s["failures"].get("gear_unsafe_left") and
                        s["lamps"]["gear-left"] == "red", 15, "gear unsafe inserted, left lamp red")
-        return f"inserted at {s['systemsTime']:.2f} s, lamps {s['lamps']}"
+        return (f"three green at {ready['systemsTime']:.2f} s, inserted at "
+                f"{s['systemsTime']:.2f} s, lamps {s['lamps']}")
     check(2, "failure inserted from the page", insert)
 
     def scored():
