@@ -129,6 +129,8 @@ void write_shape(Xml& xml, const physics::Shape& shape) {
     case physics::ShapeKind::kCylinder:
       out << " type=\"cylinder\" size=\"" << shape.radius_m << ' ' << 0.5 * shape.length_m << '"';
       return;
+    case physics::ShapeKind::kMesh:  // (MJCF meshes are assets of their own: not compared yet)
+      throw std::invalid_argument("mjcf_from_scene: a mesh shape has no MJCF geom here");
   }
   throw std::invalid_argument("mjcf_from_scene: unknown shape kind");
 }

@@ -12,6 +12,7 @@ render::Primitive primitive_of(cockpit::ShapeKind shape) {
     case cockpit::SPHERE: return render::Primitive::kSphere;
     case cockpit::CAPSULE: return render::Primitive::kCapsule;
     case cockpit::CYLINDER: return render::Primitive::kCylinder;
+    case cockpit::MESH: return render::Primitive::kBox;  // TODO(mesh rendering)
   }
   return render::Primitive::kBox;
 }

@@ -40,6 +40,8 @@ std::string shape_yaml(const physics::Shape& s) {
       return format("{capsule: [%.6f, %.6f]}", s.radius_m, s.length_m);
     case ShapeKind::kCylinder:
       return format("{cylinder: [%.6f, %.6f]}", s.radius_m, s.length_m);
+    case ShapeKind::kMesh:  // (grip_fit's objects are primitives)
+      break;
   }
   return "";
 }

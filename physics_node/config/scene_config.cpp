@@ -6,6 +6,8 @@
 
 #include "common/pose.hpp"
 #include "hand/config/hand_yaml.hpp"
+#include "model/convex_hull.hpp"
+#include "model/import/model_file.hpp"
 #include "physics_node/config/scene_parts.hpp"
 
 namespace vcockpit {
@@ -109,11 +111,47 @@ std::array<double, N> positive_list(const ConfigNode& node,
   return out;
 }
 
-Shape parse_shape(const ConfigNode& node) {
+// {mesh: FILE, node: NAME, scale: S, up: y|z}: the file relative to the scene's directory
+Shape parse_mesh_shape(const ConfigNode& node, const ShapeContext& context) {
+  node.expect_keys({"mesh", "node", "scale", "up"});
+  model::ModelRequest request;
+  const std::string file = node["mesh"].as_string();
+  if (file.empty()) node["mesh"].fail("the model file name must not be empty");
+  fs::path path(file);
+  if (path.is_relative() && !context.base_dir.empty()) path = fs::path(context.base_dir) / path;
+  request.path = path.string();
+  read_optional(node, "node", request.node, [](const ConfigNode& n) { return n.as_string(); });
+  if (auto scale = node.find("scale")) request.scale = positive(*scale, "scale");
+  if (auto up = node.find("up")) {
+    const std::string axis = up->as_string();
+    if (axis != "y" && axis != "z") up->fail("up must be y or z, not '" + axis + "'");
+    request.up = axis == "z" ? model::UpAxis::kZ : model::UpAxis::kY;
+  }
+  try {
+    auto mesh = std::make_shared<model::TriangleMesh>(model::load_model_mesh(request));
+    std::shared_ptr<model::TriangleMesh> hull;  // a static mesh collides as its triangles
+    Eigen::Vector3d origin_m = Eigen::Vector3d::Zero();
+    if (context.moving) {
+      hull = std::make_shared<model::TriangleMesh>(model::convex_hull(*mesh));
+      // a moving body's frame is its centroid: the solid of its hull (what it collides as)
+      origin_m = -model::mass_properties(*hull).centroid_m;
+      model::translate(*mesh, origin_m);
+      model::translate(*hull, origin_m);
+    }
+    Shape shape = Shape::triangle_mesh(std::move(mesh), std::move(hull));
+    shape.mesh_source = {request.path, request.node, request.scale, request.up == model::UpAxis::kZ, origin_m};
+    return shape;
+  } catch (const model::MeshError& e) {
+    node["mesh"].fail(e.what());
+  }
+}
+
+Shape parse_shape(const ConfigNode& node, const ShapeContext& context) {
+  if (node.find("mesh")) return parse_mesh_shape(node, context);
   node.expect_keys({"box", "sphere", "capsule", "cylinder"});
   const std::vector<std::string> keys = node.keys();
   if (keys.size() != 1) {
-    node.fail("expected exactly one of box, sphere, capsule, cylinder, found " +
+    node.fail("expected exactly one of box, sphere, capsule, cylinder, mesh, found " +
               std::to_string(keys.size()));
   }
   const ConfigNode dims = node[keys[0]];
@@ -208,14 +246,15 @@ void reject_dynamics(const ConfigNode& node) {
   }
 }
 
-ObjectSpec parse_object(const ConfigNode& node) {
+ObjectSpec parse_object(const ConfigNode& node, const std::string& base_dir) {
   node.expect_keys({"name", "kind", "shape", "pose", "mass", "density", "inertia", "velocity",
                     "material", "color"});
   ObjectSpec spec;
   spec.name = parse_name(node["name"]);
   spec.dynamic = parse_kind_is_dynamic(node["kind"]);
-  spec.shape = parse_shape(node["shape"]);
-  spec.X_GO = parse_pose(node["pose"]);
+  spec.shape = parse_shape(node["shape"], {base_dir, spec.dynamic});
+  // the pose places the model's node; a moving mesh's frame is at its centroid
+  spec.X_GO = parse_pose(node["pose"]) * Eigen::Translation3d(-spec.shape.mesh_source.origin_m);
   if (spec.dynamic) {
     parse_mass_properties(node, spec);
     if (auto v = node.find("velocity")) parse_velocity(*v, spec);
@@ -227,10 +266,10 @@ ObjectSpec parse_object(const ConfigNode& node) {
   return spec;
 }
 
-void parse_objects(const ConfigNode& list, Scene& scene) {
+void parse_objects(const ConfigNode& list, const std::string& base_dir, Scene& scene) {
   std::vector<int> lines;  // where each object's name was written, for the duplicate message
   for (const ConfigNode& node : list.elements()) {
-    ObjectSpec spec = parse_object(node);
+    ObjectSpec spec = parse_object(node, base_dir);
     const int first = scene.find_object(spec.name);
     if (first >= 0) {
       node["name"].fail("duplicate object name '" + spec.name + "' (first used on line " +
@@ -408,7 +447,7 @@ physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) 
   }
   if (auto m = root.find("hand_material"))
     scene.hand_material = parse_material(*m, scene.hand_material);
-  parse_objects(root["objects"], scene);
+  parse_objects(root["objects"], base_dir, scene);
   if (auto controls = root.find("controls")) parse_controls(*controls, scene);
   read_optional(root, "grasp", scene.grasp, parse_grasp);
   read_optional(root, "contact", scene.contact, parse_contact);

@@ -27,7 +27,15 @@ void read_optional(const ConfigNode& map, std::string_view key, T& value, Parse 
 }
 
 physics::Material parse_material(const ConfigNode& node, const physics::Material& defaults);
-physics::Shape parse_shape(const ConfigNode& node);
+// How a shape is read: model files relative to base_dir; a moving shape (a dynamic object, a
+// control's part) framed at its mesh's centroid.
+struct ShapeContext {
+  std::string base_dir;
+  bool moving = false;
+};
+// box, sphere, capsule, cylinder or {mesh: FILE, node: NAME, scale: S, up: y|z}; a mesh's errors
+// name the YAML line and the model file.
+physics::Shape parse_shape(const ConfigNode& node, const ShapeContext& context = {});
 Eigen::Isometry3d parse_pose(const ConfigNode& node);
 std::array<float, 4> parse_color(const ConfigNode& node);
 std::string parse_name(const ConfigNode& node);

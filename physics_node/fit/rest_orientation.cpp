@@ -28,6 +28,8 @@ std::vector<RestOrientation> rest_orientations(const physics::Shape& shape) {
       return {{Eigen::Matrix3d::Identity(), true, "on its z faces"},
               {about_x(0.5 * M_PI), true, "on its y faces"},
               {about_y(-0.5 * M_PI), true, "on its x faces"}};
+    case physics::ShapeKind::kMesh:  // grip_fit places the primitives its command line names
+      break;
   }
   return {};
 }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 
+#include "physics_node/physics/fcl_geometry.hpp"
 #include "physics_node/physics/golden_section.hpp"
 
 namespace vcockpit::fit {
@@ -83,11 +84,6 @@ Eigen::Vector3d outward_normal(const Shape& shape, const Eigen::Vector3d& p_O) {
   return norm > 1e-6 ? Eigen::Vector3d(g / norm) : Eigen::Vector3d::Zero();
 }
 
-std::shared_ptr<fcl::CollisionGeometryd> fcl_shape(const Shape& shape) {
-  if (shape.kind == ShapeKind::kBox) return std::make_shared<fcl::Boxd>(shape.box_size_m);
-  return std::make_shared<fcl::Cylinderd>(shape.radius_m, shape.length_m);
-}
-
 // FCL's signed distance as the simulator measures it: the deepest contact when they overlap,
 // the GJK distance when apart.
 double fcl_signed_distance(const fcl::CollisionGeometryd& a, const Eigen::Isometry3d& X_GA,
@@ -123,6 +119,8 @@ double point_signed_distance(const Shape& shape, const Eigen::Vector3d& p_O) {
     }
     case ShapeKind::kCylinder:
       return cylinder_point_signed_distance(shape.radius_m, 0.5 * shape.length_m, p_O);
+    case ShapeKind::kMesh:  // grip_fit's objects are the primitives its command line names
+      break;
   }
   return 0.0;
 }
@@ -208,8 +206,10 @@ double box_signed_distance(const Shape& shape, const Eigen::Isometry3d& X_GO,
     case ShapeKind::kBox:
     case ShapeKind::kCylinder: {
       const fcl::Boxd box(size_m);
-      return fcl_signed_distance(box, X_GB, *fcl_shape(shape), X_GO);
+      return fcl_signed_distance(box, X_GB, *physics::fcl_geometry(shape, /*moving=*/true), X_GO);
     }
+    case ShapeKind::kMesh:
+      break;
   }
   return 0.0;
 }
@@ -225,6 +225,8 @@ ShapeCore shape_core(const Shape& shape, const Eigen::Isometry3d& X_GO) {
       const Eigen::Vector3d half_G = X_GO.linear().col(2) * (0.5 * shape.length_m);
       return {X_GO.translation() - half_G, X_GO.translation() + half_G, shape.radius_m};
     }
+    case ShapeKind::kMesh:
+      break;
   }
   return {X_GO.translation(), X_GO.translation(), INFINITY};
 }
@@ -246,6 +248,8 @@ double support_half_extent(const Shape& shape, const Eigen::Vector3d& u_O) {
     case ShapeKind::kCylinder:
       return shape.radius_m * std::sqrt(std::max(0.0, 1.0 - along_axis * along_axis)) +
              0.5 * shape.length_m * along_axis;
+    case ShapeKind::kMesh:
+      break;
   }
   return 0.0;
 }

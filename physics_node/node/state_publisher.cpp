@@ -16,6 +16,7 @@ cockpit::ShapeKind shape_to_idl(physics::ShapeKind kind) {
     case physics::ShapeKind::kSphere: return cockpit::SPHERE;
     case physics::ShapeKind::kCapsule: return cockpit::CAPSULE;
     case physics::ShapeKind::kCylinder: return cockpit::CYLINDER;
+    case physics::ShapeKind::kMesh: return cockpit::MESH;
   }
   return cockpit::BOX;
 }
@@ -130,6 +131,15 @@ void StatePublisher::publish_object_info(const physics::World& world) {
     info.shape(shape_to_idl(o.shape.kind));
     if (o.shape.kind == physics::ShapeKind::kBox) {
       info.dimensions_m({o.shape.box_size_m.x(), o.shape.box_size_m.y(), o.shape.box_size_m.z()});
+    } else if (o.shape.kind == physics::ShapeKind::kMesh) {
+      const Eigen::Vector3d size_m = o.shape.mesh_bounds.max_m - o.shape.mesh_bounds.min_m;
+      info.dimensions_m({size_m.x(), size_m.y(), size_m.z()});
+      const physics::Shape::MeshSource& m = o.shape.mesh_source;
+      info.mesh_file(m.file.substr(0, 255));
+      info.mesh_node(m.node.substr(0, 64));
+      info.mesh_scale(m.scale);
+      info.mesh_z_up(m.z_up);
+      info.mesh_origin_m(to_idl(m.origin_m));
     } else {
       info.dimensions_m({o.shape.radius_m, o.shape.length_m, 0.0});
     }

@@ -8,7 +8,7 @@ namespace vcockpit::physics {
 
 Aabb shape_aabb(const Shape& shape, const Eigen::Isometry3d& X_GS) {
   const Eigen::Matrix3d& R = X_GS.linear();
-  const Eigen::Vector3d c = X_GS.translation();
+  Eigen::Vector3d c = X_GS.translation();
   Eigen::Vector3d half = Eigen::Vector3d::Zero();
   switch (shape.kind) {
     case ShapeKind::kBox:
@@ -25,6 +25,12 @@ Aabb shape_aabb(const Shape& shape, const Eigen::Isometry3d& X_GS) {
       for (int i = 0; i < 3; ++i)
         half[i] = 0.5 * shape.length_m * std::abs(a[i]) +
                   shape.radius_m * std::sqrt(std::max(0.0, 1.0 - a[i] * a[i]));
+      break;
+    }
+    case ShapeKind::kMesh: {  // the box round the vertices, turned
+      const model::Bounds& b = shape.mesh_bounds;
+      c = X_GS * (0.5 * (b.min_m + b.max_m));
+      half = R.cwiseAbs() * (0.5 * (b.max_m - b.min_m));
       break;
     }
   }

@@ -15,6 +15,8 @@
 
 #include "common/assert.hpp"
 #include "physics_node/physics/broadphase.hpp"
+#include "physics_node/physics/face_vertex_contacts.hpp"
+#include "physics_node/physics/fcl_geometry.hpp"
 #include "physics_node/physics/manifold_clipper.hpp"
 #include "physics_node/physics/segment_contact.hpp"
 
@@ -56,6 +58,11 @@ namespace {
 using Geometry = std::shared_ptr<fcl::CollisionGeometryd>;
 
 constexpr double kMprTolerance_m = 1e-9;  // see above
+// A mesh pair: the triangles asked of FCL, how far past a triangle's edge a vertex still rests
+// on it, and how near two points are one (the same vertex over two triangles of one plane).
+constexpr std::size_t kMeshTriangles = 32;
+constexpr double kFaceSlack_m = 1e-6;
+constexpr double kMergeDistance_m = 1e-4;
 
 using BodyKind = BroadphaseBody;  // static, dynamic or a hand link
 
@@ -85,23 +92,11 @@ void require(bool ok, const std::string& message) {
 }
 
 Geometry object_geometry(const ObjectSpec& spec) {
-  const Shape& s = spec.shape;
-  const std::string what = "object '" + spec.name + "': ";
-  switch (s.kind) {
-    case ShapeKind::kBox:
-      require((s.box_size_m.array() > 0.0).all(), what + "box size must be positive");
-      return std::make_shared<fcl::Boxd>(s.box_size_m);
-    case ShapeKind::kSphere:
-      require(s.radius_m > 0.0, what + "sphere radius must be positive");
-      return std::make_shared<fcl::Sphered>(s.radius_m);
-    case ShapeKind::kCapsule:
-      require(s.radius_m > 0.0 && s.length_m >= 0.0, what + "bad capsule radius or length");
-      return std::make_shared<fcl::Capsuled>(s.radius_m, s.length_m);
-    case ShapeKind::kCylinder:
-      require(s.radius_m > 0.0 && s.length_m > 0.0, what + "bad cylinder radius or length");
-      return std::make_shared<fcl::Cylinderd>(s.radius_m, s.length_m);
+  try {
+    return fcl_geometry(spec.shape, spec.dynamic);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("CollisionWorld: object '" + spec.name + "': " + e.what());
   }
-  throw std::invalid_argument(what + "unknown shape kind");
 }
 
 // Ry(+90 deg), exactly: FCL's capsule axis z onto the phalanx axis x_L.
@@ -132,6 +127,12 @@ struct CollisionWorld::Impl {
   std::size_t contact_capacity = 0;
   std::uint64_t skipped = 0;
 
+  // mesh pairs: up to kMeshTriangles triangles asked of FCL, reduced to max_points
+  fcl::CollisionRequestd mesh_request;
+  int max_points = 4;
+  std::vector<Eigen::Vector3d> vertices_G;
+  std::vector<FaceContact> face_contacts;
+
   ManifoldClipper clipper;  // flat contacts' manifolds (fixed work space)
   std::array<ManifoldPoint, kMaxManifold> manifold_points;
 
@@ -150,6 +151,10 @@ struct CollisionWorld::Impl {
 
   // Appends the pair's points with positive depth; bad ones are counted and dropped.
   void narrowphase(const BodyPair& pair, std::vector<ContactPoint>& out) {
+    if (is_static_mesh(pair.lo) || is_static_mesh(pair.hi)) {
+      mesh_narrowphase(pair, out);
+      return;
+    }
     const std::size_t first = out.size();
     // a box and a round body: the least overlap over the box's face normals first
     const bool box_round = box_and_round(pair);
@@ -197,6 +202,79 @@ struct CollisionWorld::Impl {
       }
     }
     finish_manifold(pair, first, out);
+  }
+
+  bool is_static_mesh(int body) const {
+    const Body& b = bodies[static_cast<std::size_t>(body)];
+    return b.shape == ShapeKind::kMesh && b.kind == BodyKind::kStatic;
+  }
+
+  // A body against a static triangle mesh. FCL 0.7's mesh pairs give, in either argument order,
+  // the normal from the mesh toward the other body, a sphere's depth negative, and the point on
+  // the triangle: one point per triangle touched (tests/unit/collision_test.cpp, "Mesh"). So
+  // the depth is taken as its magnitude, the point moved midway, and a box or a convex hull on
+  // a triangle gets its vertices under the triangle as points (face_vertex_contacts.hpp).
+  void mesh_narrowphase(const BodyPair& pair, std::vector<ContactPoint>& out) {
+    const int mesh = is_static_mesh(pair.lo) ? pair.lo : pair.hi;
+    const int other = mesh == pair.lo ? pair.hi : pair.lo;
+    const fcl::CollisionObjectd& mesh_object = *objects[static_cast<std::size_t>(mesh)];
+    result.clear();
+    fcl::collide(&mesh_object, objects[static_cast<std::size_t>(other)].get(), mesh_request, result);
+    if (result.numContacts() == 0) return;
+    const model::TriangleMesh& triangles = *shapes[static_cast<std::size_t>(mesh)].mesh;
+    const Eigen::Isometry3d& X_GM = mesh_object.getTransform();
+    const bool polyhedral = incident_vertices(other, vertices_G);
+    face_contacts.clear();
+    for (std::size_t i = 0; i < result.numContacts(); ++i) {
+      const fcl::Contactd& c = result.getContact(i);
+      const double depth_m = std::abs(c.penetration_depth);
+      const double norm = c.normal.norm();
+      if (!std::isfinite(depth_m) || !c.pos.allFinite() || !(norm > 0.5 && norm < 2.0)) {
+        ++skipped;
+        continue;
+      }
+      if (depth_m <= kMprTolerance_m) continue;  // only touching
+      const Eigen::Vector3d n = c.normal / norm;  // mesh -> other
+      const std::size_t before = face_contacts.size();
+      const int t = c.o1 == mesh_object.collisionGeometry().get() ? c.b1 : c.b2;
+      if (polyhedral && t >= 0 && static_cast<std::size_t>(t) < triangles.triangles.size()) {
+        FlatFace face;
+        const auto& tri = triangles.triangles[static_cast<std::size_t>(t)];
+        for (int k = 0; k < 3; ++k)
+          face.corners_G[static_cast<std::size_t>(k)] = X_GM * triangles.vertices_m[tri[static_cast<std::size_t>(k)]];
+        face.n_G = (face.corners_G[1] - face.corners_G[0]).cross(face.corners_G[2] - face.corners_G[0]).normalized();
+        if (face.n_G.dot(n) < 0.0) {  // the triangle's back: the other body came from behind
+          face.n_G = -face.n_G;
+          std::swap(face.corners_G[1], face.corners_G[2]);
+        }
+        face_vertex_contacts(face, vertices_G, 1.5 * depth_m + kFaceSlack_m, kFaceSlack_m, face_contacts);
+      }
+      if (face_contacts.size() == before) face_contacts.push_back({c.pos - (0.5 * depth_m) * n, n, depth_m});
+    }
+    reduce_face_contacts(face_contacts, max_points, kMergeDistance_m);
+    for (const FaceContact& f : face_contacts)
+      out.push_back({pair.lo, pair.hi, f.p_G, mesh == pair.lo ? f.n_G : Eigen::Vector3d(-f.n_G), f.depth_m});
+  }
+
+  // The world vertices of a polyhedral body (a box's corners, a moving mesh's hull): false for a
+  // round one.
+  bool incident_vertices(int body, std::vector<Eigen::Vector3d>& out) const {
+    out.clear();
+    const Body& b = bodies[static_cast<std::size_t>(body)];
+    const Eigen::Isometry3d& X = objects[static_cast<std::size_t>(body)]->getTransform();
+    if (b.shape == ShapeKind::kBox) {
+      for (int k = 0; k < 8; ++k)
+        out.push_back(X * Eigen::Vector3d(k & 1 ? b.half_size_m.x() : -b.half_size_m.x(),
+                                          k & 2 ? b.half_size_m.y() : -b.half_size_m.y(),
+                                          k & 4 ? b.half_size_m.z() : -b.half_size_m.z()));
+      return true;
+    }
+    const Shape& s = shapes[static_cast<std::size_t>(body)];
+    if (b.shape == ShapeKind::kMesh && s.hull) {
+      for (const Eigen::Vector3d& v : s.hull->vertices_m) out.push_back(X * v);
+      return true;
+    }
+    return false;
   }
 
   bool segment_pair(const BodyPair& pair) const {
@@ -345,6 +423,8 @@ struct CollisionWorld::Impl {
         if (norm > 1e-12) p += (b.radius_m / norm) * across;
         return p;
       }
+      case ShapeKind::kMesh:  // (asked only of a box and a round body)
+        break;
     }
     return c;
   }
@@ -444,6 +524,9 @@ CollisionWorld::CollisionWorld(const Scene& scene) : impl_(std::make_unique<Impl
   m.request = fcl::CollisionRequestd(static_cast<std::size_t>(scene.contact.max_points_per_pair),
                                      /*enable_contact=*/true);
   m.request.gjk_tolerance = kMprTolerance_m;
+  m.mesh_request = fcl::CollisionRequestd(kMeshTriangles, /*enable_contact=*/true);
+  m.mesh_request.gjk_tolerance = kMprTolerance_m;
+  m.max_points = scene.contact.max_points_per_pair;
   m.clipper = ManifoldClipper(std::min(scene.contact.max_points_per_pair, kMaxManifold));
   m.contact_capacity = 4 * body_count * static_cast<std::size_t>(scene.contact.max_points_per_pair);
 }

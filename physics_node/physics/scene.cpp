@@ -1,5 +1,6 @@
 #include "physics_node/physics/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -72,6 +73,16 @@ Shape Shape::cylinder(double radius_m, double length_m) {
   return s;
 }
 
+Shape Shape::triangle_mesh(std::shared_ptr<const model::TriangleMesh> mesh,
+                           std::shared_ptr<const model::TriangleMesh> hull) {
+  Shape s;
+  s.kind = ShapeKind::kMesh;
+  s.mesh_bounds = model::bounds(*mesh);
+  s.mesh = std::move(mesh);
+  s.hull = std::move(hull);
+  return s;
+}
+
 double Shape::volume_m3() const {
   const double r2 = radius_m * radius_m;
   switch (kind) {
@@ -83,6 +94,8 @@ double Shape::volume_m3() const {
       return kPi * r2 * length_m + 4.0 / 3.0 * kPi * r2 * radius_m;
     case ShapeKind::kCylinder:
       return kPi * r2 * length_m;
+    case ShapeKind::kMesh:
+      return hull ? model::mass_properties(*hull).volume_m3 : 0.0;
   }
   return 0.0;
 }
@@ -97,6 +110,14 @@ Eigen::Matrix3d Shape::unit_density_inertia() const {
       return capsule_inertia(radius_m, length_m);
     case ShapeKind::kCylinder:
       return cylinder_inertia(radius_m, length_m);
+    case ShapeKind::kMesh: {
+      if (!hull) return Eigen::Matrix3d::Zero();
+      // about the hull's centroid, moved to the frame's origin (parallel axes) if it is not there
+      const model::MassProperties m = model::mass_properties(*hull);
+      const Eigen::Vector3d& c = m.centroid_m;
+      return m.unit_density_inertia +
+             m.volume_m3 * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    }
   }
   return Eigen::Matrix3d::Zero();
 }
@@ -111,6 +132,11 @@ double Shape::bounding_radius_m() const {
       return 0.5 * length_m + radius_m;
     case ShapeKind::kCylinder:
       return std::hypot(radius_m, 0.5 * length_m);  // rim corner
+    case ShapeKind::kMesh: {
+      double r2_m2 = 0.0;
+      for (const Eigen::Vector3d& v : (hull ? hull : mesh)->vertices_m) r2_m2 = std::max(r2_m2, v.squaredNorm());
+      return std::sqrt(r2_m2);
+    }
   }
   return 0.0;
 }
@@ -130,6 +156,13 @@ Eigen::Vector3d Shape::axis_reach_m() const {
     case ShapeKind::kCylinder: {
       const double across = std::hypot(radius_m, 0.5 * length_m);
       return {across, across, radius_m};
+    }
+    case ShapeKind::kMesh: {
+      Eigen::Vector3d reach_m = Eigen::Vector3d::Zero();
+      for (const Eigen::Vector3d& v : (hull ? hull : mesh)->vertices_m)
+        reach_m = reach_m.cwiseMax(Eigen::Vector3d(std::hypot(v.y(), v.z()), std::hypot(v.x(), v.z()),
+                                                   std::hypot(v.x(), v.y())));
+      return reach_m;
     }
   }
   return Eigen::Vector3d::Zero();

@@ -7,29 +7,50 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "physics_node/physics/control.hpp"
 #include "physics_node/physics/hand_names.hpp"
+#include "model/triangle_mesh.hpp"
 
 namespace vcockpit::physics {
 
-enum class ShapeKind : uint8_t { kBox, kSphere, kCapsule, kCylinder };
+enum class ShapeKind : uint8_t { kBox, kSphere, kCapsule, kCylinder, kMesh };
 
 // Dimensions in metres. Box: full extents x, y, z. Sphere: radius. Capsule and cylinder:
 // radius and length along the object's z axis (a capsule's length excludes its end caps).
+// Mesh: triangles from a model file in the object's frame (model/import); a static object
+// collides with its triangles (a BVH), a moving one with their convex hull, whose solid also
+// gives its volume and inertia (a moving mesh's frame is its hull's centroid).
 struct Shape {
   ShapeKind kind = ShapeKind::kBox;
   Eigen::Vector3d box_size_m = Eigen::Vector3d::Zero();
   double radius_m = 0.0;
   double length_m = 0.0;
+  std::shared_ptr<const model::TriangleMesh> mesh;  // kMesh
+  std::shared_ptr<const model::TriangleMesh> hull;  // kMesh, moving: the convex hull of `mesh`
+  model::Bounds mesh_bounds;                        // kMesh: of both (the same extremes)
+  // kMesh: the file it came from (the image generator loads the same), and where the file's
+  // node origin is in the object's frame (not at it for a moving mesh, framed at its centroid)
+  struct MeshSource {
+    std::string file;
+    std::string node;
+    double scale = 1.0;
+    bool z_up = false;
+    Eigen::Vector3d origin_m = Eigen::Vector3d::Zero();
+  } mesh_source;
 
   static Shape box(const Eigen::Vector3d& size_m);
   static Shape sphere(double radius_m);
   static Shape capsule(double radius_m, double length_m);
   static Shape cylinder(double radius_m, double length_m);
+  // `hull`: the convex hull of `mesh` (model::convex_hull), in the same frame; null for a static
+  // object (volume and inertia are then 0, reaches over the mesh's vertices)
+  static Shape triangle_mesh(std::shared_ptr<const model::TriangleMesh> mesh,
+                             std::shared_ptr<const model::TriangleMesh> hull);
 
   double volume_m3() const;
   // Inertia about the centroid in the shape's own frame for a uniform density (kg m^2).

@@ -3,7 +3,7 @@
 cmake/forbid_links.cmake). Every folder of the product code is in exactly one layer; a file may
 include its own folder and folders of lower layers, never one above or beside it:
 
-  common < hand < hand/tracking < hand/config < systems < systems/config < idl/topics (and the generated IDL types) < dds < the nodes
+  common < model < model/import < hand < hand/tracking < hand/config < systems < systems/config < idl/topics (and the generated IDL types) < dds < the nodes
 
 A node's folders are ordered among themselves the same way, and no node includes another node.
 The pure folders include no DDS, no IDL types and no YAML. A folder with source files that is in
@@ -17,7 +17,7 @@ import re
 import sys
 
 # The shared layers, bottom up.
-SHARED = ["common", "hand", "hand/tracking", "hand/config", "systems", "systems/config",
+SHARED = ["common", "model", "model/import", "hand", "hand/tracking", "hand/config", "systems", "systems/config",
           "idl/topics", "dds"]
 # Each node's folders, bottom up; the node's own top folder (its main) last.
 NODES = {
@@ -31,7 +31,7 @@ NODES = {
     "systems_node": ["systems_node/node", "systems_node"],
 }
 # No DDS, no IDL types, no YAML: what the offline runner and the tests drive on their own.
-PURE = ["hand", "hand/tracking", "systems", "glove_driver/degrade", "glove_driver/openxr",
+PURE = ["model", "model/import", "hand", "hand/tracking", "systems", "glove_driver/degrade", "glove_driver/openxr",
         "glove_driver/openxr/replay_runtime", "physics_node/physics", "physics_node/io",
         "physics_node/fit", "image_generator/render"]
 PURE_MAY_NOT = re.compile(r"^(fastdds|fastrtps|fastcdr|yaml-cpp)/|^(idl|dds|hand/config|systems/config)/|"
@@ -67,7 +67,7 @@ def may_include(src, dst):
 
 def check(root):
     problems = []
-    roots = SHARED[:1] + ["hand", "systems", "idl", "dds"] + list(NODES)
+    roots = SHARED[:1] + ["model", "hand", "systems", "idl", "dds"] + list(NODES)
     seen_folders = set()
     for top in sorted(set(roots)):
         for dirpath, _, names in os.walk(os.path.join(root, top)):

@@ -117,6 +117,8 @@ TEST(ShapeAabb, HoldsEachShapeTightly) {
                 points.push_back({shape.radius_m * std::cos(phi), shape.radius_m * std::sin(phi),
                                   end * shape.length_m});
               break;
+            case ShapeKind::kMesh:  // (meshes: model_mesh_test)
+              break;
           }
           for (const auto& p : points) {
             const Eigen::Vector3d q = X * p;

@@ -169,6 +169,42 @@ TEST(Collision, BoxOneMillimetreIntoBoxFloorGivesFourCorners) {
   EXPECT_EQ(corners_seen, 0b1111);
 }
 
+// ---- static triangle meshes --------------------------------------------------------------------
+
+// A 1 m square of two triangles (z = 0, facing +z) as a static mesh object at `index` 0 or last.
+ObjectSpec mesh_floor() {
+  auto mesh = std::make_shared<model::TriangleMesh>();
+  mesh->vertices_m = {{-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0.5, 0.5, 0}, {-0.5, 0.5, 0}};
+  mesh->triangles = {{0, 1, 2}, {0, 2, 3}};
+  return object("mesh floor", false, Shape::triangle_mesh(mesh, nullptr), pose(0, 0, 0));
+}
+
+// FCL 0.7's mesh pairs give the normal from the mesh in either order, a negative depth for a
+// sphere and the point on the triangle; collision.cpp's mesh narrowphase turns them into the
+// convention of every other pair, whichever body comes first.
+TEST(Collision, MeshPairsFollowTheConventionInBothOrders) {
+  for (bool mesh_first : {true, false}) {
+    for (bool ball : {true, false}) {
+      const Shape shape = ball ? Shape::sphere(0.05) : Shape::box(Eigen::Vector3d::Constant(0.1));
+      // on the shared diagonal of the two triangles: one point, not one per triangle
+      const ObjectSpec body = object("body", true, shape, pose(0.1, 0.1, 0.05 - kDepth_m));
+      Scene scene;
+      scene.objects = mesh_first ? std::vector<ObjectSpec>{mesh_floor(), body}
+                                 : std::vector<ObjectSpec>{body, mesh_floor()};
+      CollisionWorld world(scene);
+      const auto contacts = step(world, initial_poses(scene));
+      const std::string what = std::string(ball ? "ball" : "box") + (mesh_first ? ", mesh first" : ", mesh last");
+      ASSERT_EQ(contacts.size(), ball ? 1u : 4u) << what;
+      for (const ContactPoint& c : contacts) {
+        EXPECT_NEAR(c.depth_m, kDepth_m, 1e-6) << what;
+        expect_vec_near(c.n_G, Eigen::Vector3d(0, 0, mesh_first ? 1.0 : -1.0), kNormalTol,
+                        what + ": normal from body_a to body_b");
+        EXPECT_NEAR(c.p_G.z(), -0.5 * kDepth_m, 1e-6) << what << ": midway through the overlap";
+      }
+    }
+  }
+}
+
 TEST(Collision, MaxPointsPerPairCapsTheManifold) {
   Scene scene;
   scene.contact.max_points_per_pair = 2;

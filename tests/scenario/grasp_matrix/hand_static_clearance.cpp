@@ -4,24 +4,9 @@
 
 #include <stdexcept>
 
+#include "physics_node/physics/fcl_geometry.hpp"
+
 namespace vcockpit::test {
-namespace {
-
-using Geometry = std::shared_ptr<fcl::CollisionGeometryd>;
-
-Geometry geometry_of(const physics::Shape& s) {
-  switch (s.kind) {
-    case physics::ShapeKind::kBox: return std::make_shared<fcl::Boxd>(s.box_size_m);
-    case physics::ShapeKind::kSphere: return std::make_shared<fcl::Sphered>(s.radius_m);
-    case physics::ShapeKind::kCapsule:
-      return std::make_shared<fcl::Capsuled>(s.radius_m, s.length_m);
-    case physics::ShapeKind::kCylinder:
-      return std::make_shared<fcl::Cylinderd>(s.radius_m, s.length_m);
-  }
-  throw std::invalid_argument("unknown shape");
-}
-
-}  // namespace
 
 struct HandStaticClearance::Impl {
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> statics;
@@ -35,7 +20,7 @@ HandStaticClearance::HandStaticClearance(const physics::Scene& scene, const hand
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const physics::ObjectSpec& o = scene.objects[i];
     if (o.dynamic) continue;
-    auto object = std::make_unique<fcl::CollisionObjectd>(geometry_of(o.shape), o.X_GO);
+    auto object = std::make_unique<fcl::CollisionObjectd>(physics::fcl_geometry(o.shape, /*moving=*/false), o.X_GO);
     object->computeAABB();
     impl_->statics.push_back(std::move(object));
     impl_->static_index.push_back(static_cast<int>(i));

@@ -1,0 +1,35 @@
+#pragma once
+// Meshes from model files through Debian's Open Asset Import Library (assimp 5.2): glTF 2.0
+// (.gltf, .glb), Wavefront OBJ (.obj) and AC3D (.ac, the format of FlightGear's cockpits).
+// One node (or the whole file) becomes one TriangleMesh in the project's units and axes.
+
+#include <string>
+#include <vector>
+
+#include "model/triangle_mesh.hpp"
+
+namespace vcockpit::model {
+
+enum class UpAxis { kY, kZ };
+
+struct ModelRequest {
+  std::string path;  // the model file
+  // a node's name: its meshes and its children's, in that node's own frame (the node's own
+  // placement in the file is left out: the scene's pose places it). Empty: every mesh of the
+  // file, in the file's frame.
+  std::string node;
+  double scale = 1.0;  // file units to metres (glTF is in metres; OBJ and AC3D have no unit)
+  // The file's up axis: +y for glTF (its specification), and by default for OBJ and AC3D
+  // (Blender's exports, FlightGear's models); turned to the project's +z up by a quarter turn
+  // about x: (x, y, z) -> (x, -z, y).
+  UpAxis up = UpAxis::kY;
+};
+
+// Throws MeshError naming the file (and node): missing, unsupported, unreadable, no such node
+// (with the file's node names), no triangles, a non-finite vertex, a degenerate triangle.
+TriangleMesh load_model_mesh(const ModelRequest& request);
+
+// The names of the file's nodes, depth first (for messages and tools).
+std::vector<std::string> model_node_names(const std::string& path);
+
+}  // namespace vcockpit::model

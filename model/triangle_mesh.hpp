@@ -1,0 +1,56 @@
+#pragma once
+// A triangle mesh as the project uses it, in metres and in the project's axes (+z up), whatever
+// file it came from (model/import): the geometry the physics collides (a static object's
+// triangles, a moving part's convex hull) and the image generator draws. No file formats, no
+// DDS, no YAML here.
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace vcockpit::model {
+
+struct TriangleMesh {
+  std::vector<Eigen::Vector3d> vertices_m;
+  std::vector<std::array<uint32_t, 3>> triangles;  // counter-clockwise seen from outside
+  // what to draw (optional): a normal per vertex (empty: flat faces), a base colour
+  std::vector<Eigen::Vector3f> normals;
+  std::array<float, 4> base_color_rgba{0.6f, 0.6f, 0.6f, 1.0f};
+  std::string source;  // "FILE node 'NAME'": what errors and logs name
+};
+
+// A mesh that cannot be used, with what and where: "cockpit.glb node 'panel': triangle 12 has no
+// area".
+class MeshError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Refuses an empty mesh, a non-finite vertex, an index past the vertices and a triangle with no
+// area (below min_area_m2), naming mesh.source and the first offending vertex or triangle.
+void check_mesh(const TriangleMesh& mesh, double min_area_m2 = 1e-14);
+
+// Volume, centroid and inertia of the solid a closed, outward-oriented mesh bounds, at unit
+// density (divergence theorem over signed tetrahedra from the origin; Eberly, "Polyhedral Mass
+// Properties", 2002). Inertia about the centroid, in the mesh's frame.
+struct MassProperties {
+  double volume_m3 = 0.0;
+  Eigen::Vector3d centroid_m = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d unit_density_inertia = Eigen::Matrix3d::Zero();
+};
+MassProperties mass_properties(const TriangleMesh& mesh);
+
+// Axis-aligned bounds of the vertices.
+struct Bounds {
+  Eigen::Vector3d min_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d max_m = Eigen::Vector3d::Zero();
+};
+Bounds bounds(const TriangleMesh& mesh);
+
+// The mesh moved by `shift_m` (every vertex plus shift_m).
+void translate(TriangleMesh& mesh, const Eigen::Vector3d& shift_m);
+
+}  // namespace vcockpit::model
