@@ -25,7 +25,6 @@ struct NullFile {
 TriangleMesh convex_hull(const TriangleMesh& mesh) {
   TriangleMesh hull;
   hull.source = mesh.source + " (hull)";
-  hull.base_color_rgba = mesh.base_color_rgba;
   if (mesh.vertices_m.size() < 4) throw MeshError(hull.source + ": fewer than 4 vertices");
   std::vector<coordT> points;
   points.reserve(3 * mesh.vertices_m.size());

@@ -16,9 +16,10 @@ namespace vcockpit::model {
 struct TriangleMesh {
   std::vector<Eigen::Vector3d> vertices_m;
   std::vector<std::array<uint32_t, 3>> triangles;  // counter-clockwise seen from outside
-  // what to draw (optional): a normal per vertex (empty: flat faces), a base colour
+  // what to draw (optional): a normal per vertex (empty: flat faces), a colour per vertex (its
+  // part's material; empty: the object's colour alone)
   std::vector<Eigen::Vector3f> normals;
-  std::array<float, 4> base_color_rgba{0.6f, 0.6f, 0.6f, 1.0f};
+  std::vector<std::array<float, 4>> colors_rgba;
   std::string source;  // "FILE node 'NAME'": what errors and logs name
 };
 

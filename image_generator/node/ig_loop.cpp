@@ -76,8 +76,24 @@ class ImageGenerator {
   int run();
 
  private:
+  uint64_t models_refused_logged_ = 0;
+  // A model file that failed here (the object is drawn as its box), once each; the triangles
+  // loaded so far.
+  void log_models() {
+    if (cache_.models_refused() > models_refused_logged_) {
+      models_refused_logged_ = cache_.models_refused();
+      spdlog::warn("object '{}': {}; drawn as its box", info_.name().to_string(), cache_.last_model_error());
+    } else {
+      spdlog::info("object '{}': model {} ({} triangles of models in all)", info_.name().to_string(),
+                   info_.mesh_file().to_string(), cache_.model_triangles());
+    }
+  }
+
   void drain() {
-    while (info_reader_.take(info_)) cache_.on_info(info_);
+    while (info_reader_.take(info_)) {
+      cache_.on_info(info_);
+      if (info_.shape() == cockpit::MESH) log_models();
+    }
     while (state_reader_.take(state_)) cache_.on_state(state_);
     while (hand_info_reader_.take(hand_info_)) on_hand_info();
     while (hand_reader_.take(hand_)) cache_.on_hand(hand_);

@@ -2,17 +2,23 @@
 
 #include "idl/topics/hand_info_convert.hpp"
 #include "idl/topics/pose_convert.hpp"
+#include "model/import/model_file.hpp"
 
 namespace vcockpit::image_generator {
 namespace {
 
 render::Primitive primitive_of(cockpit::ShapeKind shape) {
   switch (shape) {
-    case cockpit::BOX: return render::Primitive::kBox;
-    case cockpit::SPHERE: return render::Primitive::kSphere;
-    case cockpit::CAPSULE: return render::Primitive::kCapsule;
-    case cockpit::CYLINDER: return render::Primitive::kCylinder;
-    case cockpit::MESH: return render::Primitive::kBox;  // TODO(mesh rendering)
+    case cockpit::BOX:
+      return render::Primitive::kBox;
+    case cockpit::SPHERE:
+      return render::Primitive::kSphere;
+    case cockpit::CAPSULE:
+      return render::Primitive::kCapsule;
+    case cockpit::CYLINDER:
+      return render::Primitive::kCylinder;
+    case cockpit::MESH:
+      return render::Primitive::kMesh;
   }
   return render::Primitive::kBox;
 }
@@ -29,11 +35,42 @@ void SceneCache::on_info(const cockpit::ObjectInfo& info) {
   in.primitive = primitive_of(info.shape());
   const auto& d = info.dimensions_m();
   in.size_m = Eigen::Vector3d(d[0], d[1], d[2]);
+  if (in.primitive == render::Primitive::kMesh) {
+    in.mesh = model_mesh(info);
+    in.size_m = Eigen::Vector3d::Ones();
+    if (!in.mesh) {  // the box round its vertices, where they are in the object's frame
+      in.primitive = render::Primitive::kBox;
+      in.size_m = Eigen::Vector3d(d[0], d[1], d[2]);
+    }
+  }
   const auto& c = info.color_rgba();
   in.rgba = {c[0], c[1], c[2], c[3]};
   // the background layer: what does not move (a control's moving part does, whatever its kind)
   o.is_static = info.kind() == cockpit::STATIC_OBJECT;
   in.fixed = o.is_static && !o.is_control;
+}
+
+std::shared_ptr<const render::MeshData> SceneCache::model_mesh(const cockpit::ObjectInfo& info) {
+  const Eigen::Vector3d origin_m = to_eigen(info.mesh_origin_m());
+  const std::string key = info.mesh_file().to_string() + '\n' + info.mesh_node().to_string() +
+                          '\n' + std::to_string(info.mesh_scale()) +
+                          (info.mesh_z_up() ? " z" : " y") + std::to_string(origin_m.x()) + ' ' +
+                          std::to_string(origin_m.y()) + ' ' + std::to_string(origin_m.z());
+  if (auto it = models_.find(key); it != models_.end()) return it->second;
+  std::shared_ptr<const render::MeshData> data;
+  try {
+    model::TriangleMesh mesh = model::load_model_mesh(
+        {info.mesh_file().to_string(), info.mesh_node().to_string(), info.mesh_scale(),
+         info.mesh_z_up() ? model::UpAxis::kZ : model::UpAxis::kY});
+    model::translate(mesh, origin_m);  // as the physics node framed it
+    model_triangles_ += mesh.triangles.size();
+    data = std::make_shared<const render::MeshData>(render::model_mesh_data(mesh));
+  } catch (const model::MeshError& e) {
+    ++models_refused_;
+    last_model_error_ = e.what();
+  }
+  models_[key] = data;  // a refused one is not tried again every info
+  return data;
 }
 
 void SceneCache::on_state(const cockpit::ObjectState& state) {
@@ -72,7 +109,9 @@ void SceneCache::on_control_state(const cockpit::ControlState& state) {
   if (it->second.light >= 0) set_lit(static_cast<uint32_t>(it->second.light), state.lit());
 }
 
-void SceneCache::set_lit(uint32_t object, bool lit) { objects_[object].light = lit ? 1 : -1; }
+void SceneCache::set_lit(uint32_t object, bool lit) {
+  objects_[object].light = lit ? 1 : -1;
+}
 
 bool SceneCache::on_hand_info(const cockpit::HandInfo& info) {
   if (info.hand_id() >= kHandSlots || !hand_info_sizes_valid(info)) {
@@ -121,7 +160,8 @@ bool SceneCache::on_tracked_joints(const cockpit::TrackedJoints& joints) {
     }
   }
   h.p_G_joint = p_G;
-  for (std::size_t j = 0; j < p_G.size(); ++j) h.joint_valid[j] = joints.valid()[j];
+  for (std::size_t j = 0; j < p_G.size(); ++j)
+    h.joint_valid[j] = joints.valid()[j];
   h.joints_time_ns = joints.sample_time_ns();
   h.have_joints = true;
   return true;
@@ -142,7 +182,8 @@ Eigen::Vector3d SceneCache::object_position(uint32_t id) const {
 
 void SceneCache::build(std::vector<render::Instance>& out) const {
   out.clear();
-  for (const auto& [id, o] : objects_) append_object(o, out);
+  for (const auto& [id, o] : objects_)
+    append_object(o, out);
   for (const Hand& h : hands_) {
     if (h.have_info && h.have_state) append_hand(h, 0, out);
   }
@@ -161,7 +202,8 @@ void SceneCache::build_moving(std::vector<render::Instance>& out, int64_t displa
   }
 }
 
-bool SceneCache::tracked_index_tip(uint32_t hand_id, int64_t display_ns, Eigen::Vector3d& p_G) const {
+bool SceneCache::tracked_index_tip(uint32_t hand_id, int64_t display_ns,
+                                   Eigen::Vector3d& p_G) const {
   if (hand_id >= kHandSlots) return false;
   const Hand& h = hands_[hand_id];
   if (!h.have_info || !h.have_state) return false;
@@ -169,7 +211,8 @@ bool SceneCache::tracked_index_tip(uint32_t hand_id, int64_t display_ns, Eigen::
   if (display_ns > 0) {
     h.predictor.predict(display_ns, true, links);
   } else {
-    for (std::size_t l = 0; l < links.size(); ++l) links[l] = to_eigen(h.state.tracked_X_GL()[l]);
+    for (std::size_t l = 0; l < links.size(); ++l)
+      links[l] = to_eigen(h.state.tracked_X_GL()[l]);
   }
   // the distal phalanx's capsule runs along its frame's x axis: its tip is length_m out
   const auto distal = static_cast<std::size_t>(hand::Link::kIndexDistal);
@@ -188,7 +231,8 @@ void SceneCache::append_object(const Object& o, std::vector<render::Instance>& o
   if (o.light > 0) {
     out.back().highlight = true;  // a lit cap or annunciator glows
   } else if (o.light < 0) {
-    for (int k = 0; k < 3; ++k) out.back().rgba[k] *= kUnlitScale;  // and is dull when off
+    for (int k = 0; k < 3; ++k)
+      out.back().rgba[k] *= kUnlitScale;  // and is dull when off
   }
 }
 
@@ -218,8 +262,8 @@ void SceneCache::append_hand(const Hand& hand, int64_t display_ns,
     const hand::Capsule& c = hand.geometry.capsules[l];
     render::Instance phalanx;
     phalanx.primitive = render::Primitive::kCapsule;
-    phalanx.X_GO = links[static_cast<std::size_t>(l)] *
-                   Eigen::Translation3d(0.5 * c.length_m, 0, 0) * z_to_x;
+    phalanx.X_GO =
+        links[static_cast<std::size_t>(l)] * Eigen::Translation3d(0.5 * c.length_m, 0, 0) * z_to_x;
     phalanx.size_m = Eigen::Vector3d(c.radius_m, c.length_m, 0);
     phalanx.rgba = colour;
     out.push_back(phalanx);

@@ -11,6 +11,8 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "cockpit.h"
@@ -59,6 +61,12 @@ class SceneCache {
   // sizes).
   uint64_t hand_states_without_info() const { return hand_states_without_info_; }
   uint64_t hand_messages_refused() const { return hand_messages_refused_; }
+  // Model files (a MESH object's) that could not be loaded here: the object is drawn as the box
+  // round its vertices. The last one's error, for the log.
+  uint64_t models_refused() const { return models_refused_; }
+  const std::string& last_model_error() const { return last_model_error_; }
+  // Triangles of the model meshes loaded (each distinct file, node, scale and frame once).
+  std::size_t model_triangles() const { return model_triangles_; }
   int64_t newest_sim_time_ns() const { return newest_sim_time_ns_; }
   Eigen::Vector3d object_position(uint32_t id) const;
 
@@ -130,6 +138,12 @@ class SceneCache {
   int shown_ = -1;                      // hand_id of the drawn hand updated last; -1 none
   uint64_t hand_states_without_info_ = 0;
   uint64_t hand_messages_refused_ = 0;
+  // A MESH object's model, loaded once per file, node, scale, axes and origin.
+  std::shared_ptr<const render::MeshData> model_mesh(const cockpit::ObjectInfo& info);
+  std::map<std::string, std::shared_ptr<const render::MeshData>> models_;
+  uint64_t models_refused_ = 0;
+  std::string last_model_error_;
+  std::size_t model_triangles_ = 0;
   int64_t newest_sim_time_ns_ = 0;
 };
 

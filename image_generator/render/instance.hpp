@@ -4,16 +4,20 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
+
+#include "image_generator/render/meshes.hpp"
 
 namespace vcockpit::render {
 
-enum class Primitive { kBox, kSphere, kCylinder, kCapsule };
+enum class Primitive { kBox, kSphere, kCylinder, kCapsule, kMesh };
 
 struct Instance {
   Primitive primitive = Primitive::kBox;
   Eigen::Isometry3d X_GO = Eigen::Isometry3d::Identity();  // pose of the centroid frame in G
   // Metres. Box: full extents (x, y, z). Sphere: (radius, 0, 0). Cylinder and capsule:
   // (radius, length, 0) along the object's z; a capsule's length excludes its end caps.
+  // Mesh: the scale of `mesh` (1, 1, 1: its vertices are in metres).
   Eigen::Vector3d size_m = Eigen::Vector3d::Zero();
   std::array<float, 4> rgba{0.6f, 0.6f, 0.6f, 1.0f};  // 0..1; alpha is ignored (drawn opaque)
   bool highlight = false;  // drawn brighter, as if glowing (held or hovered object)
@@ -21,6 +25,9 @@ struct Instance {
   // renderer draws these once into a cached image per eye and redraws it only when one of them
   // or the head changes (stereo_renderer.hpp).
   bool fixed = false;
+  // kMesh: what to draw, in the object's frame; shared by every instance of the same model part
+  // (the renderer uploads it once, the first time it is drawn)
+  std::shared_ptr<const MeshData> mesh;
 };
 
 }  // namespace vcockpit::render

@@ -3,10 +3,25 @@
 namespace vcockpit::render {
 namespace {
 
-void count(std::span<const Instance> instances, std::array<int, kUnitMeshCount>& counts) {
+// The slot of `mesh` in packed.model_meshes, added if new.
+std::size_t model_slot(PackedInstances& packed, const MeshData* mesh) {
+  for (std::size_t k = 0; k < packed.model_meshes.size(); ++k)
+    if (packed.model_meshes[k] == mesh) return k;
+  packed.model_meshes.push_back(mesh);
+  packed.model_ranges.push_back({});
+  return packed.model_meshes.size() - 1;
+}
+
+void count(std::span<const Instance> instances, std::array<int, kUnitMeshCount>& counts,
+           PackedInstances& packed) {
   counts.fill(0);
+  packed.model_meshes.clear();
+  packed.model_ranges.clear();
   for (const Instance& instance : instances) {
     switch (instance.primitive) {
+      case Primitive::kMesh:
+        if (instance.mesh) ++packed.model_ranges[model_slot(packed, instance.mesh.get())].count;
+        break;
       case Primitive::kBox:
         ++counts[0];
         break;
@@ -38,11 +53,18 @@ InstanceRecord make_record(const Eigen::Isometry3d& X_GO, const Eigen::Vector3d&
 
 void pack_instances(std::span<const Instance> instances, PackedInstances& packed) {
   std::array<int, kUnitMeshCount> counts;
-  count(instances, counts);
+  count(instances, counts, packed);
   int first = 0;
   for (int m = 0; m < kUnitMeshCount; ++m) {
     packed.ranges[m] = {first, counts[m]};
     first += counts[m];
+  }
+  std::vector<int>& model_next = packed.model_next;
+  model_next.clear();
+  for (MeshRange& range : packed.model_ranges) {
+    range.first = first;
+    model_next.push_back(first);
+    first += range.count;
   }
   packed.records.resize(static_cast<size_t>(first));  // no allocation within capacity
 
@@ -56,6 +78,13 @@ void pack_instances(std::span<const Instance> instances, PackedInstances& packed
   for (const Instance& instance : instances) {
     const Eigen::Vector3d& s = instance.size_m;
     switch (instance.primitive) {
+      case Primitive::kMesh:
+        if (instance.mesh) {
+          const std::size_t k = model_slot(packed, instance.mesh.get());
+          packed.records[static_cast<size_t>(model_next[k]++)] =
+              make_record(instance.X_GO, s, instance);
+        }
+        break;
       case Primitive::kBox:
         put(UnitMesh::kBox, instance.X_GO, s, instance);
         break;

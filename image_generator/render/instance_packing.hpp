@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "image_generator/render/instance.hpp"
+#include "image_generator/render/meshes.hpp"
 
 namespace vcockpit::render {
 
@@ -32,8 +33,12 @@ struct MeshRange {
 };
 
 struct PackedInstances {
-  std::vector<InstanceRecord> records;  // boxes, then spheres, then cylinders
+  std::vector<InstanceRecord> records;  // boxes, spheres, cylinders, caps, then model meshes
   std::array<MeshRange, kUnitMeshCount> ranges{};
+  // the model meshes drawn (in the order first met) and each one's records
+  std::vector<const MeshData*> model_meshes;
+  std::vector<MeshRange> model_ranges;
+  std::vector<int> model_next;  // (packing's scratch, kept for its capacity)
 
   const MeshRange& range(UnitMesh mesh) const { return ranges[static_cast<int>(mesh)]; }
 };

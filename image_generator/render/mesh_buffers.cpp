@@ -43,6 +43,9 @@ void bind_vertex_attributes(GLuint vertex_buffer) {
   glEnableVertexAttribArray(attrib::kNormal);
   glVertexAttribPointer(attrib::kNormal, 3, GL_FLOAT, GL_FALSE, kStride,
                         offset(offsetof(Vertex, normal)));
+  glEnableVertexAttribArray(attrib::kVertexRgb);
+  glVertexAttribPointer(attrib::kVertexRgb, 3, GL_FLOAT, GL_FALSE, kStride,
+                        offset(offsetof(Vertex, rgb)));
 }
 
 }  // namespace
@@ -51,36 +54,47 @@ MeshBuffers::MeshBuffers() {
   glGenBuffers(1, &instance_buffer_);
   const std::array<MeshData, kUnitMeshCount> data{unit_box(), unit_sphere(), unit_cylinder(),
                                                   unit_hemisphere()};
-  for (int m = 0; m < kUnitMeshCount; ++m) {
-    GpuMesh& mesh = meshes_[m];
-    glGenVertexArrays(1, &mesh.vertex_array);
-    glBindVertexArray(mesh.vertex_array);
-    glGenBuffers(1, &mesh.vertex_buffer);
-    glBindBuffer(GL_ARRAY_BUFFER, mesh.vertex_buffer);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data[m].vertices.size() * sizeof(Vertex)),
-                 data[m].vertices.data(), GL_STATIC_DRAW);
-    glGenBuffers(1, &mesh.index_buffer);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.index_buffer);  // recorded in the vertex array
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-                 static_cast<GLsizeiptr>(data[m].indices.size() * sizeof(uint32_t)),
-                 data[m].indices.data(), GL_STATIC_DRAW);
-    mesh.index_count = static_cast<GLsizei>(data[m].indices.size());
-    bind_vertex_attributes(mesh.vertex_buffer);
-    bind_instance_attributes(instance_buffer_);
-  }
+  for (int m = 0; m < kUnitMeshCount; ++m)
+    make_gpu_mesh(data[m], meshes_[m]);
+}
+
+void MeshBuffers::make_gpu_mesh(const MeshData& data, GpuMesh& mesh) const {
+  glGenVertexArrays(1, &mesh.vertex_array);
+  glBindVertexArray(mesh.vertex_array);
+  glGenBuffers(1, &mesh.vertex_buffer);
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.vertex_buffer);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.vertices.size() * sizeof(Vertex)),
+               data.vertices.data(), GL_STATIC_DRAW);
+  glGenBuffers(1, &mesh.index_buffer);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.index_buffer);  // recorded in the vertex array
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+               static_cast<GLsizeiptr>(data.indices.size() * sizeof(uint32_t)), data.indices.data(),
+               GL_STATIC_DRAW);
+  mesh.index_count = static_cast<GLsizei>(data.indices.size());
+  bind_vertex_attributes(mesh.vertex_buffer);
+  bind_instance_attributes(instance_buffer_);
   glBindVertexArray(0);
 }
 
+void MeshBuffers::delete_gpu_mesh(GpuMesh& mesh) {
+  glDeleteVertexArrays(1, &mesh.vertex_array);
+  glDeleteBuffers(1, &mesh.vertex_buffer);
+  glDeleteBuffers(1, &mesh.index_buffer);
+}
+
 MeshBuffers::~MeshBuffers() {
-  for (GpuMesh& mesh : meshes_) {
-    glDeleteVertexArrays(1, &mesh.vertex_array);
-    glDeleteBuffers(1, &mesh.vertex_buffer);
-    glDeleteBuffers(1, &mesh.index_buffer);
-  }
+  for (GpuMesh& mesh : meshes_)
+    delete_gpu_mesh(mesh);
+  for (auto& [data, mesh] : model_meshes_)
+    delete_gpu_mesh(mesh);
   glDeleteBuffers(1, &instance_buffer_);
 }
 
 void MeshBuffers::upload(const PackedInstances& packed) {
+  for (const MeshData* data : packed.model_meshes) {
+    if (model_meshes_.count(data) != 0) continue;
+    make_gpu_mesh(*data, model_meshes_[data]);
+  }
   const size_t count = packed.records.size();
   if (count == 0) return;
   glBindBuffer(GL_ARRAY_BUFFER, instance_buffer_);
@@ -96,8 +110,16 @@ void MeshBuffers::upload(const PackedInstances& packed) {
 }
 
 void MeshBuffers::draw(UnitMesh mesh, const MeshRange& range) const {
+  draw(meshes_[static_cast<int>(mesh)], range);
+}
+
+void MeshBuffers::draw(const MeshData* mesh, const MeshRange& range) const {
+  const auto it = model_meshes_.find(mesh);
+  if (it != model_meshes_.end()) draw(it->second, range);
+}
+
+void MeshBuffers::draw(const GpuMesh& gpu, const MeshRange& range) const {
   if (range.count == 0) return;
-  const GpuMesh& gpu = meshes_[static_cast<int>(mesh)];
   glBindVertexArray(gpu.vertex_array);
   glDrawElementsInstancedBaseInstance(GL_TRIANGLES, gpu.index_count, GL_UNSIGNED_INT, nullptr,
                                       range.count, static_cast<GLuint>(range.first));

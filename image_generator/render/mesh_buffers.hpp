@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <unordered_map>
 
 #include "image_generator/render/gl.hpp"
 #include "image_generator/render/instance_packing.hpp"
@@ -19,9 +20,12 @@ class MeshBuffers {
   MeshBuffers(const MeshBuffers&) = delete;
   MeshBuffers& operator=(const MeshBuffers&) = delete;
 
+  // The records, and any model mesh among them not yet on the GPU.
   void upload(const PackedInstances& packed);
   // One instanced draw of `mesh` for the records in `range`; nothing if the range is empty.
   void draw(UnitMesh mesh, const MeshRange& range) const;
+  // The same for a model mesh uploaded by upload().
+  void draw(const MeshData* mesh, const MeshRange& range) const;
 
   int triangle_count(UnitMesh mesh) const {
     return meshes_[static_cast<int>(mesh)].index_count / 3;
@@ -35,9 +39,16 @@ class MeshBuffers {
     GLsizei index_count = 0;
   };
 
+  void make_gpu_mesh(const MeshData& data, GpuMesh& mesh) const;
+  static void delete_gpu_mesh(GpuMesh& mesh);
+  void draw(const GpuMesh& gpu, const MeshRange& range) const;
+
   GLuint instance_buffer_ = 0;
   size_t instance_capacity_ = 0;  // records
   std::array<GpuMesh, kUnitMeshCount> meshes_{};
+  // model meshes by address: an instance's shared_ptr keeps the data alive while it is drawn
+  // (a mesh replaced in the scene leaves its GPU copy here until the renderer goes)
+  std::unordered_map<const MeshData*, GpuMesh> model_meshes_;
 };
 
 }  // namespace vcockpit::render

@@ -130,4 +130,38 @@ MeshData unit_cylinder(int slices) {
   return mesh;
 }
 
+MeshData model_mesh_data(const model::TriangleMesh& mesh) {
+  MeshData out;
+  const auto f3 = [](const auto& v) {
+    return std::array<float, 3>{static_cast<float>(v.x()), static_cast<float>(v.y()),
+                                static_cast<float>(v.z())};
+  };
+  const auto rgb_of = [&](uint32_t v) {
+    return mesh.colors_rgba.empty()
+               ? std::array<float, 3>{1.0f, 1.0f, 1.0f}
+               : std::array<float, 3>{mesh.colors_rgba[v][0], mesh.colors_rgba[v][1],
+                                      mesh.colors_rgba[v][2]};
+  };
+  if (!mesh.normals.empty()) {
+    out.vertices.reserve(mesh.vertices_m.size());
+    for (std::size_t v = 0; v < mesh.vertices_m.size(); ++v)
+      out.vertices.push_back(
+          {f3(mesh.vertices_m[v]), f3(mesh.normals[v]), rgb_of(static_cast<uint32_t>(v))});
+    for (const auto& t : mesh.triangles)
+      out.indices.insert(out.indices.end(), {t[0], t[1], t[2]});
+    return out;
+  }
+  out.vertices.reserve(3 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d& a = mesh.vertices_m[t[0]];
+    const Eigen::Vector3d n =
+        (mesh.vertices_m[t[1]] - a).cross(mesh.vertices_m[t[2]] - a).normalized();
+    for (uint32_t v : t) {
+      out.indices.push_back(index_of(out));
+      out.vertices.push_back({f3(mesh.vertices_m[v]), f3(n), rgb_of(v)});
+    }
+  }
+  return out;
+}
+
 }  // namespace vcockpit::render

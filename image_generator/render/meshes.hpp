@@ -12,11 +12,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "model/triangle_mesh.hpp"
+
 namespace vcockpit::render {
 
 struct Vertex {
   std::array<float, 3> position;
   std::array<float, 3> normal;
+  std::array<float, 3> rgb{1.0f, 1.0f, 1.0f};  // times the instance's colour
 };
 
 struct MeshData {
@@ -29,5 +32,9 @@ MeshData unit_sphere(int slices = 16, int stacks = 8);
 MeshData unit_cylinder(int slices = 16);
 // The +z half of a unit sphere, open at z = 0 (a capsule's end cap).
 MeshData unit_hemisphere(int slices = 12, int stacks = 3);
+
+// A model's mesh to draw in its own frame (scale 1): its normals and colours per vertex where it
+// has them, else flat faces (each triangle its own three vertices and normal) in white.
+MeshData model_mesh_data(const model::TriangleMesh& mesh);
 
 }  // namespace vcockpit::render

@@ -13,6 +13,7 @@ layout(location = 1) in vec3 a_normal_O;
 layout(location = 2) in mat4 a_X_GO;
 layout(location = 6) in vec4 a_scale_highlight;
 layout(location = 7) in vec4 a_rgba;
+layout(location = 8) in vec3 a_vertex_rgb;
 
 uniform mat4 u_view_projection;
 
@@ -27,7 +28,7 @@ void main() {
   // inverse transpose of R * S is R * S^-1: normals stay normal under non-uniform scale
   v_normal_G = mat3(a_X_GO) * (a_normal_O / scale);
   v_position_G = p_G.xyz;
-  v_rgb = a_rgba.rgb;
+  v_rgb = a_rgba.rgb * a_vertex_rgb;
   v_highlight = a_scale_highlight.w;
   gl_Position = u_view_projection * p_G;
 }

@@ -17,6 +17,7 @@ constexpr GLuint kNormal = 1;
 constexpr GLuint kX_GO = 2;  // mat4: locations 2..5, one column each
 constexpr GLuint kScaleHighlight = 6;
 constexpr GLuint kRgba = 7;
+constexpr GLuint kVertexRgb = 8;  // per vertex: a model part's colour (white for the primitives)
 }  // namespace attrib
 
 class LitProgram {

@@ -147,7 +147,8 @@ void StereoRenderer::begin_frame(std::span<const Instance> fixed, const Eigen::I
     return;
   }
   if (!background_valid_ || !same_pose(X_GHead, background_X_GHead_) ||
-      !same_records(background_packed_.records, background_records_)) {
+      !same_records(background_packed_.records, background_records_) ||
+      background_packed_.model_meshes != background_model_meshes_) {
     redraw_background(X_GHead);
   }
   // the frame starts as a copy of the background: colour and depth, both eyes
@@ -169,6 +170,7 @@ void StereoRenderer::redraw_background(const Eigen::Isometry3d& X_GHead) {
   draw_eye(Eye::kRight, X_GHead, *background_meshes_, background_packed_);
   glBindFramebuffer(GL_FRAMEBUFFER, frame_framebuffer_);
   background_records_ = background_packed_.records;
+  background_model_meshes_ = background_packed_.model_meshes;
   background_X_GHead_ = X_GHead;
   background_valid_ = true;
   cost_.background_redrawn = true;
@@ -208,6 +210,10 @@ void StereoRenderer::draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead, const M
     const MeshRange& range = packed.range(mesh);
     meshes.draw(mesh, range);
     if (range.count > 0) ++last_draw_calls_;
+  }
+  for (std::size_t k = 0; k < packed.model_meshes.size(); ++k) {
+    meshes.draw(packed.model_meshes[k], packed.model_ranges[k]);
+    ++last_draw_calls_;
   }
 }
 

@@ -115,6 +115,7 @@ class StereoRenderer {
   unsigned background_depth_ = 0;
   bool background_valid_ = false;
   std::vector<InstanceRecord> background_records_;
+  std::vector<const MeshData*> background_model_meshes_;
   Eigen::Isometry3d background_X_GHead_ = Eigen::Isometry3d::Identity();
   bool cache_on_ = true;
   Eigen::Isometry3d X_GHead_ = Eigen::Isometry3d::Identity();  // this frame's

@@ -82,7 +82,6 @@ TriangleMesh load_model_mesh(const ModelRequest& request) {
   }
   if (!(request.scale > 0.0) || !std::isfinite(request.scale))
     throw MeshError(mesh.source + ": scale must be a positive number");
-  bool colored = false;
   // every mesh of the node and its children, placed by the transforms below the node
   const std::function<void(const aiNode*, const aiMatrix4x4&)> visit = [&](const aiNode* node,
                                                                            const aiMatrix4x4& X) {
@@ -91,14 +90,12 @@ TriangleMesh load_model_mesh(const ModelRequest& request) {
     for (unsigned m = 0; m < node->mNumMeshes; ++m) {
       const aiMesh* part = scene->mMeshes[node->mMeshes[m]];
       if ((part->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
-      if (!colored) {
-        mesh.base_color_rgba = base_color(scene, part);
-        colored = true;
-      }
+      const std::array<float, 4> rgba = base_color(scene, part);
       const auto base = static_cast<uint32_t>(mesh.vertices_m.size());
       for (unsigned v = 0; v < part->mNumVertices; ++v) {
         const aiVector3D p = X * part->mVertices[v];
         mesh.vertices_m.emplace_back(p.x, p.y, p.z);
+        mesh.colors_rgba.push_back(rgba);
         if (part->HasNormals()) {
           aiVector3D n = normal_X * part->mNormals[v];
           n.Normalize();

@@ -40,7 +40,9 @@ TEST_P(EachFormat, TheRampLoadsInMetresWithZUpAndOutwardTriangles) {
   // the wedge's centroid: a third of the way up from the bottom, a third from the high end
   EXPECT_NEAR(m.centroid_m.x(), -0.4 + 0.8 / 3.0, 1e-6);
   EXPECT_NEAR(m.centroid_m.z(), kRampHeight_m / 3.0, 1e-6);
-  EXPECT_NEAR(ramp.base_color_rgba[0], 0.55f, 1e-3f) << "the material's base colour";
+  ASSERT_EQ(ramp.colors_rgba.size(), ramp.vertices_m.size());
+  EXPECT_NEAR(ramp.colors_rgba[0][0], 0.55f, 1e-3f) << "the material's base colour";
+  EXPECT_NEAR(ramp.colors_rgba[0][2], 0.6f, 1e-3f);
 }
 
 TEST_P(EachFormat, ScaleAndUpAxisAreApplied) {

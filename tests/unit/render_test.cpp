@@ -22,6 +22,7 @@
 
 #include "image_generator/render/instance_packing.hpp"
 #include "image_generator/render/meshes.hpp"
+#include "model/import/model_file.hpp"
 
 // Counts C++ heap allocations on a thread while asked to, to show render() allocates nothing
 // once warmed up. Not under AddressSanitizer, which owns operator new itself.
@@ -75,7 +76,13 @@ Eigen::Isometry3d at(double x_m, double y_m, double z_m) {
 
 Instance make(Primitive primitive, const Eigen::Isometry3d& X_GO, const Eigen::Vector3d& size_m,
               std::array<float, 4> rgba, bool highlight = false) {
-  return Instance{primitive, X_GO, size_m, rgba, highlight};
+  Instance instance;
+  instance.primitive = primitive;
+  instance.X_GO = X_GO;
+  instance.size_m = size_m;
+  instance.rgba = rgba;
+  instance.highlight = highlight;
+  return instance;
 }
 
 constexpr std::array<float, 4> kRed{1.0f, 0.0f, 0.0f, 1.0f};
@@ -453,6 +460,41 @@ TEST_F(RenderTest, EmptySceneIsBackgroundEverywhere) {
     }
   }
   EXPECT_EQ(renderer().last_draw_calls(), 0);
+}
+
+// A model's mesh (the ramp of tests/data/models, read through assimp as the image generator
+// reads an object's model) shows where its back face projects, tinted by its material and the
+// instance's colour; fixed, it is drawn into the cached background once.
+TEST_F(RenderTest, AModelMeshShowsInTheCachedLayerWithItsMaterial) {
+  const std::string file = std::string(std::getenv("VCOCKPIT_SOURCE_DIR")) + "/tests/data/models/ramp.obj";
+  const model::TriangleMesh ramp = model::load_model_mesh({file, "ramp"});
+  auto data = std::make_shared<const MeshData>(model_mesh_data(ramp));
+  ASSERT_EQ(data->vertices.size(), 3 * ramp.triangles.size()) << "no normals in the file: flat faces";
+  EXPECT_NEAR(data->vertices[0].rgb[2], 0.6f, 1e-3f) << "the material's colour per vertex";
+  Instance instance = make(Primitive::kMesh, at(1.5, 0.0, 1.0), Eigen::Vector3d::Ones(),
+                           {1.0f, 1.0f, 1.0f, 1.0f});
+  instance.mesh = data;
+  instance.fixed = true;
+  // its back face (x = -0.4, facing the viewer) from 0 to 0.29 m up
+  const Eigen::Vector3d on_back_face(1.1, 0.0, 1.1);
+  const uint64_t redraws = renderer().background_redraws();
+  renderer().render({instance}, head_pose());
+  EXPECT_EQ(renderer().background_redraws(), redraws + 1);
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    const Rgb c = pixel_at(renderer(), eye, projected(config(), eye, on_back_face));
+    EXPECT_FALSE(is_background(c)) << c;
+    EXPECT_GT(c.b, c.r) << "the material's blue-grey: " << c;
+    EXPECT_TRUE(is_background(pixel_at(renderer(), eye, projected(config(), eye, {1.5, 0.0, 1.45}))))
+        << "above the ramp's top";
+  }
+  renderer().render({instance}, head_pose());
+  EXPECT_EQ(renderer().background_redraws(), redraws + 1) << "the same model, the cached layer";
+  instance.rgba = kRed;
+  renderer().render({instance}, head_pose());
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    const Rgb c = pixel_at(renderer(), eye, projected(config(), eye, on_back_face));
+    EXPECT_TRUE(c.r > 60 && c.g < 20 && c.b < 20) << "the instance's colour times the material's: " << c;
+  }
 }
 
 // A red 0.1 m cube 1 m ahead at head height shows, lit, where project_to_pixel says, in both

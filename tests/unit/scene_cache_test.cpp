@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "hand/config/hand_yaml.hpp"
 #include "idl/topics/hand_info_convert.hpp"
@@ -48,6 +51,51 @@ void add_box(SceneCache& cache) {
 }
 
 constexpr std::size_t kHandInstances = 16;  // palm box + 15 phalanx capsules
+
+// A MESH object: its model file is loaded once, in the frame the physics node gives it (the node
+// origin at mesh_origin_m), and drawn as that mesh; two objects of the same part share it. A file
+// that cannot be read here is counted and its object drawn as the box round its vertices.
+TEST(SceneCache, AMeshObjectIsDrawnAsItsModelOrItsBoxWhenTheFileFails) {
+  SceneCache cache;
+  const auto mesh_info = [&](uint32_t id, const std::string& file) {
+    cockpit::ObjectInfo info;
+    info.object_id(id);
+    info.kind(cockpit::DYNAMIC_OBJECT);
+    info.shape(cockpit::MESH);
+    info.dimensions_m({0.024, 0.024, 0.012});
+    info.mesh_file(file);
+    info.mesh_node("button");
+    info.mesh_scale(1.0);
+    info.mesh_z_up(false);
+    info.mesh_origin_m(to_idl(Eigen::Vector3d(0.0, 0.0, 0.001)));
+    cache.on_info(info);
+    cockpit::ObjectState state;
+    state.object_id(id);
+    state.X_GO(to_idl(Eigen::Isometry3d::Identity()));
+    state.held_by_hand_id(cockpit::kNoObject);
+    cache.on_state(state);
+  };
+  const std::string button = test::source_dir() + "/tests/data/models/button.gltf";
+  mesh_info(0, button);
+  mesh_info(1, button);
+  mesh_info(2, test::source_dir() + "/tests/data/models/no_such.glb");
+  std::vector<render::Instance> out;
+  cache.build(out);
+  ASSERT_EQ(out.size(), 3u);
+  ASSERT_EQ(out[0].primitive, render::Primitive::kMesh);
+  ASSERT_TRUE(out[0].mesh);
+  EXPECT_EQ(out[0].mesh, out[1].mesh) << "one model part, loaded once";
+  EXPECT_EQ(cache.model_triangles(), 20u);
+  // the cap's bottom (z = -6 mm in its node) moved by the origin: -5 mm
+  float lowest = 1.0f;
+  for (const render::Vertex& v : out[0].mesh->vertices) lowest = std::min(lowest, v.position[2]);
+  EXPECT_NEAR(lowest, -0.005f, 1e-6f);
+  EXPECT_EQ(out[2].primitive, render::Primitive::kBox);
+  EXPECT_TRUE(out[2].size_m.isApprox(Eigen::Vector3d(0.024, 0.024, 0.012)));
+  EXPECT_EQ(cache.models_refused(), 1u);
+  EXPECT_NE(cache.last_model_error().find("no_such.glb: no such file"), std::string::npos)
+      << cache.last_model_error();
+}
 
 // A control with a light: its cap (object 0) and its annunciator (object 1) are drawn dull while
 // its control_state says off and glowing while on; a control without a light changes nothing.
