@@ -10,30 +10,43 @@
 #include <filesystem>
 #include <functional>
 
+#include "model/import/isolated_reader.hpp"
+
 namespace vcockpit::model {
 namespace {
 
-bool supported_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
+constexpr unsigned kReadFlags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+
+// "gltf", "glb", "obj" or "ac" (lower case, no dot), else refused naming `path`.
+std::string supported_extension(const std::string& path, std::string ext) {
+  if (!ext.empty() && ext.front() == '.') ext.erase(0, 1);
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
-  return ext == ".gltf" || ext == ".glb" || ext == ".obj" || ext == ".ac";
+  if (ext != "gltf" && ext != "glb" && ext != "obj" && ext != "ac")
+    throw MeshError(path +
+                    ": unsupported model format (glTF .gltf/.glb, Wavefront .obj, AC3D .ac)");
+  return ext;
+}
+
+void prepare(Assimp::Importer& importer) {
+  // points and lines dropped: only triangles collide and draw
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+}
+
+const aiScene* checked(const aiScene* scene, const Assimp::Importer& importer,
+                       const std::string& path) {
+  if (scene == nullptr || scene->mRootNode == nullptr)
+    throw MeshError(path + ": not a readable model: " + importer.GetErrorString());
+  return scene;
 }
 
 const aiScene* read_scene(Assimp::Importer& importer, const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw MeshError(path + ": no such file");
-  if (!supported_extension(path))
-    throw MeshError(path +
-                    ": unsupported model format (glTF .gltf/.glb, Wavefront .obj, AC3D .ac)");
-  // points and lines dropped: only triangles collide and draw
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
-                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* scene =
-      importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                  aiProcess_SortByPType | aiProcess_ValidateDataStructure);
-  if (scene == nullptr || scene->mRootNode == nullptr)
-    throw MeshError(path + ": not a readable model: " + importer.GetErrorString());
-  return scene;
+  supported_extension(path, std::filesystem::path(path).extension().string());
+  prepare(importer);
+  return checked(importer.ReadFile(path, kReadFlags), importer, path);
 }
 
 void node_names(const aiNode* node, std::vector<std::string>& out) {
@@ -53,18 +66,37 @@ std::array<float, 4> base_color(const aiScene* scene, const aiMesh* mesh) {
   return rgba;
 }
 
+TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request);
+
 }  // namespace
 
-std::vector<std::string> model_node_names(const std::string& path) {
-  Assimp::Importer importer;
-  std::vector<std::string> names;
-  node_names(read_scene(importer, path)->mRootNode, names);
-  return names;
+TriangleMesh load_model_mesh(const ModelRequest& request) {
+  return read_isolated(
+      [&] {
+        Assimp::Importer importer;
+        return mesh_of(read_scene(importer, request.path), request);
+      },
+      request.path);
 }
 
-TriangleMesh load_model_mesh(const ModelRequest& request) {
-  Assimp::Importer importer;
-  const aiScene* scene = read_scene(importer, request.path);
+TriangleMesh load_model_mesh_from_memory(std::string_view bytes, const std::string& extension,
+                                         const ModelRequest& request) {
+  const std::string hint = supported_extension(request.path, extension);
+  if (bytes.empty()) throw MeshError(request.path + ": not a readable model: no bytes");
+  return read_isolated(
+      [&] {
+        Assimp::Importer importer;
+        prepare(importer);
+        const aiScene* scene =
+            importer.ReadFileFromMemory(bytes.data(), bytes.size(), kReadFlags, hint.c_str());
+        return mesh_of(checked(scene, importer, request.path), request);
+      },
+      request.path);
+}
+
+namespace {
+
+TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request) {
   TriangleMesh mesh;
   mesh.source = request.path + (request.node.empty() ? "" : " node '" + request.node + "'");
   const aiNode* top = scene->mRootNode;
@@ -126,5 +158,7 @@ TriangleMesh load_model_mesh(const ModelRequest& request) {
   check_mesh(mesh);
   return mesh;
 }
+
+}  // namespace
 
 }  // namespace vcockpit::model

@@ -4,6 +4,7 @@
 // One node (or the whole file) becomes one TriangleMesh in the project's units and axes.
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "model/triangle_mesh.hpp"
@@ -26,10 +27,13 @@ struct ModelRequest {
 };
 
 // Throws MeshError naming the file (and node): missing, unsupported, unreadable, no such node
-// (with the file's node names), no triangles, a non-finite vertex, a degenerate triangle.
+// (with the file's node names), no triangles, a non-finite vertex, a degenerate triangle, or
+// the reader crashed or hung on it (it runs in a child process: isolated_reader.hpp).
 TriangleMesh load_model_mesh(const ModelRequest& request);
 
-// The names of the file's nodes, depth first (for messages and tools).
-std::vector<std::string> model_node_names(const std::string& path);
+// The same from the bytes of a file in memory, of the format its `extension` names ("gltf",
+// "glb", "obj", "ac"); request.path only names it in messages (files it refers to are not read).
+TriangleMesh load_model_mesh_from_memory(std::string_view bytes, const std::string& extension,
+                                         const ModelRequest& request);
 
 }  // namespace vcockpit::model

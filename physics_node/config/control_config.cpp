@@ -53,9 +53,9 @@ struct Units {
   std::string text(double q) const { return format_number(q / scale) + " " + name; }
 };
 
-void parse_body(const ConfigNode& node, physics::ObjectSpec& body) {
+void parse_body(const ConfigNode& node, const std::string& base_dir, physics::ObjectSpec& body) {
   node.expect_keys({"shape", "mass", "density", "inertia", "offset", "material", "color"});
-  body.shape = parse_shape(node["shape"]);
+  body.shape = parse_shape(node["shape"], {base_dir, /*moving=*/true});
   parse_mass_properties(node, body);
   if (auto m = node.find("material")) body.material = parse_material(*m, physics::Material{});
   read_optional(node, "color", body.color_rgba, parse_color);
@@ -156,18 +156,20 @@ void parse_mechanism(const ConfigNode& node, ControlSpec& c, const Units& u) {
 }
 
 // An annunciator: a static object that lights with the control (lit_when).
-physics::ObjectSpec parse_light(const ConfigNode& node, const std::string& control_name) {
+physics::ObjectSpec parse_light(const ConfigNode& node, const std::string& control_name,
+                                const std::string& base_dir) {
   node.expect_keys({"shape", "pose", "color"});
   physics::ObjectSpec light;
   light.name = control_name + "_light";
   light.dynamic = false;
-  light.shape = parse_shape(node["shape"]);
+  light.shape = parse_shape(node["shape"], {base_dir, /*moving=*/false});
   light.X_GO = parse_pose(node["pose"]);
   read_optional(node, "color", light.color_rgba, parse_color);
   return light;
 }
 
-ControlSpec parse_control(const ConfigNode& node, int body_index, physics::ObjectSpec& body) {
+ControlSpec parse_control(const ConfigNode& node, int body_index, const std::string& base_dir,
+                          physics::ObjectSpec& body) {
   node.expect_keys({"name", "kind", "joint", "pose", "body", "travel", "continuous", "initial",
                     "spring", "damping", "friction", "snap", "detents", "detent_every", "gates",
                     "positions", "latch_at", "lit_when", "light"});
@@ -219,19 +221,21 @@ ControlSpec parse_control(const ConfigNode& node, int body_index, physics::Objec
   const ConfigNode body_node = node["body"];
   body.name = c.name;
   body.dynamic = true;
-  parse_body(body_node, body);
+  parse_body(body_node, base_dir, body);
   if (auto offset = body_node.find("offset")) c.X_JO = parse_pose(*offset);
+  // the offset places a model's node; a moving mesh's frame is at its centroid
+  c.X_JO = c.X_JO * Eigen::Translation3d(-body.shape.mesh_source.origin_m);
   body.X_GO = physics::control_body_pose(c, c.q_initial);
   return c;
 }
 
 }  // namespace
 
-void parse_controls(const ConfigNode& list, physics::Scene& scene) {
+void parse_controls(const ConfigNode& list, const std::string& base_dir, physics::Scene& scene) {
   for (const ConfigNode& node : list.elements()) {
     physics::ObjectSpec body;
     const int body_index = static_cast<int>(scene.objects.size());
-    ControlSpec c = parse_control(node, body_index, body);
+    ControlSpec c = parse_control(node, body_index, base_dir, body);
     if (scene.find_object(c.name) >= 0 || scene.find_control(c.name) >= 0) {
       node["name"].fail("duplicate name '" + c.name + "' (objects and controls share names)");
     }
@@ -239,7 +243,7 @@ void parse_controls(const ConfigNode& list, physics::Scene& scene) {
     scene.objects.push_back(std::move(body));
     if (auto light = node.find("light")) {
       if (c.lit_when < 0) light->fail("a light needs lit_when (the position it is lit in)");
-      physics::ObjectSpec spec = parse_light(*light, c.name);
+      physics::ObjectSpec spec = parse_light(*light, c.name, base_dir);
       if (scene.find_object(spec.name) >= 0) light->fail("duplicate name '" + spec.name + "'");
       c.light_object = static_cast<int>(scene.objects.size());
       scene.objects.push_back(std::move(spec));

@@ -448,7 +448,7 @@ physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) 
   if (auto m = root.find("hand_material"))
     scene.hand_material = parse_material(*m, scene.hand_material);
   parse_objects(root["objects"], base_dir, scene);
-  if (auto controls = root.find("controls")) parse_controls(*controls, scene);
+  if (auto controls = root.find("controls")) parse_controls(*controls, base_dir, scene);
   read_optional(root, "grasp", scene.grasp, parse_grasp);
   read_optional(root, "contact", scene.contact, parse_contact);
   read_optional(root, "proxy", scene.proxy, parse_proxy);

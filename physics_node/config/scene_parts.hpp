@@ -44,6 +44,6 @@ void parse_mass_properties(const ConfigNode& node, physics::ObjectSpec& spec);
 
 // `controls:` (control_config.cpp): each control and its moving part, appended to the scene's
 // controls and objects.
-void parse_controls(const ConfigNode& list, physics::Scene& scene);
+void parse_controls(const ConfigNode& list, const std::string& base_dir, physics::Scene& scene);
 
 }  // namespace vcockpit::scene_parts

@@ -5,11 +5,13 @@
 //     not beyond;
 //   - a command moves a control to the position asked for, reported as commanded; a command for
 //     an unknown position is refused;
-//   - the default cockpit's master caution button pressed by the proxy hand's fingertip.
+//   - the default cockpit's master caution button pressed by the proxy hand's fingertip, with its
+//     own box cap and with a cap from a model file (glTF, OBJ, AC3D).
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "hand/hand_model.hpp"
@@ -158,8 +160,11 @@ TEST(Controls, ACommandSetsThePositionAndIsReportedAsCommanded) {
 // fingertip's contact force, projected onto the button's axis, pushes it past its actuation
 // point ("pressed", caused by the index's distal link); withdrawn, the spring returns it ("out",
 // by its mechanism). One event each, no chatter.
-TEST(Controls, AFingertipPressesTheMasterCautionButtonAndItsSpringReturnsIt) {
-  physics::World world(load_scene(source_dir() + "/config/cockpit.yaml"));
+// The default cockpit's master caution pressed in to its detent by the index fingertip of a
+// pointing hand and let go: one press, reported as pushed by that link, and one return by its
+// spring. `cap_half_m`: how far the cap's front face stands out from the joint's origin.
+void press_master_caution(const physics::Scene& loaded, double cap_half_m) {
+  physics::World world(loaded);
   const physics::Scene& scene = world.scene();
   const int button = scene.find_control("master_caution");
   ASSERT_GE(button, 0);
@@ -186,7 +191,7 @@ TEST(Controls, AFingertipPressesTheMasterCautionButtonAndItsSpringReturnsIt) {
   R_GH.col(0) = x;
   R_GH.col(1) = z.cross(x);
   R_GH.col(2) = z;
-  const Eigen::Vector3d cap_face = c.X_GJ.translation() - 0.004 * axis;  // the cap's front face
+  const Eigen::Vector3d cap_face = c.X_GJ.translation() - cap_half_m * axis;  // its front face
   const double tip_radius =
       model.capsules[static_cast<std::size_t>(hand::Link::kIndexDistal)].radius_m;
   auto hand_at = [&](double depth_m) {  // the fingertip's surface depth_m past the cap's face
@@ -221,6 +226,35 @@ TEST(Controls, AFingertipPressesTheMasterCautionButtonAndItsSpringReturnsIt) {
   EXPECT_EQ(mine[1].cause, physics::ControlCause::kMechanism);
   EXPECT_EQ(world.state().controls[static_cast<std::size_t>(button)].q, 0.0);
 }
+
+TEST(Controls, AFingertipPressesTheMasterCautionButtonAndItsSpringReturnsIt) {
+  press_master_caution(load_scene(source_dir() + "/config/cockpit.yaml"), 0.004);
+}
+
+// The same button with a cap from a model file (the 24 x 24 x 12 mm chamfered cap of
+// scripts/make_test_models.py, colliding as its convex hull), in each format.
+class MeshCap : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(MeshCap, AFingertipPressesAMeshButtonToItsDetent) {
+  std::string yaml = read_text(source_dir() + "/config/cockpit.yaml");
+  const std::string box_cap = "body: {shape: {box: [0.022, 0.022, 0.008]}, mass: 0.005, color: [0.85, 0.55, 0.05]}";
+  const auto at = yaml.find(box_cap);  // the master caution's, the first such body
+  ASSERT_NE(at, std::string::npos);
+  yaml.replace(at, box_cap.size(),
+               "body: {shape: {mesh: " + source_dir() + "/tests/data/models/button." + GetParam() +
+                   ", node: button}, mass: 0.005}");
+  const std::string hands = "hands: [hand.yaml, {file: hand.yaml, side: left}]";
+  const std::string hand = source_dir() + "/config/hand.yaml";
+  yaml.replace(yaml.rfind(hands), hands.size(),  // (the header comment has it too)
+               "hands: [" + hand + ", {file: " + hand + ", side: left}]");
+  const physics::Scene scene = load_scene(write_test_file("mesh_cap", "cockpit.yaml", yaml));
+  const physics::ObjectSpec& cap = scene.objects[static_cast<std::size_t>(
+      scene.controls[static_cast<std::size_t>(scene.find_control("master_caution"))].body)];
+  ASSERT_EQ(cap.shape.kind, physics::ShapeKind::kMesh);
+  press_master_caution(scene, 0.006);
+}
+
+INSTANTIATE_TEST_SUITE_P(Controls, MeshCap, ::testing::Values("gltf", "obj", "ac"));
 
 }  // namespace
 }  // namespace vcockpit::test

@@ -1,0 +1,162 @@
+#include "model/import/isolated_reader.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <string_view>
+#include <vector>
+
+namespace vcockpit::model {
+namespace {
+
+// The child's message: a status byte (1 mesh, 0 error), then the error's text or the mesh's
+// source, vertices, triangles, normals and colours, each as a count and its raw bytes.
+template <typename T>
+void put(std::string& out, const std::vector<T>& v) {
+  const uint64_t n = v.size();
+  out.append(reinterpret_cast<const char*>(&n), sizeof n);
+  if (n > 0) out.append(reinterpret_cast<const char*>(v.data()), n * sizeof(T));
+}
+
+void put(std::string& out, const std::string& s) {
+  put(out, std::vector<char>(s.begin(), s.end()));
+}
+
+class Reader {
+ public:
+  explicit Reader(std::string_view bytes) : bytes_(bytes) {}
+  template <typename T>
+  bool get(std::vector<T>& v) {
+    uint64_t n = 0;
+    if (!raw(&n, sizeof n) || n > (bytes_.size() - at_) / sizeof(T)) return false;
+    v.resize(n);
+    return raw(v.data(), n * sizeof(T));
+  }
+  bool get(std::string& s) {
+    std::vector<char> chars;
+    if (!get(chars)) return false;
+    s.assign(chars.begin(), chars.end());
+    return true;
+  }
+  bool done() const { return at_ == bytes_.size(); }
+
+ private:
+  bool raw(void* out, std::size_t n) {
+    if (n > bytes_.size() - at_) return false;
+    if (n == 0) return true;  // (an empty vector's data() may be null)
+    std::memcpy(out, bytes_.data() + at_, n);
+    at_ += n;
+    return true;
+  }
+  std::string_view bytes_;
+  std::size_t at_ = 0;
+};
+
+std::string encode(const std::function<TriangleMesh()>& read) {
+  std::string out;
+  try {
+    const TriangleMesh mesh = read();
+    out.push_back(1);
+    put(out, mesh.source);
+    put(out, mesh.vertices_m);
+    put(out, mesh.triangles);
+    put(out, mesh.normals);
+    put(out, mesh.colors_rgba);
+  } catch (const std::exception& e) {
+    out.assign(1, 0);
+    put(out, std::string(e.what()));
+  }
+  return out;
+}
+
+void write_all(int fd, const std::string& bytes) {
+  std::size_t at = 0;
+  while (at < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + at, bytes.size() - at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;
+    at += static_cast<std::size_t>(n);
+  }
+}
+
+int64_t now_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return int64_t{ts.tv_sec} * 1000 + ts.tv_nsec / 1'000'000;
+}
+
+}  // namespace
+
+TriangleMesh read_isolated(const std::function<TriangleMesh()>& read, const std::string& what,
+                           int timeout_s) {
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0)
+    throw MeshError(what + ": cannot read it apart (pipe: " + std::strerror(errno) + ")");
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw MeshError(what + ": cannot read it apart (fork: " + std::strerror(errno) + ")");
+  }
+  if (child == 0) {  // the child: read, answer, and leave without the parent's exit handlers
+    ::close(fds[0]);
+    write_all(fds[1], encode(read));
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string answer;
+  const int64_t deadline_ms = now_ms() + int64_t{timeout_s} * 1000;
+  bool timed_out = false;
+  char buffer[1 << 16];
+  for (;;) {
+    const int64_t left_ms = deadline_ms - now_ms();
+    if (left_ms <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(left_ms));
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) continue;
+    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // the child closed its end: all said (or crashed)
+    answer.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  if (timed_out) ::kill(child, SIGKILL);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (timed_out)
+    throw MeshError(what + ": the model reader took more than " + std::to_string(timeout_s) +
+                    " s on it (stopped)");
+  if (WIFSIGNALED(status))
+    throw MeshError(what + ": the model reader crashed on it (signal " +
+                    std::to_string(WTERMSIG(status)) + "): a malformed file");
+  Reader in(answer);
+  if (answer.empty() || (WIFEXITED(status) && WEXITSTATUS(status) != 0))
+    throw MeshError(what + ": the model reader failed on it (exit " +
+                    std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                    "): a malformed file");
+  if (answer[0] == 0) {
+    std::string message;
+    Reader error(std::string_view(answer).substr(1));
+    if (!error.get(message)) throw MeshError(what + ": the model reader's answer was cut short");
+    throw MeshError(message);
+  }
+  TriangleMesh mesh;
+  Reader body(std::string_view(answer).substr(1));
+  if (!body.get(mesh.source) || !body.get(mesh.vertices_m) || !body.get(mesh.triangles) ||
+      !body.get(mesh.normals) || !body.get(mesh.colors_rgba) || !body.done())
+    throw MeshError(what + ": the model reader's answer was cut short");
+  return mesh;
+}
+
+}  // namespace vcockpit::model

@@ -1,0 +1,20 @@
+#pragma once
+// A model file read in a child process. Assimp 5.2 (Debian's) crashes on some malformed files
+// (a fuzzed OBJ segfaults inside its importer within a few thousand inputs), and a physics node
+// or image generator must not die of a bad file it was given: the reader runs in a forked child,
+// which sends the mesh (or its error) back through a pipe, and a child that crashes, hangs past
+// its time or says nothing becomes a MeshError naming the file.
+
+#include <functional>
+#include <string>
+
+#include "model/triangle_mesh.hpp"
+
+namespace vcockpit::model {
+
+// `read` in a child process; its MeshError (or any std::exception) comes back as a MeshError
+// with the same message. `what` names the file in the errors made here.
+TriangleMesh read_isolated(const std::function<TriangleMesh()>& read, const std::string& what,
+                           int timeout_s = 60);
+
+}  // namespace vcockpit::model
