@@ -39,6 +39,7 @@ constexpr int64_t kGloveStartMargin_ns = 3'000'000'000;
 
 struct Options {
   std::string rig_path;
+  std::string scene_path;              // the cockpit's scene; empty: the rig file's
   std::vector<std::string> log_paths;  // one per hand; empty: the rig file's
   std::string out_dir = "out";
   std::string bin_dir;
@@ -58,6 +59,7 @@ int run(RigConfig rig, const Options& options) {
       throw std::runtime_error("--pki: not a directory: " + options.pki_dir);
     rig.pki_dir = fs::absolute(options.pki_dir).string();
   }
+  if (!options.scene_path.empty()) rig.scene_path = fs::absolute(options.scene_path).string();
   // --log replaces the rig file's logs: each log's '# hand:' line says whose it is
   if (!options.log_paths.empty()) {
     rig.log_path.clear();
@@ -140,6 +142,9 @@ int main(int argc, char** argv) {
   app.add_option("--log", options.log_paths,
                  "glove log to replay, one per hand: --log right.csv [--log left.csv] (each log's "
                  "'# hand:' line says whose; default: the rig file's log and left_log)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--scene", options.scene_path,
+                 "the cockpit's scene file, instead of the rig file's ({scene})")
       ->check(CLI::ExistingFile);
   app.add_option("--out", options.out_dir, "output directory")->capture_default_str();
   app.add_option("--bin-dir", options.bin_dir, "where the node executables are")->capture_default_str();

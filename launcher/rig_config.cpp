@@ -46,7 +46,7 @@ NodeSpec parse_node(const ConfigNode& node) {
 
 RigConfig load_rig_config(const std::string& path) {
   const ConfigNode root = ConfigNode::load_file(path);
-  root.expect_keys({"domain", "qos", "participant", "log", "left_log", "nodes"});
+  root.expect_keys({"domain", "qos", "participant", "scene", "log", "left_log", "nodes"});
   RigConfig rig;
   rig.path = path;
   rig.config_dir = fs::absolute(fs::path(path)).parent_path().lexically_normal().string();
@@ -59,6 +59,7 @@ RigConfig load_rig_config(const std::string& path) {
     root["qos"].fail("no such file: " + rig.qos_file + (ec ? " (" + ec.message() + ")" : ""));
   }
   rig.participant_profile = root.get_string("participant", rig.participant_profile);
+  rig.scene_path = relative_to(rig.config_dir, root.get_string("scene", "cockpit.yaml"));
   if (auto log = root.find("log")) rig.log_path = relative_to(rig.config_dir, log->as_string());
   if (auto log = root.find("left_log"); log && !log->as_string().empty())
     rig.left_log_path = relative_to(rig.config_dir, log->as_string());
@@ -83,6 +84,7 @@ std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& r
   for (std::string arg : args) {
     for (const auto& [key, value] : {std::pair<std::string, std::string>{"{log}", rig.log_path},
                                      {"{left_log}", rig.left_log_path},
+                                     {"{scene}", rig.scene_path},
                                      {"{hands}", rig.left_log_path.empty() ? "right" : "right,left"},
                                      {"{out}", out_dir},
                                      {"{config}", rig.config_dir},

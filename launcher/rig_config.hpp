@@ -30,6 +30,7 @@ struct RigConfig {
   std::string qos_file;
   std::string participant_profile = "loopback";
   std::string pki_dir;  // a secured profile's files (rig_launcher --pki); empty: none
+  std::string scene_path;     // {scene}: the cockpit's scene file (default: cockpit.yaml)
   std::string log_path;       // {log}: the right hand's glove log
   std::string left_log_path;  // {left_log}: the left hand's, or empty (no left glove driver)
   int ui_port = 0;            // {ui_port}: the instructor station's page; 0: no station
@@ -45,7 +46,7 @@ RigConfig load_rig_config(const std::string& path);
 // only with the instructor station.
 bool node_starts(const NodeSpec& node, const RigConfig& rig);
 
-// {log}, {left_log}, {hands} ("right", or "right,left" with a left log), {out}, {config} and
+// {scene}, {log}, {left_log}, {hands} ("right", or "right,left" with a left log), {out}, {config} and
 // {ui_port} replaced in every argument; with the instructor station, the node's ui_args added;
 // for a restart, its restart_args too.
 std::vector<std::string> expand_command(const NodeSpec& node, const RigConfig& rig,

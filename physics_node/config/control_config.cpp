@@ -58,6 +58,7 @@ void parse_body(const ConfigNode& node, const std::string& base_dir, physics::Ob
   body.shape = parse_shape(node["shape"], {base_dir, /*moving=*/true});
   parse_mass_properties(node, body);
   if (auto m = node.find("material")) body.material = parse_material(*m, physics::Material{});
+  body.color_rgba = default_color(body.shape);
   read_optional(node, "color", body.color_rgba, parse_color);
 }
 
@@ -163,6 +164,7 @@ physics::ObjectSpec parse_light(const ConfigNode& node, const std::string& contr
   light.name = control_name + "_light";
   light.dynamic = false;
   light.shape = parse_shape(node["shape"], {base_dir, /*moving=*/false});
+  light.color_rgba = default_color(light.shape);
   light.X_GO = parse_pose(node["pose"]);
   read_optional(node, "color", light.color_rgba, parse_color);
   return light;

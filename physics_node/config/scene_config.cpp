@@ -111,6 +111,12 @@ std::array<double, N> positive_list(const ConfigNode& node,
   return out;
 }
 
+std::array<float, 4> default_color(const Shape& shape) {
+  // a model's own materials as they are; a primitive in the cockpit's grey
+  return shape.kind == physics::ShapeKind::kMesh ? std::array<float, 4>{1.0f, 1.0f, 1.0f, 1.0f}
+                                        : ObjectSpec{}.color_rgba;
+}
+
 // {mesh: FILE, node: NAME, scale: S, up: y|z}: the file relative to the scene's directory
 Shape parse_mesh_shape(const ConfigNode& node, const ShapeContext& context) {
   node.expect_keys({"mesh", "node", "scale", "up"});
@@ -262,6 +268,7 @@ ObjectSpec parse_object(const ConfigNode& node, const std::string& base_dir) {
     reject_dynamics(node);
   }
   if (auto m = node.find("material")) spec.material = parse_material(*m, Material{});
+  spec.color_rgba = default_color(spec.shape);
   read_optional(node, "color", spec.color_rgba, parse_color);
   return spec;
 }

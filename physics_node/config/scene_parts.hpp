@@ -36,6 +36,9 @@ struct ShapeContext {
 // box, sphere, capsule, cylinder or {mesh: FILE, node: NAME, scale: S, up: y|z}; a mesh's errors
 // name the YAML line and the model file.
 physics::Shape parse_shape(const ConfigNode& node, const ShapeContext& context = {});
+// An object's colour when its YAML gives none: white for a mesh (the colours are its model's
+// materials, times this), the cockpit's grey for a primitive.
+std::array<float, 4> default_color(const physics::Shape& shape);
 Eigen::Isometry3d parse_pose(const ConfigNode& node);
 std::array<float, 4> parse_color(const ConfigNode& node);
 std::string parse_name(const ConfigNode& node);

@@ -72,6 +72,35 @@ class ImageGeneratorTest : public ProcessTest {
   }
 };
 
+// A MESH object over DDS (the ramp of tests/data/models at half its size, as the physics node
+// announces a model part): the image generator reads the file named in its object_info and draws
+// the part where its pose puts it, its material's colour times the object's.
+TEST_F(ImageGeneratorTest, AModelPartShowsAtItsProjectedPixel) {
+  const Eigen::Vector3d p_G(0.8, 0.0, 0.97);  // on its back face (x = 0.8, z 0.9 .. 1.046)
+  ChildProcess scene = start("test_scene_pub",
+                             {"--mesh", std::string(std::getenv("VCOCKPIT_SOURCE_DIR")) +
+                                            "/tests/data/models/ramp.gltf,ramp,0.5,0,0,1,1.0,0,0.9"},
+                             "scene.log");
+  ChildProcess ig = start("image_generator",
+                          {"--hmd", dir_ + "/hmd.yaml", "--frames", "5", "--fps", "0", "--out",
+                           dir_ + "/frames", "--snapshot-every", "4", "--snapshot-layout", "both"},
+                          "ig.log");
+  ASSERT_EQ(ig.wait(60 * kSecond), 0) << text("ig.log");
+  EXPECT_EQ(scene.stop(), 0);
+  EXPECT_NE(text("ig.log").find("object 'mesh0': model "), std::string::npos) << text("ig.log");
+  const HmdSetup hmd = load_hmd_config(dir_ + "/hmd.yaml");
+  for (const auto& [eye, name] : {std::pair{render::Eye::kLeft, "left"}, {render::Eye::kRight, "right"}}) {
+    RgbaImage image;
+    ASSERT_TRUE(read_png(dir_ + "/frames/frame_000004_" + name + ".png", image)) << text("ig.log");
+    Eigen::Vector2d pixel;
+    ASSERT_TRUE(render::project_to_pixel(hmd.hmd, eye, hmd.X_GHead, p_G, pixel));
+    const auto px = image.at(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()));
+    EXPECT_GT(px[2], std::max(px[0], px[1]) + 50)
+        << "the blue part not at its projected pixel in the " << name << " eye: rgba " << px[0]
+        << " " << px[1] << " " << px[2];
+  }
+}
+
 TEST_F(ImageGeneratorTest, BoxesShowAtTheirProjectedPixelsWithStereoDisparity) {
   const Box far_red{{1, 0, 0}, {1.0, -0.15, 1.0}, 0.10};
   const Box near_green{{0, 1, 0}, {0.5, 0.12, 1.0}, 0.06};

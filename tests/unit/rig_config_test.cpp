@@ -1,5 +1,6 @@
 // The rig file (launcher/rig_config.hpp): a node's restart_args are added only when it is started
-// again, and a restart_args on a node that is never restarted is refused where it is written.
+// again, and a restart_args on a node that is never restarted is refused where it is written;
+// {scene} is the rig file's scene.
 
 #include "launcher/rig_config.hpp"
 
@@ -38,6 +39,19 @@ TEST(RigConfig, RestartArgsAreAddedOnlyToARestartsCommand) {
   EXPECT_EQ(first, (std::vector<std::string>{"physics_node", "--checkpoint", "/out/p.ckpt"}));
   EXPECT_EQ(again, (std::vector<std::string>{"physics_node", "--checkpoint", "/out/p.ckpt",
                                              "--resume"}));
+}
+
+// {scene}: the rig file's scene (relative to it), cockpit.yaml beside it by default.
+TEST(RigConfig, TheSceneIsTheRigFilesOrCockpitYamlBesideIt) {
+  const auto expanded = [](const std::string& name, const std::string& scene_line) {
+    const RigConfig rig = load_rig_config(write_rig(
+        name, "domain: 9\nqos: qos.xml\n" + scene_line + "log: right.csv\nnodes:\n"
+                  "  - name: physics_node\n    command: [physics_node, --scene, '{scene}']\n"));
+    return expand_command(rig.nodes[0], rig, "/out").back();
+  };
+  const std::string dir = ::testing::TempDir() + "rig_config_test";
+  EXPECT_EQ(expanded("default_scene.yaml", ""), dir + "/cockpit.yaml");
+  EXPECT_EQ(expanded("own_scene.yaml", "scene: models/mine.yaml\n"), dir + "/models/mine.yaml");
 }
 
 TEST(RigConfig, RestartArgsOnANodeNeverRestartedAreRefusedWithTheirLine) {
