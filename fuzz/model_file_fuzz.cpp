@@ -1,5 +1,8 @@
 // A model file (model/import: glTF, OBJ or AC3D through assimp; the first byte picks the format,
-// the rest is the file): any bytes are either a mesh or a MeshError naming the file. A mesh has
+// the rest is the file): any bytes are either a mesh or a MeshError naming the file, whatever
+// assimp does with them (it reads in a child process: a crash or a hang there is such an error;
+// so this target checks the project's side, the child's answer and its decoding, not assimp's
+// coverage, which libFuzzer does not see across the fork). A mesh has
 // finite vertices, indices in range and no degenerate triangle (check_mesh's promise); its hull
 // is either a closed solid of positive volume or a MeshError, and its mass properties are finite.
 

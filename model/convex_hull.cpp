@@ -33,10 +33,11 @@ TriangleMesh convex_hull(const TriangleMesh& mesh) {
   NullFile null;
   qhT qh_storage;
   qhT* qh = &qh_storage;
-  qh_zero(qh, null.f);
+  std::FILE* errors = null.f != nullptr ? null.f : stderr;
+  qh_zero(qh, errors);
   char options[] = "qhull Qt";  // triangulated facets
   const int exit_code = qh_new_qhull(qh, 3, static_cast<int>(mesh.vertices_m.size()), points.data(),
-                                     False, options, nullptr, null.f);
+                                     False, options, nullptr, errors);
   if (exit_code == 0) {
     std::unordered_map<int, uint32_t> index;  // qhull point id -> hull vertex
     const auto vertex_of = [&](vertexT* v) {

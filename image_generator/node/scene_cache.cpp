@@ -41,6 +41,8 @@ void SceneCache::on_info(const cockpit::ObjectInfo& info) {
     if (!in.mesh) {  // the box round its vertices, where they are in the object's frame
       in.primitive = render::Primitive::kBox;
       in.size_m = Eigen::Vector3d(d[0], d[1], d[2]);
+      o.box_offset_m = to_eigen(info.mesh_center_m());
+      in.X_GO = o.X_GO * Eigen::Translation3d(o.box_offset_m);  // (a state that came first)
     }
   }
   const auto& c = info.color_rgba();
@@ -76,7 +78,8 @@ std::shared_ptr<const render::MeshData> SceneCache::model_mesh(const cockpit::Ob
 void SceneCache::on_state(const cockpit::ObjectState& state) {
   Object& o = objects_[state.object_id()];
   o.have_pose = true;
-  o.instance.X_GO = to_eigen(state.X_GO());
+  o.X_GO = to_eigen(state.X_GO());
+  o.instance.X_GO = o.X_GO * Eigen::Translation3d(o.box_offset_m);
   o.instance.highlight = state.held_by_hand_id() != cockpit::kNoObject;
   newest_sim_time_ns_ = std::max(newest_sim_time_ns_, state.sim_time_ns());
 }

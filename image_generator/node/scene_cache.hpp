@@ -98,6 +98,9 @@ class SceneCache {
     int light = 0;  // 0 no light, 1 lit, -1 a light that is off
     bool is_static = false;   // ObjectInfo says STATIC_OBJECT
     bool is_control = false;  // a control's moving part
+    // where the drawn box's centre is in the object's frame (a model drawn as its box)
+    Eigen::Vector3d box_offset_m = Eigen::Vector3d::Zero();
+    Eigen::Isometry3d X_GO = Eigen::Isometry3d::Identity();  // as its state said
     render::Instance instance;
   };
   struct ControlLights {

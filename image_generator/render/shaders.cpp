@@ -52,7 +52,8 @@ const float kSpecular = 0.2;
 const float kShininess = 32.0;
 
 void main() {
-  vec3 n = normalize(v_normal_G);
+  // a back face (a model's one-sided surface seen from behind) lit as its front
+  vec3 n = gl_FrontFacing ? normalize(v_normal_G) : -normalize(v_normal_G);
   vec3 to_eye = normalize(u_eye_position_G - v_position_G);
   float lambert = max(dot(n, kToLight_G), 0.0);
   float blinn = lambert > 0.0 ? pow(max(dot(n, normalize(kToLight_G + to_eye)), 0.0), kShininess)

@@ -211,10 +211,13 @@ void StereoRenderer::draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead, const M
     meshes.draw(mesh, range);
     if (range.count > 0) ++last_draw_calls_;
   }
+  // a model's surfaces may be open or one-sided (a panel's face): both sides drawn
+  if (!packed.model_meshes.empty()) glDisable(GL_CULL_FACE);
   for (std::size_t k = 0; k < packed.model_meshes.size(); ++k) {
     meshes.draw(packed.model_meshes[k], packed.model_ranges[k]);
     ++last_draw_calls_;
   }
+  if (!packed.model_meshes.empty()) glEnable(GL_CULL_FACE);
 }
 
 const uint8_t* StereoRenderer::pixels() const { return frames_.current().data(); }

@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -91,60 +93,53 @@ int64_t now_ms() {
   return int64_t{ts.tv_sec} * 1000 + ts.tv_nsec / 1'000'000;
 }
 
-}  // namespace
-
-TriangleMesh read_isolated(const std::function<TriangleMesh()>& read, const std::string& what,
-                           int timeout_s) {
-  int fds[2];
-  if (::pipe2(fds, O_CLOEXEC) != 0)
-    throw MeshError(what + ": cannot read it apart (pipe: " + std::strerror(errno) + ")");
-  const pid_t child = ::fork();
-  if (child < 0) {
-    ::close(fds[0]);
-    ::close(fds[1]);
-    throw MeshError(what + ": cannot read it apart (fork: " + std::strerror(errno) + ")");
-  }
-  if (child == 0) {  // the child: read, answer, and leave without the parent's exit handlers
-    ::close(fds[0]);
-    write_all(fds[1], encode(read));
-    ::_exit(0);
-  }
-  ::close(fds[1]);
-  std::string answer;
-  const int64_t deadline_ms = now_ms() + int64_t{timeout_s} * 1000;
-  bool timed_out = false;
-  char buffer[1 << 16];
-  for (;;) {
-    const int64_t left_ms = deadline_ms - now_ms();
-    if (left_ms <= 0) {
-      timed_out = true;
-      break;
+// The parent's side of one read: the pipe's end and the child, closed and reaped whatever happens.
+class Child {
+ public:
+  Child(pid_t pid, int fd) : pid_(pid), fd_(fd) {}
+  Child(const Child&) = delete;
+  Child& operator=(const Child&) = delete;
+  ~Child() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!reaped_) {
+      ::kill(pid_, SIGKILL);
+      wait();
     }
-    pollfd p{fds[0], POLLIN, 0};
-    const int ready = ::poll(&p, 1, static_cast<int>(left_ms));
-    if (ready < 0 && errno == EINTR) continue;
-    if (ready <= 0) continue;
-    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;  // the child closed its end: all said (or crashed)
-    answer.append(buffer, static_cast<std::size_t>(n));
   }
-  ::close(fds[0]);
-  if (timed_out) ::kill(child, SIGKILL);
-  int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+
+  // Everything the child writes until it closes its end, or false at the deadline.
+  bool read_all(std::string& answer, int64_t deadline_ms) {
+    char buffer[1 << 16];
+    for (;;) {
+      const int64_t left_ms = deadline_ms - now_ms();
+      if (left_ms <= 0) return false;
+      pollfd p{fd_, POLLIN, 0};
+      const int ready = ::poll(&p, 1, static_cast<int>(left_ms));
+      if (ready <= 0) continue;  // (EINTR, or the deadline checked above)
+      const ssize_t n = ::read(fd_, buffer, sizeof buffer);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) return true;  // all said (or it died)
+      answer.append(buffer, static_cast<std::size_t>(n));
+    }
   }
-  if (timed_out)
-    throw MeshError(what + ": the model reader took more than " + std::to_string(timeout_s) +
-                    " s on it (stopped)");
-  if (WIFSIGNALED(status))
-    throw MeshError(what + ": the model reader crashed on it (signal " +
-                    std::to_string(WTERMSIG(status)) + "): a malformed file");
-  Reader in(answer);
-  if (answer.empty() || (WIFEXITED(status) && WEXITSTATUS(status) != 0))
-    throw MeshError(what + ": the model reader failed on it (exit " +
-                    std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
-                    "): a malformed file");
+
+  int wait() {
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    reaped_ = true;
+    return status;
+  }
+
+  void kill() { ::kill(pid_, SIGKILL); }
+
+ private:
+  pid_t pid_;
+  int fd_;
+  bool reaped_ = false;
+};
+
+TriangleMesh decode(const std::string& answer, const std::string& what) {
   if (answer[0] == 0) {
     std::string message;
     Reader error(std::string_view(answer).substr(1));
@@ -157,6 +152,50 @@ TriangleMesh read_isolated(const std::function<TriangleMesh()>& read, const std:
       !body.get(mesh.normals) || !body.get(mesh.colors_rgba) || !body.done())
     throw MeshError(what + ": the model reader's answer was cut short");
   return mesh;
+}
+
+}  // namespace
+
+TriangleMesh read_isolated(const std::function<TriangleMesh()>& read, const std::string& what,
+                           int timeout_s) {
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0)
+    throw MeshError(what + ": cannot read it apart (pipe: " + std::strerror(errno) + ")");
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw MeshError(what + ": cannot read it apart (fork: " + std::strerror(errno) + ")");
+  }
+  if (pid == 0) {  // the child: read, answer, and leave without the parent's exit handlers
+    ::close(fds[0]);
+    // gone with its parent; a crash is a plain death by signal (not the parent's crash
+    // handlers: a sanitizer's report, a fuzzer's artifact); no more CPU than its time
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT})
+      ::signal(sig, SIG_DFL);
+    const rlimit cpu{static_cast<rlim_t>(timeout_s), static_cast<rlim_t>(timeout_s) + 1};
+    ::setrlimit(RLIMIT_CPU, &cpu);
+    write_all(fds[1], encode(read));
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  Child child(pid, fds[0]);
+  std::string answer;
+  const bool answered = child.read_all(answer, now_ms() + int64_t{timeout_s} * 1000);
+  if (!answered) child.kill();
+  const int status = child.wait();
+  if (!answered || (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU))
+    throw MeshError(what + ": the model reader took more than " + std::to_string(timeout_s) +
+                    " s on it (stopped)");
+  if (WIFSIGNALED(status))
+    throw MeshError(what + ": the model reader crashed on it (signal " +
+                    std::to_string(WTERMSIG(status)) + "): a malformed file");
+  if (answer.empty() || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw MeshError(what + ": the model reader failed on it (exit " +
+                    std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                    "): a malformed file");
+  return decode(answer, what);
 }
 
 }  // namespace vcockpit::model

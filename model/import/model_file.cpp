@@ -134,11 +134,15 @@ TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request) {
           mesh.normals.emplace_back(n.x, n.y, n.z);
         }
       }
+      // a mirroring placement (negative determinant) turns the winding inside out: undone
+      const bool mirrored = X.Determinant() < 0.0f;
       for (unsigned f = 0; f < part->mNumFaces; ++f) {
         const aiFace& face = part->mFaces[f];
         if (face.mNumIndices != 3) continue;
-        mesh.triangles.push_back(
-            {base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+        const uint32_t a = base + face.mIndices[0], b = base + face.mIndices[1],
+                       c = base + face.mIndices[2];
+        mesh.triangles.push_back(mirrored ? std::array<uint32_t, 3>{a, c, b}
+                                          : std::array<uint32_t, 3>{a, b, c});
       }
     }
     for (unsigned c = 0; c < node->mNumChildren; ++c)
@@ -146,8 +150,10 @@ TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request) {
   };
   // the named node's own frame; the whole file in the root's
   visit(top, request.node.empty() ? top->mTransformation : aiMatrix4x4());
-  // normals only when every part had them
-  if (mesh.normals.size() != mesh.vertices_m.size()) mesh.normals.clear();
+  // normals only when every part had them, all of them usable (a zero normal normalised is NaN)
+  const bool usable = std::all_of(mesh.normals.begin(), mesh.normals.end(),
+                                  [](const Eigen::Vector3f& n) { return n.allFinite(); });
+  if (mesh.normals.size() != mesh.vertices_m.size() || !usable) mesh.normals.clear();
   for (Eigen::Vector3d& v : mesh.vertices_m) {
     if (request.up == UpAxis::kY) v = Eigen::Vector3d(v.x(), -v.z(), v.y());
     v *= request.scale;

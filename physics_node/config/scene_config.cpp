@@ -125,8 +125,12 @@ Shape parse_mesh_shape(const ConfigNode& node, const ShapeContext& context) {
   if (file.empty()) node["mesh"].fail("the model file name must not be empty");
   fs::path path(file);
   if (path.is_relative() && !context.base_dir.empty()) path = fs::path(context.base_dir) / path;
-  request.path = path.string();
+  // absolute: the image generator reads the same file from wherever it was started
+  request.path = fs::absolute(path).lexically_normal().string();
+  if (request.path.size() > 255)
+    node["mesh"].fail("the model file's path is longer than 255 characters (cockpit/object_info)");
   read_optional(node, "node", request.node, [](const ConfigNode& n) { return n.as_string(); });
+  if (request.node.size() > 64) node["node"].fail("a node name longer than 64 characters");
   if (auto scale = node.find("scale")) request.scale = positive(*scale, "scale");
   if (auto up = node.find("up")) {
     const std::string axis = up->as_string();

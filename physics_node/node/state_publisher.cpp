@@ -140,6 +140,7 @@ void StatePublisher::publish_object_info(const physics::World& world) {
       info.mesh_scale(m.scale);
       info.mesh_z_up(m.z_up);
       info.mesh_origin_m(to_idl(m.origin_m));
+      info.mesh_center_m(to_idl(0.5 * (o.shape.mesh_bounds.min_m + o.shape.mesh_bounds.max_m)));
     } else {
       info.dimensions_m({o.shape.radius_m, o.shape.length_m, 0.0});
     }

@@ -188,6 +188,7 @@ struct CollisionWorld::Impl {
       const Eigen::Vector3d n = c.normal / norm;
       out.push_back({pair.lo, pair.hi, contact_point(pair, c.pos, n, depth_m), n, depth_m});
     }
+    if (hull_and_box(pair) && out.size() == first + 1) hull_on_box_face(pair, first, out);
     // MPR's normal is not always the direction of least overlap: with a body exactly touching a
     // box face (a short cylinder standing on a floor) libccd can return a direction along the
     // face with the overlap across the whole box (1.7 m), which would throw the body away. The
@@ -275,6 +276,63 @@ struct CollisionWorld::Impl {
       return true;
     }
     return false;
+  }
+
+  bool is_hull(int body) const {
+    const Body& b = bodies[static_cast<std::size_t>(body)];
+    return b.shape == ShapeKind::kMesh && b.kind != BodyKind::kStatic;
+  }
+
+  bool hull_and_box(const BodyPair& pair) const {
+    const ShapeKind a = bodies[static_cast<std::size_t>(pair.lo)].shape;
+    const ShapeKind b = bodies[static_cast<std::size_t>(pair.hi)].shape;
+    return (is_hull(pair.lo) && b == ShapeKind::kBox) || (is_hull(pair.hi) && a == ShapeKind::kBox);
+  }
+
+  // A moving mesh's hull on a box (a part on a table): MPR's one point becomes the hull's
+  // vertices under the box's face that faces it, so it rests flat (face_vertex_contacts.hpp).
+  void hull_on_box_face(const BodyPair& pair, std::size_t first, std::vector<ContactPoint>& out) {
+    const ContactPoint single = out[first];
+    const int box = bodies[static_cast<std::size_t>(pair.lo)].shape == ShapeKind::kBox ? pair.lo : pair.hi;
+    const int hull = box == pair.lo ? pair.hi : pair.lo;
+    const Eigen::Vector3d n_box_out = box == pair.lo ? single.n_G : Eigen::Vector3d(-single.n_G);
+    const Body& b = bodies[static_cast<std::size_t>(box)];
+    const Eigen::Isometry3d& X_GB = objects[static_cast<std::size_t>(box)]->getTransform();
+    // the face whose outward normal is nearest the contact's
+    int axis = 0;
+    double best = -1.0;
+    for (int i = 0; i < 3; ++i) {
+      const double along = std::abs(X_GB.linear().col(i).dot(n_box_out));
+      if (along > best) {
+        best = along;
+        axis = i;
+      }
+    }
+    const double sign = X_GB.linear().col(axis).dot(n_box_out) >= 0.0 ? 1.0 : -1.0;
+    FlatFace face;
+    face.n_G = sign * X_GB.linear().col(axis);
+    face.corner_count = 4;
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const Eigen::Vector3d h = b.half_size_m;
+    constexpr double kSigns[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (int k = 0; k < 4; ++k) {
+      Eigen::Vector3d p_B = Eigen::Vector3d::Zero();
+      p_B[axis] = sign * h[axis];
+      p_B[u] = kSigns[k][0] * h[u];
+      p_B[v] = kSigns[k][1] * h[v];
+      face.corners_G[static_cast<std::size_t>(k)] = X_GB * p_B;
+    }
+    // counter-clockwise about the face's normal
+    const auto& c = face.corners_G;
+    if ((c[1] - c[0]).cross(c[2] - c[0]).dot(face.n_G) < 0.0) std::swap(face.corners_G[1], face.corners_G[3]);
+    incident_vertices(hull, vertices_G);
+    face_contacts.clear();
+    face_vertex_contacts(face, vertices_G, 1.5 * single.depth_m + kFaceSlack_m, kFaceSlack_m, face_contacts);
+    if (face_contacts.empty()) return;  // an edge or a corner: MPR's point stays
+    reduce_face_contacts(face_contacts, max_points, kMergeDistance_m);
+    out.resize(first);
+    for (const FaceContact& f : face_contacts)
+      out.push_back({pair.lo, pair.hi, f.p_G, box == pair.lo ? f.n_G : Eigen::Vector3d(-f.n_G), f.depth_m});
   }
 
   bool segment_pair(const BodyPair& pair) const {

@@ -1,5 +1,7 @@
 #include "physics_node/physics/substep_choice.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 
@@ -31,6 +33,13 @@ double worst_contact_mass(const ObjectSpec& o) {
     const double half_m = 0.5 * o.shape.length_m;
     const double I_across = std::min(o.I_O(0, 0), o.I_O(1, 1));
     return 1.0 / (1.0 / o.mass_kg + half_m * half_m / I_across);
+  }
+  if (o.shape.kind == ShapeKind::kMesh) {
+    // a model part's inertia is not diagonal in its frame: |r x n|^2 / I at most r^2 / I_min,
+    // I_min its least principal moment
+    const double r = o.shape.bounding_radius_m();
+    const double I_min = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(o.I_O).eigenvalues().minCoeff();
+    return 1.0 / (1.0 / o.mass_kg + r * r / I_min);
   }
   const Eigen::Vector3d reach = o.shape.axis_reach_m();
   double per_axis = 0.0;

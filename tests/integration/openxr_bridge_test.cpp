@@ -143,7 +143,7 @@ TEST_F(OpenXrBridgeTest, TheOpenXrRigRunsUntilTheRuntimeEndsTheSession) {
   };
   replace("domain: 10", "domain: " + env_.at("VCOCKPIT_DOMAIN"));
   replace("qos: qos.xml", "qos: " + source_dir() + "/config/qos.xml");
-  replace("\"{config}/cockpit.yaml\"", source_dir() + "/config/cockpit.yaml");
+  replace("\"{scene}\"", source_dir() + "/config/cockpit.yaml");
   replace("\"{config}/hmd.yaml\"", source_dir() + "/config/hmd.yaml");
   replace("--wait-readers, \"1\"]", "--wait-readers, \"1\", --xr-origin, \"0.36\", \"-0.35\", \"0.64\"]");
   { std::ofstream(dir_ + "/rig.yaml") << rig; }

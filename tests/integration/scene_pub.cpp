@@ -93,6 +93,7 @@ int main(int argc, char** argv) {
       info.mesh_scale(std::stod(f[2]));
       info.mesh_z_up(false);
       info.mesh_origin_m(to_idl(Eigen::Vector3d::Zero()));
+      info.mesh_center_m(to_idl(Eigen::Vector3d::Zero()));
       info.color_rgba({std::stof(f[3]), std::stof(f[4]), std::stof(f[5]), 1.0f});
       info_writer.write(info);
       cockpit::ObjectState state;

@@ -30,6 +30,7 @@
 #include "hand/hand_model.hpp"
 #include "tests/support/allocation_counter.hpp"
 #include "physics_node/physics/scene.hpp"
+#include "model/convex_hull.hpp"
 
 namespace vcockpit::physics {
 namespace {
@@ -202,6 +203,28 @@ TEST(Collision, MeshPairsFollowTheConventionInBothOrders) {
         EXPECT_NEAR(c.p_G.z(), -0.5 * kDepth_m, 1e-6) << what << ": midway through the overlap";
       }
     }
+  }
+}
+
+// A moving model part (its convex hull) lying on a box floor rests on its corners, not on MPR's
+// one point: the chamfered cap of tests/data/models, 1 mm into the floor.
+TEST(Collision, AHullOnABoxRestsOnItsBottomCorners) {
+  auto cap = std::make_shared<model::TriangleMesh>();
+  const double s = 0.012, c = 0.002, hz = 0.006;
+  for (double z : {-hz, hz - c})
+    for (int k = 0; k < 4; ++k) cap->vertices_m.emplace_back(k & 1 ? s : -s, k & 2 ? s : -s, z);
+  for (int k = 0; k < 4; ++k) cap->vertices_m.emplace_back(k & 1 ? s - c : c - s, k & 2 ? s - c : c - s, hz);
+  auto hull = std::make_shared<model::TriangleMesh>(model::convex_hull(*cap));
+  Scene scene;
+  scene.objects = {floor_box(), object("cap", true, Shape::triangle_mesh(cap, hull), pose(0.1, 0.2, hz - kDepth_m))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+  ASSERT_EQ(contacts.size(), 4u);
+  for (const ContactPoint& p : contacts) {
+    EXPECT_NEAR(p.depth_m, kDepth_m, 1e-9);
+    expect_vec_near(p.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal, floor -> cap");
+    EXPECT_NEAR(std::abs(p.p_G.x() - 0.1), s, 1e-9) << "under a bottom corner";
+    EXPECT_NEAR(std::abs(p.p_G.y() - 0.2), s, 1e-9);
   }
 }
 

@@ -68,6 +68,7 @@ TEST(SceneCache, AMeshObjectIsDrawnAsItsModelOrItsBoxWhenTheFileFails) {
     info.mesh_scale(1.0);
     info.mesh_z_up(false);
     info.mesh_origin_m(to_idl(Eigen::Vector3d(0.0, 0.0, 0.001)));
+    info.mesh_center_m(to_idl(Eigen::Vector3d(0.0, 0.0, 0.002)));
     cache.on_info(info);
     cockpit::ObjectState state;
     state.object_id(id);
@@ -92,6 +93,8 @@ TEST(SceneCache, AMeshObjectIsDrawnAsItsModelOrItsBoxWhenTheFileFails) {
   EXPECT_NEAR(lowest, -0.005f, 1e-6f);
   EXPECT_EQ(out[2].primitive, render::Primitive::kBox);
   EXPECT_TRUE(out[2].size_m.isApprox(Eigen::Vector3d(0.024, 0.024, 0.012)));
+  EXPECT_TRUE(out[2].X_GO.translation().isApprox(Eigen::Vector3d(0.0, 0.0, 0.002)))
+      << "centred where the vertices are";
   EXPECT_EQ(cache.models_refused(), 1u);
   EXPECT_NE(cache.last_model_error().find("no_such.glb: no such file"), std::string::npos)
       << cache.last_model_error();
