@@ -26,6 +26,30 @@ void check_mesh(const TriangleMesh& mesh, double min_area_m2) {
   }
 }
 
+void drop_degenerate_triangles(TriangleMesh& mesh, double min_area_m2) {
+  std::size_t kept = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    const bool indices_ok = tri[0] < mesh.vertices_m.size() && tri[1] < mesh.vertices_m.size() &&
+                            tri[2] < mesh.vertices_m.size();
+    double area_m2 = 0.0;
+    if (indices_ok) {
+      const Eigen::Vector3d& a = mesh.vertices_m[tri[0]];
+      area_m2 = 0.5 * (mesh.vertices_m[tri[1]] - a).cross(mesh.vertices_m[tri[2]] - a).norm();
+    }
+    // (a bad index or a non-finite vertex stays, for check_mesh to name)
+    if (indices_ok && std::isfinite(area_m2) && area_m2 < min_area_m2) {
+      if (mesh.degenerate_dropped++ == 0) mesh.first_degenerate = t;
+      continue;
+    }
+    mesh.triangles[kept++] = tri;
+  }
+  mesh.triangles.resize(kept);
+  if (kept == 0 && mesh.degenerate_dropped > 0)
+    throw MeshError(mesh.source + ": every one of its " + std::to_string(mesh.degenerate_dropped) +
+                    " triangles is degenerate (no area)");
+}
+
 MassProperties mass_properties(const TriangleMesh& mesh) {
   // Integrals of 1, x, y, z, x^2, y^2, z^2, xy, yz, zx over the solid, summed over the signed
   // tetrahedra (origin, a, b, c). For a tetrahedron with vertices 0, a, b, c and volume V:

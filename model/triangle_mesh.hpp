@@ -21,7 +21,15 @@ struct TriangleMesh {
   std::vector<Eigen::Vector3f> normals;
   std::vector<std::array<float, 4>> colors_rgba;
   std::string source;  // "FILE node 'NAME'": what errors and logs name
+  // Triangles of the file left out for having no area (model/import), and the first one's
+  // index in the file's order: reported, not refused (CAD and simulator models have some).
+  uint64_t degenerate_dropped = 0;
+  uint64_t first_degenerate = 0;
 };
+
+// The triangles with no area (below min_area_m2, or a vertex used twice) taken out, counted in
+// degenerate_dropped; a MeshError naming mesh.source if none is left.
+void drop_degenerate_triangles(TriangleMesh& mesh, double min_area_m2 = 1e-14);
 
 // A mesh that cannot be used, with what and where: "cockpit.glb node 'panel': triangle 12 has no
 // area".

@@ -24,9 +24,21 @@ namespace {
 
 using namespace vcockpit;
 
+// Model parts with triangles left out for having no area: said once, at load.
+void report_model_parts(const physics::Scene& scene) {
+  for (const physics::ObjectSpec& o : scene.objects) {
+    if (o.shape.kind != physics::ShapeKind::kMesh || o.shape.mesh->degenerate_dropped == 0) continue;
+    spdlog::warn("object '{}': {}: {} triangle(s) with no area left out (the first: triangle {})",
+                 o.name, o.shape.mesh->source, o.shape.mesh->degenerate_dropped,
+                 o.shape.mesh->first_degenerate);
+  }
+}
+
 int run_offline_mode(const physics_io::OfflineOptions& options) {
   if (options.out_dir.empty()) throw CLI::ValidationError("--offline needs --out DIR");
-  const auto summary = physics_io::run_offline(load_scene(options.scene_path), options);
+  physics::Scene scene = load_scene(options.scene_path);
+  report_model_parts(scene);
+  const auto summary = physics_io::run_offline(std::move(scene), options);
   spdlog::info("{} steps ({:.1f} substeps each on average, at most {}), {:.3f} s simulated in "
                "{:.3f} s wall ({:.1f}x real time); {} grasp(s), {} release(s); hand penetration "
                "max {:.2f} mm",
@@ -199,6 +211,7 @@ int main(int argc, char** argv) {
       node_options.stats_out = *stats_out;
     }
     physics::Scene scene = load_scene(scene_path);
+    report_model_parts(scene);
     DdsParticipant participant(resolve_dds_options(dds_flags, "physics_node"), node_options.node_name);
     return physics_node::run_node(participant, std::move(scene), node_options);
   } catch (const CLI::Error& e) {

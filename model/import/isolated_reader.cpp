@@ -70,6 +70,7 @@ std::string encode(const std::function<TriangleMesh()>& read) {
     put(out, mesh.triangles);
     put(out, mesh.normals);
     put(out, mesh.colors_rgba);
+    put(out, std::vector<uint64_t>{mesh.degenerate_dropped, mesh.first_degenerate});
   } catch (const std::exception& e) {
     out.assign(1, 0);
     put(out, std::string(e.what()));
@@ -148,9 +149,13 @@ TriangleMesh decode(const std::string& answer, const std::string& what) {
   }
   TriangleMesh mesh;
   Reader body(std::string_view(answer).substr(1));
+  std::vector<uint64_t> degenerate;
   if (!body.get(mesh.source) || !body.get(mesh.vertices_m) || !body.get(mesh.triangles) ||
-      !body.get(mesh.normals) || !body.get(mesh.colors_rgba) || !body.done())
+      !body.get(mesh.normals) || !body.get(mesh.colors_rgba) || !body.get(degenerate) ||
+      degenerate.size() != 2 || !body.done())
     throw MeshError(what + ": the model reader's answer was cut short");
+  mesh.degenerate_dropped = degenerate[0];
+  mesh.first_degenerate = degenerate[1];
   return mesh;
 }
 

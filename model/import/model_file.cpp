@@ -161,6 +161,7 @@ TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request) {
   if (request.up == UpAxis::kY)
     for (Eigen::Vector3f& n : mesh.normals)
       n = Eigen::Vector3f(n.x(), -n.z(), n.y());
+  drop_degenerate_triangles(mesh);
   check_mesh(mesh);
   return mesh;
 }

@@ -27,8 +27,9 @@ struct ModelRequest {
 };
 
 // Throws MeshError naming the file (and node): missing, unsupported, unreadable, no such node
-// (with the file's node names), no triangles, a non-finite vertex, a degenerate triangle, or
-// the reader crashed or hung on it (it runs in a child process: isolated_reader.hpp).
+// (with the file's node names), no triangles, a non-finite vertex, every triangle degenerate, or
+// the reader crashed or hung on it (it runs in a child process: isolated_reader.hpp). Triangles
+// with no area among good ones are left out and counted (TriangleMesh::degenerate_dropped).
 TriangleMesh load_model_mesh(const ModelRequest& request);
 
 // The same from the bytes of a file in memory, of the format its `extension` names ("gltf",

@@ -95,13 +95,26 @@ TEST_F(BadModel, EachIsRefusedNamingTheFileAndWhat) {
   EXPECT_NE(nan_error.find("is not a finite number"), std::string::npos) << nan_error;
   const std::string flat = write("flat.obj", "o part\nv 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
   const std::string flat_error = error_of({flat, "part"});
-  EXPECT_NE(flat_error.find(flat + " node 'part': triangle 0 is degenerate"), std::string::npos)
+  EXPECT_NE(flat_error.find(flat + " node 'part': every one of its 1 triangles is degenerate"),
+            std::string::npos)
       << flat_error;
   const std::string empty = write("empty.obj", "o part\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
   EXPECT_NE(error_of({empty, ""}).find(empty), std::string::npos);
   EXPECT_NE(
       error_of({models_dir() + "/ramp.obj", "", -1.0}).find("scale must be a positive number"),
       std::string::npos);
+}
+
+// A triangle with no area among good ones (CAD exports and simulator models have them) is left
+// out and counted, not a reason to refuse the part.
+TEST_F(BadModel, ADegenerateTriangleAmongGoodOnesIsDroppedAndCounted) {
+  const std::string part = write("part.obj",
+                                 "o part\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\n"
+                                 "f 1 2 3\nf 1 2 4\nf 1 3 2\n");
+  const TriangleMesh mesh = load_model_mesh({part, "part"});
+  EXPECT_EQ(mesh.triangles.size(), 2u);
+  EXPECT_EQ(mesh.degenerate_dropped, 1u);
+  EXPECT_EQ(mesh.first_degenerate, 1u);
 }
 
 TEST(MassProperties, AUnitCubeAgainstItsClosedForm) {
