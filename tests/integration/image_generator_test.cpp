@@ -70,6 +70,15 @@ class ImageGeneratorTest : public ProcessTest {
     ProcessTest::SetUp();
     std::ofstream(dir_ + "/hmd.yaml") << kTestHmd;
   }
+  // The image generator on what the scene publisher shows: five frames, the fifth written per
+  // eye as frames/frame_000004_{left,right}.png; its exit status.
+  int render_five_frames() {
+    ChildProcess ig = start("image_generator",
+                            {"--hmd", dir_ + "/hmd.yaml", "--frames", "5", "--fps", "0", "--out",
+                             dir_ + "/frames", "--snapshot-every", "4", "--snapshot-layout", "both"},
+                            "ig.log");
+    return ig.wait(60 * kSecond);
+  }
 };
 
 // A MESH object over DDS (the ramp of tests/data/models at half its size, as the physics node
@@ -81,11 +90,7 @@ TEST_F(ImageGeneratorTest, AModelPartShowsAtItsProjectedPixel) {
                              {"--mesh", std::string(std::getenv("VCOCKPIT_SOURCE_DIR")) +
                                             "/tests/data/models/ramp.gltf,ramp,0.5,0,0,1,1.0,0,0.9"},
                              "scene.log");
-  ChildProcess ig = start("image_generator",
-                          {"--hmd", dir_ + "/hmd.yaml", "--frames", "5", "--fps", "0", "--out",
-                           dir_ + "/frames", "--snapshot-every", "4", "--snapshot-layout", "both"},
-                          "ig.log");
-  ASSERT_EQ(ig.wait(60 * kSecond), 0) << text("ig.log");
+  ASSERT_EQ(render_five_frames(), 0) << text("ig.log");
   EXPECT_EQ(scene.stop(), 0);
   EXPECT_NE(text("ig.log").find("object 'mesh0': model "), std::string::npos) << text("ig.log");
   const HmdSetup hmd = load_hmd_config(dir_ + "/hmd.yaml");
@@ -106,11 +111,7 @@ TEST_F(ImageGeneratorTest, BoxesShowAtTheirProjectedPixelsWithStereoDisparity) {
   const Box near_green{{0, 1, 0}, {0.5, 0.12, 1.0}, 0.06};
   ChildProcess scene = start("test_scene_pub", {"--box", far_red.arg(), "--box", near_green.arg()},
                              "scene.log");
-  ChildProcess ig = start("image_generator",
-                          {"--hmd", dir_ + "/hmd.yaml", "--frames", "5", "--fps", "0", "--out",
-                           dir_ + "/frames", "--snapshot-every", "4", "--snapshot-layout", "both"},
-                          "ig.log");
-  ASSERT_EQ(ig.wait(60 * kSecond), 0) << text("ig.log");
+  ASSERT_EQ(render_five_frames(), 0) << text("ig.log");
   EXPECT_EQ(scene.stop(), 0);
 
   RgbaImage left, right;

@@ -37,17 +37,22 @@ cockpit::HandState hand_state(uint32_t hand_id, int64_t sim_time_ns) {
   return state;
 }
 
+// An object's state: at the origin, held by no hand.
+void place_at_origin(SceneCache& cache, uint32_t id) {
+  cockpit::ObjectState state;
+  state.object_id(id);
+  state.X_GO(to_idl(Eigen::Isometry3d::Identity()));
+  state.held_by_hand_id(cockpit::kNoObject);
+  cache.on_state(state);
+}
+
 void add_box(SceneCache& cache) {
   cockpit::ObjectInfo info;
   info.object_id(0);
   info.shape(cockpit::BOX);
   info.dimensions_m({0.1, 0.1, 0.1});
   cache.on_info(info);
-  cockpit::ObjectState state;
-  state.object_id(0);
-  state.X_GO(to_idl(Eigen::Isometry3d::Identity()));
-  state.held_by_hand_id(cockpit::kNoObject);
-  cache.on_state(state);
+  place_at_origin(cache, 0);
 }
 
 constexpr std::size_t kHandInstances = 16;  // palm box + 15 phalanx capsules
@@ -70,11 +75,7 @@ TEST(SceneCache, AMeshObjectIsDrawnAsItsModelOrItsBoxWhenTheFileFails) {
     info.mesh_origin_m(to_idl(Eigen::Vector3d(0.0, 0.0, 0.001)));
     info.mesh_center_m(to_idl(Eigen::Vector3d(0.0, 0.0, 0.002)));
     cache.on_info(info);
-    cockpit::ObjectState state;
-    state.object_id(id);
-    state.X_GO(to_idl(Eigen::Isometry3d::Identity()));
-    state.held_by_hand_id(cockpit::kNoObject);
-    cache.on_state(state);
+    place_at_origin(cache, id);
   };
   const std::string button = test::source_dir() + "/tests/data/models/button.gltf";
   mesh_info(0, button);
@@ -111,11 +112,7 @@ TEST(SceneCache, ALitControlsCapAndAnnunciatorGlowAndAreDullWhenOff) {
     info.dimensions_m({0.02, 0.02, 0.01});
     info.color_rgba({0.9f, 0.6f, 0.1f, 1.0f});
     cache.on_info(info);
-    cockpit::ObjectState state;
-    state.object_id(id);
-    state.X_GO(to_idl(Eigen::Isometry3d::Identity()));
-    state.held_by_hand_id(cockpit::kNoObject);
-    cache.on_state(state);
+    place_at_origin(cache, id);
   }
   // a state before the info: kept and applied when the info comes
   cockpit::ControlState state;
