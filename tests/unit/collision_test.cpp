@@ -29,6 +29,7 @@
 #include "physics_node/physics/collision.hpp"
 #include "hand/hand_model.hpp"
 #include "tests/support/allocation_counter.hpp"
+#include "tests/support/collision_scenes.hpp"
 #include "physics_node/physics/scene.hpp"
 
 namespace vcockpit::physics {
@@ -68,51 +69,12 @@ Eigen::Matrix3d rx90() {  // z -> -y: an axis-along-z shape lying along y
   return R;
 }
 
-Eigen::Isometry3d pose(double x_m, double y_m, double z_m,
-                       const Eigen::Matrix3d& R = Eigen::Matrix3d::Identity()) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = R;
-  X.translation() = Eigen::Vector3d(x_m, y_m, z_m);
-  return X;
-}
-
-ObjectSpec object(const std::string& name, bool dynamic, const Shape& shape,
-                  const Eigen::Isometry3d& X_GO) {
-  ObjectSpec spec;
-  spec.name = name;
-  spec.dynamic = dynamic;
-  spec.shape = shape;
-  spec.X_GO = X_GO;
-  spec.mass_kg = dynamic ? 0.1 : 0.0;
-  return spec;
-}
-
-// 1 m x 1 m, 0.1 m thick, top face at z = 0.
-ObjectSpec floor_box(bool dynamic = false) {
-  return object("floor", dynamic, Shape::box({1.0, 1.0, 0.1}), pose(0, 0, -0.05));
-}
-
-std::vector<Eigen::Isometry3d> initial_poses(const Scene& scene) {
-  std::vector<Eigen::Isometry3d> X_GO;
-  for (const ObjectSpec& spec : scene.objects)
-    X_GO.push_back(spec.X_GO);
-  return X_GO;
-}
-
-std::vector<ContactPoint> step(CollisionWorld& world, const std::vector<Eigen::Isometry3d>& X_GO,
-                               const std::array<Eigen::Isometry3d, kLinkCount>* X_GL = nullptr) {
-  std::vector<ContactPoint> contacts;
-  world.set_poses(X_GO, X_GL);
-  world.find_candidate_pairs();
-  world.compute_contacts(contacts);
-  return contacts;
-}
-
-void expect_vec_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected, double tol,
-                     const std::string& what) {
-  EXPECT_LE((actual - expected).norm(), tol)
-      << what << ": got " << actual.transpose() << ", expected " << expected.transpose();
-}
+using test::expect_vec_near;
+using test::floor_box;
+using test::initial_poses;
+using test::object;
+using test::pose;
+using test::step;
 
 bool same_bits(const ContactPoint& x, const ContactPoint& y) {
   return x.body_a == y.body_a && x.body_b == y.body_b &&

@@ -13,6 +13,7 @@
 #include "model/convex_hull.hpp"
 #include "physics_node/physics/collision.hpp"
 #include "physics_node/physics/scene.hpp"
+#include "tests/support/collision_scenes.hpp"
 
 namespace vcockpit::physics {
 namespace {
@@ -20,43 +21,12 @@ namespace {
 constexpr double kNormalTol = 1e-6;
 constexpr double kDepth_m = 1e-3;  // how far bodies are pushed into each other
 
-Eigen::Isometry3d pose(double x_m, double y_m, double z_m) {
-  return Eigen::Isometry3d(Eigen::Translation3d(x_m, y_m, z_m));
-}
-
-ObjectSpec object(const std::string& name, bool dynamic, const Shape& shape,
-                  const Eigen::Isometry3d& X_GO) {
-  ObjectSpec spec;
-  spec.name = name;
-  spec.dynamic = dynamic;
-  spec.shape = shape;
-  spec.X_GO = X_GO;
-  spec.mass_kg = dynamic ? 0.1 : 0.0;
-  return spec;
-}
-
-// 1 m x 1 m, 0.1 m thick, top face at z = 0.
-ObjectSpec floor_box() {
-  return object("floor", false, Shape::box({1.0, 1.0, 0.1}), pose(0, 0, -0.05));
-}
-
-std::vector<ContactPoint> contacts_of(const Scene& scene) {
-  CollisionWorld world(scene);
-  std::vector<Eigen::Isometry3d> X_GO;
-  for (const ObjectSpec& spec : scene.objects)
-    X_GO.push_back(spec.X_GO);
-  std::vector<ContactPoint> contacts;
-  world.set_poses(X_GO, nullptr);
-  world.find_candidate_pairs();
-  world.compute_contacts(contacts);
-  return contacts;
-}
-
-void expect_vec_near(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected, double tol,
-                     const std::string& what) {
-  EXPECT_LE((actual - expected).norm(), tol)
-      << what << ": got " << actual.transpose() << ", expected " << expected.transpose();
-}
+using test::expect_vec_near;
+using test::floor_box;
+using test::initial_poses;
+using test::object;
+using test::pose;
+using test::step;
 
 // A 1 m square of two triangles (z = 0, facing +z) as a static mesh object at `index` 0 or last.
 ObjectSpec mesh_floor() {
@@ -78,7 +48,10 @@ TEST(Collision, MeshPairsFollowTheConventionInBothOrders) {
       Scene scene;
       scene.objects = mesh_first ? std::vector<ObjectSpec>{mesh_floor(), body}
                                  : std::vector<ObjectSpec>{body, mesh_floor()};
-      const auto contacts = contacts_of(scene);
+      const auto contacts = [&] {
+        CollisionWorld world(scene);
+        return step(world, initial_poses(scene));
+      }();
       const std::string what =
           std::string(ball ? "ball" : "box") + (mesh_first ? ", mesh first" : ", mesh last");
       ASSERT_EQ(contacts.size(), ball ? 1u : 4u) << what;
@@ -106,7 +79,10 @@ TEST(Collision, AHullOnABoxRestsOnItsBottomCorners) {
   Scene scene;
   scene.objects = {floor_box(), object("cap", true, Shape::triangle_mesh(cap, hull),
                                        pose(0.1, 0.2, hz - kDepth_m))};
-  const auto contacts = contacts_of(scene);
+  const auto contacts = [&] {
+    CollisionWorld world(scene);
+    return step(world, initial_poses(scene));
+  }();
   ASSERT_EQ(contacts.size(), 4u);
   for (const ContactPoint& p : contacts) {
     EXPECT_NEAR(p.depth_m, kDepth_m, 1e-9);
