@@ -252,9 +252,16 @@ struct CollisionWorld::Impl {
       }
       if (face_contacts.size() == before) face_contacts.push_back({c.pos - (0.5 * depth_m) * n, n, depth_m});
     }
+    emit_face_contacts(pair, mesh, out);
+  }
+
+  // face_contacts, reduced to max_points, as the pair's points; their normals point out of
+  // `reference` (the mesh, the box), turned to run from body lo to body hi.
+  void emit_face_contacts(const BodyPair& pair, int reference, std::vector<ContactPoint>& out) {
     reduce_face_contacts(face_contacts, max_points, kMergeDistance_m);
     for (const FaceContact& f : face_contacts)
-      out.push_back({pair.lo, pair.hi, f.p_G, mesh == pair.lo ? f.n_G : Eigen::Vector3d(-f.n_G), f.depth_m});
+      out.push_back({pair.lo, pair.hi, f.p_G, reference == pair.lo ? f.n_G : Eigen::Vector3d(-f.n_G),
+                     f.depth_m});
   }
 
   // The world vertices of a polyhedral body (a box's corners, a moving mesh's hull): false for a
@@ -329,10 +336,8 @@ struct CollisionWorld::Impl {
     face_contacts.clear();
     face_vertex_contacts(face, vertices_G, 1.5 * single.depth_m + kFaceSlack_m, kFaceSlack_m, face_contacts);
     if (face_contacts.empty()) return;  // an edge or a corner: MPR's point stays
-    reduce_face_contacts(face_contacts, max_points, kMergeDistance_m);
     out.resize(first);
-    for (const FaceContact& f : face_contacts)
-      out.push_back({pair.lo, pair.hi, f.p_G, box == pair.lo ? f.n_G : Eigen::Vector3d(-f.n_G), f.depth_m});
+    emit_face_contacts(pair, box, out);
   }
 
   bool segment_pair(const BodyPair& pair) const {
