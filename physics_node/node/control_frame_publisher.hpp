@@ -24,6 +24,8 @@ class ControlFramePublisher {
   // world's time, with the reset counted, so the systems start again at that point of the stream.
   void after_reset_to_start(const physics::World& world);
   uint64_t published() const { return seq_; }
+  // At a stop: until the systems nodes acknowledged the last frames, or the timeout.
+  void flush(int64_t timeout_ns) const { writer_.wait_for_acknowledgments(timeout_ns); }
   // Lockstep with a systems node (--wait-frame-readers): until `count` readers have matched, or
   // the timeout; false on the timeout.
   bool wait_for_readers(int count, int64_t timeout_ns) const {

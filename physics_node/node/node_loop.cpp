@@ -172,6 +172,7 @@ int Node::run_realtime() {
   }
   // the loop's own figures end here: the flush below is shutdown, not stepping
   const int64_t loop_end_ns = monotonic_now_ns();
+  stepper_.control_frames().flush(500'000'000);  // the systems score the run's end on them
   publisher_.flush(500'000'000);
   stepper_.finish_checkpoints();
   const double loop_s = ns_to_seconds(loop_end_ns - run_start_ns_);
@@ -262,6 +263,7 @@ int Node::run_lockstep() {
                           0);
   }
   const int64_t loop_end_ns = monotonic_now_ns();
+  stepper_.control_frames().flush(500'000'000);  // the systems score the run's end on them
   publisher_.flush(500'000'000);
   stepper_.finish_checkpoints();
   stepper_.commit_recording();
