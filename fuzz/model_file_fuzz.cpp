@@ -21,7 +21,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   const std::string_view bytes = fuzz::as_text(data + 1, size - 1);
   model::TriangleMesh mesh;
   try {
-    mesh = model::load_model_mesh_from_memory(bytes, format, {"fuzz." + format, ""});
+    // with textures: an embedded image is decoded in the reader's child as the image generator's is
+    mesh = model::load_model_mesh_from_memory(bytes, format,
+                                              {"fuzz." + format, "", 1.0, model::UpAxis::kY, true});
   } catch (const model::MeshError& e) {
     fuzz::require(std::string(e.what()).rfind("fuzz." + format + ":", 0) == 0,
                   "a model error names the file first");

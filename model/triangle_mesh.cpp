@@ -5,6 +5,36 @@
 
 namespace vcockpit::model {
 
+namespace {
+
+void check_textures(const TriangleMesh& mesh) {
+  if (mesh.triangle_texture.empty()) return;
+  if (mesh.uv.size() != mesh.vertices_m.size())
+    throw MeshError(mesh.source + ": " + std::to_string(mesh.uv.size()) +
+                    " texture coordinates for " + std::to_string(mesh.vertices_m.size()) + " vertices");
+  if (mesh.triangle_texture.size() != mesh.triangles.size())
+    throw MeshError(mesh.source + ": a texture for " + std::to_string(mesh.triangle_texture.size()) +
+                    " of its " + std::to_string(mesh.triangles.size()) + " triangles");
+  for (std::size_t v = 0; v < mesh.uv.size(); ++v)
+    if (!mesh.uv[v].allFinite())
+      throw MeshError(mesh.source + ": vertex " + std::to_string(v) +
+                      "'s texture coordinate is not a finite number");
+  for (std::size_t t = 0; t < mesh.triangle_texture.size(); ++t) {
+    const int32_t k = mesh.triangle_texture[t];
+    if (k < -1 || k >= static_cast<int64_t>(mesh.textures.size()))
+      throw MeshError(mesh.source + ": triangle " + std::to_string(t) + " samples texture " +
+                      std::to_string(k) + " of " + std::to_string(mesh.textures.size()));
+  }
+  for (const TextureImage& image : mesh.textures)
+    if (image.width == 0 || image.height == 0 ||
+        image.rgba.size() != uint64_t{image.width} * image.height * 4)
+      throw MeshError(mesh.source + ": texture '" + image.name + "' has " +
+                      std::to_string(image.rgba.size()) + " bytes for " +
+                      std::to_string(image.width) + " x " + std::to_string(image.height) + " pixels");
+}
+
+}  // namespace
+
 void check_mesh(const TriangleMesh& mesh, double min_area_m2) {
   if (mesh.triangles.empty() || mesh.vertices_m.empty())
     throw MeshError(mesh.source + ": no triangles");
@@ -24,6 +54,7 @@ void check_mesh(const TriangleMesh& mesh, double min_area_m2) {
       throw MeshError(mesh.source + ": triangle " + std::to_string(t) + " is degenerate (area " +
                       std::to_string(area_m2) + " m^2)");
   }
+  check_textures(mesh);
 }
 
 void drop_degenerate_triangles(TriangleMesh& mesh, double min_area_m2) {
@@ -42,9 +73,12 @@ void drop_degenerate_triangles(TriangleMesh& mesh, double min_area_m2) {
       if (mesh.degenerate_dropped++ == 0) mesh.first_degenerate = t;
       continue;
     }
+    if (!mesh.triangle_texture.empty() && t < mesh.triangle_texture.size())
+      mesh.triangle_texture[kept] = mesh.triangle_texture[t];
     mesh.triangles[kept++] = tri;
   }
   mesh.triangles.resize(kept);
+  if (!mesh.triangle_texture.empty()) mesh.triangle_texture.resize(kept);
   if (kept == 0 && mesh.degenerate_dropped > 0)
     throw MeshError(mesh.source + ": every one of its " + std::to_string(mesh.degenerate_dropped) +
                     " triangles is degenerate (no area)");

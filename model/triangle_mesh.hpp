@@ -13,6 +13,15 @@
 
 namespace vcockpit::model {
 
+// An image a mesh's triangles sample: 8-bit RGBA, rows from the top, decoded from its file
+// (model/import/texture_image.hpp). `name` is what the model file calls it.
+struct TextureImage {
+  std::string name;
+  uint32_t width = 0;
+  uint32_t height = 0;
+  std::vector<uint8_t> rgba;  // width * height * 4
+};
+
 struct TriangleMesh {
   std::vector<Eigen::Vector3d> vertices_m;
   std::vector<std::array<uint32_t, 3>> triangles;  // counter-clockwise seen from outside
@@ -20,6 +29,17 @@ struct TriangleMesh {
   // part's material; empty: the object's colour alone)
   std::vector<Eigen::Vector3f> normals;
   std::vector<std::array<float, 4>> colors_rgba;
+  // textures (optional): a coordinate per vertex (u right, v up from the image's bottom row), the
+  // images, and per triangle the image it samples or -1 (empty: none does). A textured
+  // triangle's colour is its vertices' colour times the image (glTF's base colour factor times
+  // its base colour texture).
+  std::vector<Eigen::Vector2f> uv;
+  std::vector<TextureImage> textures;
+  std::vector<int32_t> triangle_texture;
+  // Textures the file names that were not found or could not be decoded: drawn without them,
+  // reported, the first one named with why ("'panel.dds': not a PNG or JPEG image").
+  uint64_t textures_left_out = 0;
+  std::string first_texture_left_out;
   std::string source;  // "FILE node 'NAME'": what errors and logs name
   // Triangles of the file left out for having no area (model/import), and the first one's
   // index in the file's order: reported, not refused (CAD and simulator models have some).
@@ -39,7 +59,10 @@ class MeshError : public std::runtime_error {
 };
 
 // Refuses an empty mesh, a non-finite vertex, an index past the vertices and a triangle with no
-// area (below min_area_m2), naming mesh.source and the first offending vertex or triangle.
+// area (below min_area_m2), naming mesh.source and the first offending vertex or triangle; and
+// texture data that does not fit together (coordinates not one per vertex or not finite, a
+// triangle's image that is not there, an image whose pixels are not width x height).
+
 void check_mesh(const TriangleMesh& mesh, double min_area_m2 = 1e-14);
 
 // Volume, centroid and inertia of the solid a closed, outward-oriented mesh bounds, at unit

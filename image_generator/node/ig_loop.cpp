@@ -77,16 +77,24 @@ class ImageGenerator {
 
  private:
   uint64_t models_refused_logged_ = 0;
-  // A model file that failed here (the object is drawn as its box), once each; the triangles
-  // loaded so far.
+  uint64_t textures_left_out_logged_ = 0;
+  // A model file that failed here (the object is drawn as its box), once each; textures it names
+  // that were left out; the triangles and textures loaded so far.
   void log_models() {
     if (cache_.models_refused() > models_refused_logged_) {
       models_refused_logged_ = cache_.models_refused();
       spdlog::warn("object '{}': {}; drawn as its box", info_.name().to_string(), cache_.last_model_error());
-    } else {
-      spdlog::info("object '{}': model {} ({} triangles of models in all)", info_.name().to_string(),
-                   info_.mesh_file().to_string(), cache_.model_triangles());
+      return;
     }
+    if (cache_.textures_left_out() > textures_left_out_logged_) {
+      spdlog::warn("object '{}': {} texture(s) left out, drawn without (last: {})",
+                   info_.name().to_string(), cache_.textures_left_out() - textures_left_out_logged_,
+                   cache_.last_texture_left_out());
+      textures_left_out_logged_ = cache_.textures_left_out();
+    }
+    spdlog::info("object '{}': model {} ({} triangles, {} textures of models in all)",
+                 info_.name().to_string(), info_.mesh_file().to_string(), cache_.model_triangles(),
+                 cache_.model_textures());
   }
 
   void drain() {

@@ -63,9 +63,14 @@ std::shared_ptr<const render::MeshData> SceneCache::model_mesh(const cockpit::Ob
   try {
     model::TriangleMesh mesh = model::load_model_mesh(
         {info.mesh_file().to_string(), info.mesh_node().to_string(), info.mesh_scale(),
-         info.mesh_z_up() ? model::UpAxis::kZ : model::UpAxis::kY});
+         info.mesh_z_up() ? model::UpAxis::kZ : model::UpAxis::kY, true});
     model::translate(mesh, origin_m);  // as the physics node framed it
     model_triangles_ += mesh.triangles.size();
+    model_textures_ += mesh.textures.size();
+    if (mesh.textures_left_out > 0) {
+      textures_left_out_ += mesh.textures_left_out;
+      last_texture_left_out_ = mesh.source + ": " + mesh.first_texture_left_out;
+    }
     data = std::make_shared<const render::MeshData>(render::model_mesh_data(mesh));
   } catch (const model::MeshError& e) {
     ++models_refused_;

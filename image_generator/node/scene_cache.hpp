@@ -65,8 +65,13 @@ class SceneCache {
   // round its vertices. The last one's error, for the log.
   uint64_t models_refused() const { return models_refused_; }
   const std::string& last_model_error() const { return last_model_error_; }
-  // Triangles of the model meshes loaded (each distinct file, node, scale and frame once).
+  // Triangles and texture images of the model meshes loaded (each distinct file, node, scale
+  // and frame once); textures their files named that were not found or not decoded (drawn
+  // without), and the last such one with why, for the log.
   std::size_t model_triangles() const { return model_triangles_; }
+  std::size_t model_textures() const { return model_textures_; }
+  uint64_t textures_left_out() const { return textures_left_out_; }
+  const std::string& last_texture_left_out() const { return last_texture_left_out_; }
   int64_t newest_sim_time_ns() const { return newest_sim_time_ns_; }
   Eigen::Vector3d object_position(uint32_t id) const;
 
@@ -147,6 +152,9 @@ class SceneCache {
   uint64_t models_refused_ = 0;
   std::string last_model_error_;
   std::size_t model_triangles_ = 0;
+  std::size_t model_textures_ = 0;
+  uint64_t textures_left_out_ = 0;
+  std::string last_texture_left_out_;
   int64_t newest_sim_time_ns_ = 0;
 };
 

@@ -46,12 +46,35 @@ void bind_vertex_attributes(GLuint vertex_buffer) {
   glEnableVertexAttribArray(attrib::kVertexRgb);
   glVertexAttribPointer(attrib::kVertexRgb, 3, GL_FLOAT, GL_FALSE, kStride,
                         offset(offsetof(Vertex, rgb)));
+  glEnableVertexAttribArray(attrib::kVertexSt);
+  glVertexAttribPointer(attrib::kVertexSt, 2, GL_FLOAT, GL_FALSE, kStride,
+                        offset(offsetof(Vertex, st)));
+}
+
+// An image on the GPU, mipmapped (a label read from across the cockpit stays legible, not
+// aliased) and repeated past [0, 1] (glTF's default wrap).
+GLuint make_texture(uint32_t width, uint32_t height, const uint8_t* rgba) {
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, static_cast<GLsizei>(width),
+               static_cast<GLsizei>(height), 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  return texture;
 }
 
 }  // namespace
 
 MeshBuffers::MeshBuffers() {
   glGenBuffers(1, &instance_buffer_);
+  const uint8_t white[4] = {255, 255, 255, 255};
+  white_texture_ = make_texture(1, 1, white);
   const std::array<MeshData, kUnitMeshCount> data{unit_box(), unit_sphere(), unit_cylinder(),
                                                   unit_hemisphere()};
   for (int m = 0; m < kUnitMeshCount; ++m)
@@ -74,12 +97,17 @@ void MeshBuffers::make_gpu_mesh(const MeshData& data, GpuMesh& mesh) const {
   bind_vertex_attributes(mesh.vertex_buffer);
   bind_instance_attributes(instance_buffer_);
   glBindVertexArray(0);
+  mesh.groups = data.groups;
+  for (const model::TextureImage& image : data.textures)
+    mesh.textures.push_back(make_texture(image.width, image.height, image.rgba.data()));
 }
 
 void MeshBuffers::delete_gpu_mesh(GpuMesh& mesh) {
   glDeleteVertexArrays(1, &mesh.vertex_array);
   glDeleteBuffers(1, &mesh.vertex_buffer);
   glDeleteBuffers(1, &mesh.index_buffer);
+  if (!mesh.textures.empty())
+    glDeleteTextures(static_cast<GLsizei>(mesh.textures.size()), mesh.textures.data());
 }
 
 MeshBuffers::~MeshBuffers() {
@@ -88,6 +116,7 @@ MeshBuffers::~MeshBuffers() {
   for (auto& [data, mesh] : model_meshes_)
     delete_gpu_mesh(mesh);
   glDeleteBuffers(1, &instance_buffer_);
+  glDeleteTextures(1, &white_texture_);
 }
 
 void MeshBuffers::upload(const PackedInstances& packed) {
@@ -121,8 +150,22 @@ void MeshBuffers::draw(const MeshData* mesh, const MeshRange& range) const {
 void MeshBuffers::draw(const GpuMesh& gpu, const MeshRange& range) const {
   if (range.count == 0) return;
   glBindVertexArray(gpu.vertex_array);
-  glDrawElementsInstancedBaseInstance(GL_TRIANGLES, gpu.index_count, GL_UNSIGNED_INT, nullptr,
-                                      range.count, static_cast<GLuint>(range.first));
+  glActiveTexture(GL_TEXTURE0);
+  if (gpu.groups.empty()) {
+    glBindTexture(GL_TEXTURE_2D, white_texture_);
+    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, gpu.index_count, GL_UNSIGNED_INT, nullptr,
+                                        range.count, static_cast<GLuint>(range.first));
+    return;
+  }
+  for (const MeshGroup& group : gpu.groups) {
+    const bool textured = group.texture >= 0 &&
+                          static_cast<std::size_t>(group.texture) < gpu.textures.size();
+    glBindTexture(GL_TEXTURE_2D, textured ? gpu.textures[static_cast<std::size_t>(group.texture)]
+                                          : white_texture_);
+    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, static_cast<GLsizei>(group.index_count),
+                                        GL_UNSIGNED_INT, offset(group.first_index * sizeof(uint32_t)),
+                                        range.count, static_cast<GLuint>(range.first));
+  }
 }
 
 }  // namespace vcockpit::render

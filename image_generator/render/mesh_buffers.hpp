@@ -1,14 +1,16 @@
 #pragma once
-// The unit meshes on the GPU (one vertex array each) and the one instance buffer they all read
-// their per-instance attributes from. The instance buffer grows when the count grows, never
+// The unit meshes on the GPU (one vertex array each), the models' meshes and textures as they
+// come, and the one instance buffer they all read their per-instance attributes from. The instance buffer grows when the count grows, never
 // shrinks, and is otherwise updated in place.
 
 #include <array>
 #include <cstddef>
 #include <unordered_map>
+#include <vector>
 
 #include "image_generator/render/gl.hpp"
 #include "image_generator/render/instance_packing.hpp"
+#include "image_generator/render/meshes.hpp"
 
 namespace vcockpit::render {
 
@@ -37,6 +39,8 @@ class MeshBuffers {
     GLuint vertex_buffer = 0;
     GLuint index_buffer = 0;
     GLsizei index_count = 0;
+    std::vector<MeshGroup> groups;  // a model's; empty: one draw of every index
+    std::vector<GLuint> textures;   // its images, as MeshGroup::texture numbers them
   };
 
   void make_gpu_mesh(const MeshData& data, GpuMesh& mesh) const;
@@ -44,6 +48,7 @@ class MeshBuffers {
   void draw(const GpuMesh& gpu, const MeshRange& range) const;
 
   GLuint instance_buffer_ = 0;
+  GLuint white_texture_ = 0;  // what the untextured sample
   size_t instance_capacity_ = 0;  // records
   std::array<GpuMesh, kUnitMeshCount> meshes_{};
   // model meshes by address: an instance's shared_ptr keeps the data alive while it is drawn

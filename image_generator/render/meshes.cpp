@@ -1,5 +1,6 @@
 #include "image_generator/render/meshes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -142,25 +143,46 @@ MeshData model_mesh_data(const model::TriangleMesh& mesh) {
                : std::array<float, 3>{mesh.colors_rgba[v][0], mesh.colors_rgba[v][1],
                                       mesh.colors_rgba[v][2]};
   };
-  if (!mesh.normals.empty()) {
+  const auto st_of = [&](uint32_t v) {
+    return mesh.uv.empty() ? std::array<float, 2>{0.0f, 0.0f}
+                           : std::array<float, 2>{mesh.uv[v].x(), 1.0f - mesh.uv[v].y()};
+  };
+  const auto texture_of = [&](std::size_t t) {
+    return mesh.triangle_texture.empty() ? -1 : mesh.triangle_texture[t];
+  };
+  // the triangles in texture order (each group one draw), the file's order within a group
+  std::vector<std::size_t> order(mesh.triangles.size());
+  for (std::size_t t = 0; t < order.size(); ++t) order[t] = t;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return texture_of(a) < texture_of(b); });
+  const bool smooth = !mesh.normals.empty();
+  if (smooth) {
     out.vertices.reserve(mesh.vertices_m.size());
-    for (std::size_t v = 0; v < mesh.vertices_m.size(); ++v)
-      out.vertices.push_back(
-          {f3(mesh.vertices_m[v]), f3(mesh.normals[v]), rgb_of(static_cast<uint32_t>(v))});
-    for (const auto& t : mesh.triangles)
-      out.indices.insert(out.indices.end(), {t[0], t[1], t[2]});
-    return out;
+    for (std::size_t v = 0; v < mesh.vertices_m.size(); ++v) {
+      const auto u = static_cast<uint32_t>(v);
+      out.vertices.push_back({f3(mesh.vertices_m[v]), f3(mesh.normals[v]), rgb_of(u), st_of(u)});
+    }
+  } else {
+    out.vertices.reserve(3 * mesh.triangles.size());
   }
-  out.vertices.reserve(3 * mesh.triangles.size());
-  for (const auto& t : mesh.triangles) {
-    const Eigen::Vector3d& a = mesh.vertices_m[t[0]];
+  for (std::size_t t : order) {
+    const auto& tri = mesh.triangles[t];
+    if (out.groups.empty() || out.groups.back().texture != texture_of(t))
+      out.groups.push_back({static_cast<uint32_t>(out.indices.size()), 0, texture_of(t)});
+    out.groups.back().index_count += 3;
+    if (smooth) {
+      out.indices.insert(out.indices.end(), {tri[0], tri[1], tri[2]});
+      continue;
+    }
+    const Eigen::Vector3d& a = mesh.vertices_m[tri[0]];
     const Eigen::Vector3d n =
-        (mesh.vertices_m[t[1]] - a).cross(mesh.vertices_m[t[2]] - a).normalized();
-    for (uint32_t v : t) {
+        (mesh.vertices_m[tri[1]] - a).cross(mesh.vertices_m[tri[2]] - a).normalized();
+    for (uint32_t v : tri) {
       out.indices.push_back(index_of(out));
-      out.vertices.push_back({f3(mesh.vertices_m[v]), f3(n), rgb_of(v)});
+      out.vertices.push_back({f3(mesh.vertices_m[v]), f3(n), rgb_of(v), st_of(v)});
     }
   }
+  out.textures = mesh.textures;
   return out;
 }
 

@@ -20,11 +20,24 @@ struct Vertex {
   std::array<float, 3> position;
   std::array<float, 3> normal;
   std::array<float, 3> rgb{1.0f, 1.0f, 1.0f};  // times the instance's colour
+  // where the vertex samples its texture: s right, t down from the image's top row (the rows
+  // are uploaded top first); an untextured vertex samples a white texel
+  std::array<float, 2> st{0.0f, 0.0f};
+};
+
+// Triangles that sample one texture: indices [first_index, first_index + index_count).
+struct MeshGroup {
+  uint32_t first_index = 0;
+  uint32_t index_count = 0;
+  int32_t texture = -1;  // in MeshData::textures; -1 none
 };
 
 struct MeshData {
   std::vector<Vertex> vertices;
   std::vector<uint32_t> indices;  // triangles
+  // a model's: its triangles by texture, and the images (empty: one untextured group)
+  std::vector<MeshGroup> groups;
+  std::vector<model::TextureImage> textures;
 };
 
 MeshData unit_box();
@@ -34,7 +47,8 @@ MeshData unit_cylinder(int slices = 16);
 MeshData unit_hemisphere(int slices = 12, int stacks = 3);
 
 // A model's mesh to draw in its own frame (scale 1): its normals and colours per vertex where it
-// has them, else flat faces (each triangle its own three vertices and normal) in white.
+// has them, else flat faces (each triangle its own three vertices and normal) in white; its
+// triangles grouped by the texture they sample.
 MeshData model_mesh_data(const model::TriangleMesh& mesh);
 
 }  // namespace vcockpit::render

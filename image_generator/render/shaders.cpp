@@ -14,12 +14,14 @@ layout(location = 2) in mat4 a_X_GO;
 layout(location = 6) in vec4 a_scale_highlight;
 layout(location = 7) in vec4 a_rgba;
 layout(location = 8) in vec3 a_vertex_rgb;
+layout(location = 9) in vec2 a_st;
 
 uniform mat4 u_view_projection;
 
 out vec3 v_position_G;
 out vec3 v_normal_G;
 out vec3 v_rgb;
+out vec2 v_st;
 out float v_highlight;
 
 void main() {
@@ -29,6 +31,7 @@ void main() {
   v_normal_G = mat3(a_X_GO) * (a_normal_O / scale);
   v_position_G = p_G.xyz;
   v_rgb = a_rgba.rgb * a_vertex_rgb;
+  v_st = a_st;
   v_highlight = a_scale_highlight.w;
   gl_Position = u_view_projection * p_G;
 }
@@ -38,9 +41,11 @@ constexpr const char* kFragmentSource = R"glsl(#version 450 core
 in vec3 v_position_G;
 in vec3 v_normal_G;
 in vec3 v_rgb;
+in vec2 v_st;
 in float v_highlight;
 
 uniform vec3 u_eye_position_G;
+uniform sampler2D u_base_texture;
 
 out vec4 frag_rgba;
 
@@ -54,13 +59,14 @@ const float kShininess = 32.0;
 void main() {
   // a back face (a model's one-sided surface seen from behind) lit as its front
   vec3 n = gl_FrontFacing ? normalize(v_normal_G) : -normalize(v_normal_G);
+  vec3 base = v_rgb * texture(u_base_texture, v_st).rgb;
   vec3 to_eye = normalize(u_eye_position_G - v_position_G);
   float lambert = max(dot(n, kToLight_G), 0.0);
   float blinn = lambert > 0.0 ? pow(max(dot(n, normalize(kToLight_G + to_eye)), 0.0), kShininess)
                               : 0.0;
-  vec3 rgb = v_rgb * (kAmbient + kKey * lambert) + vec3(kSpecular * blinn);
+  vec3 rgb = base * (kAmbient + kKey * lambert) + vec3(kSpecular * blinn);
   // highlighted: brighter and self-lit, so it reads even in shadow
-  rgb = mix(rgb, rgb * 1.3 + v_rgb * 0.4 + vec3(0.08), v_highlight);
+  rgb = mix(rgb, rgb * 1.3 + base * 0.4 + vec3(0.08), v_highlight);
   frag_rgba = vec4(clamp(rgb, 0.0, 1.0), 1.0);
 }
 )glsl";
@@ -121,6 +127,10 @@ LitProgram::LitProgram() {
   program_ = link(vertex, fragment);
   view_projection_ = uniform(program_, "u_view_projection");
   eye_position_G_ = uniform(program_, "u_eye_position_G");
+  const GLint base_texture = uniform(program_, "u_base_texture");
+  glUseProgram(program_);
+  glUniform1i(base_texture, 0);  // texture unit 0 (MeshBuffers binds there)
+  glUseProgram(0);
 }
 
 LitProgram::~LitProgram() {

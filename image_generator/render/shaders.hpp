@@ -1,6 +1,8 @@
 #pragma once
-// The one shader program: instanced, lit primitives. Per vertex: unit-mesh position and normal.
-// Per instance: pose X_GO, scale, highlight flag and colour. Lighting is in the world frame G:
+// The one shader program: instanced, lit primitives. Per vertex: unit-mesh position and normal,
+// colour and texture coordinate (a model's; the base colour texture on unit 0 multiplies the
+// colour, a white texel for what has none). Per instance: pose X_GO, scale, highlight flag and
+// colour. Lighting is in the world frame G:
 // a key light from above, in front of the objects the pilot faces, plus ambient, Lambert with a
 // little Blinn-Phong specular; highlighted instances glow.
 
@@ -18,6 +20,7 @@ constexpr GLuint kX_GO = 2;  // mat4: locations 2..5, one column each
 constexpr GLuint kScaleHighlight = 6;
 constexpr GLuint kRgba = 7;
 constexpr GLuint kVertexRgb = 8;  // per vertex: a model part's colour (white for the primitives)
+constexpr GLuint kVertexSt = 9;   // per vertex: where a model part samples its texture
 }  // namespace attrib
 
 class LitProgram {

@@ -18,7 +18,8 @@ namespace vcockpit::model {
 namespace {
 
 // The child's message: a status byte (1 mesh, 0 error), then the error's text or the mesh's
-// source, vertices, triangles, normals and colours, each as a count and its raw bytes.
+// source, vertices, triangles, normals, colours, counts, texture coordinates and images, each
+// as a count and its raw bytes.
 template <typename T>
 void put(std::string& out, const std::vector<T>& v) {
   const uint64_t n = v.size();
@@ -70,7 +71,16 @@ std::string encode(const std::function<TriangleMesh()>& read) {
     put(out, mesh.triangles);
     put(out, mesh.normals);
     put(out, mesh.colors_rgba);
-    put(out, std::vector<uint64_t>{mesh.degenerate_dropped, mesh.first_degenerate});
+    put(out, std::vector<uint64_t>{mesh.degenerate_dropped, mesh.first_degenerate,
+                                   mesh.textures_left_out, mesh.textures.size()});
+    put(out, mesh.first_texture_left_out);
+    put(out, mesh.uv);
+    put(out, mesh.triangle_texture);
+    for (const TextureImage& image : mesh.textures) {
+      put(out, image.name);
+      put(out, std::vector<uint32_t>{image.width, image.height});
+      put(out, image.rgba);
+    }
   } catch (const std::exception& e) {
     out.assign(1, 0);
     put(out, std::string(e.what()));
@@ -149,13 +159,26 @@ TriangleMesh decode(const std::string& answer, const std::string& what) {
   }
   TriangleMesh mesh;
   Reader body(std::string_view(answer).substr(1));
-  std::vector<uint64_t> degenerate;
+  const MeshError cut_short(what + ": the model reader's answer was cut short");
+  std::vector<uint64_t> counts;
   if (!body.get(mesh.source) || !body.get(mesh.vertices_m) || !body.get(mesh.triangles) ||
-      !body.get(mesh.normals) || !body.get(mesh.colors_rgba) || !body.get(degenerate) ||
-      degenerate.size() != 2 || !body.done())
-    throw MeshError(what + ": the model reader's answer was cut short");
-  mesh.degenerate_dropped = degenerate[0];
-  mesh.first_degenerate = degenerate[1];
+      !body.get(mesh.normals) || !body.get(mesh.colors_rgba) || !body.get(counts) ||
+      counts.size() != 4 || !body.get(mesh.first_texture_left_out) || !body.get(mesh.uv) ||
+      !body.get(mesh.triangle_texture) || counts[3] > 4096)
+    throw cut_short;
+  mesh.degenerate_dropped = counts[0];
+  mesh.first_degenerate = counts[1];
+  mesh.textures_left_out = counts[2];
+  mesh.textures.resize(counts[3]);
+  for (TextureImage& image : mesh.textures) {
+    std::vector<uint32_t> size;
+    if (!body.get(image.name) || !body.get(size) || size.size() != 2 || !body.get(image.rgba))
+      throw cut_short;
+    image.width = size[0];
+    image.height = size[1];
+  }
+  if (!body.done()) throw cut_short;
+  check_mesh(mesh);  // what the child sent fits together, whatever the file did to it
   return mesh;
 }
 

@@ -8,9 +8,13 @@
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <map>
+#include <optional>
 
 #include "model/import/isolated_reader.hpp"
+#include "model/import/texture_image.hpp"
 
 namespace vcockpit::model {
 namespace {
@@ -66,7 +70,105 @@ std::array<float, 4> base_color(const aiScene* scene, const aiMesh* mesh) {
   return rgba;
 }
 
-TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request);
+// The part's base colour texture (glTF) or diffuse map (OBJ map_Kd, AC3D texture), or "" when
+// it has none or no texture coordinates to sample it with.
+std::string texture_path(const aiScene* scene, const aiMesh* part) {
+  if (part->mMaterialIndex >= scene->mNumMaterials || !part->HasTextureCoords(0)) return "";
+  const aiMaterial* material = scene->mMaterials[part->mMaterialIndex];
+  for (const aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}) {
+    aiString path;
+    if (material->GetTextureCount(type) > 0 && material->GetTexture(type, 0, &path) == AI_SUCCESS &&
+        path.length > 0)
+      return path.C_Str();
+  }
+  return "";
+}
+
+constexpr std::uintmax_t kMaxTextureFileBytes = 64u << 20;
+
+// The images a mesh's parts name, each decoded once into mesh.textures: embedded in the file
+// ("*0", or a .glb's named image), or (read_files) a file found by its path from the model's
+// directory, or failing that by its name there (a path from the author's machine). One not
+// found, or not a PNG or JPEG it can decode, is left out and counted, and its triangles keep
+// their colour: a cockpit is still drawn whole for one bad image.
+class TextureTable {
+ public:
+  TextureTable(const aiScene* scene, const std::string& model_path, bool read_files, TriangleMesh& mesh)
+      : scene_(scene), dir_(std::filesystem::path(model_path).parent_path()), read_files_(read_files),
+        mesh_(mesh) {}
+
+  int32_t index_of(const std::string& path) {
+    const auto known = known_.find(path);
+    if (known != known_.end()) return known->second;
+    int32_t& index = known_[path];
+    index = -1;
+    std::optional<TextureImage> image;
+    try {
+      image = embedded(path);
+      if (!image && read_files_) image = from_file(path);
+      if (!image) throw MeshError("texture '" + path + "' not found");
+    } catch (const MeshError& e) {
+      if (mesh_.textures_left_out++ == 0) mesh_.first_texture_left_out = e.what();
+      return index;
+    }
+    index = static_cast<int32_t>(mesh_.textures.size());
+    mesh_.textures.push_back(std::move(*image));
+    return index;
+  }
+
+ private:
+  std::optional<TextureImage> embedded(const std::string& path) const {
+    const aiTexture* texture = scene_->GetEmbeddedTexture(path.c_str());
+    if (texture == nullptr) return std::nullopt;
+    if (texture->mHeight == 0)  // compressed: mWidth bytes of a PNG or JPEG
+      return decode_texture_image(
+          std::string_view(reinterpret_cast<const char*>(texture->pcData), texture->mWidth), path);
+    if (texture->mWidth > kMaxTextureSide || texture->mHeight > kMaxTextureSide)
+      throw MeshError("texture '" + path + "' is larger than " + std::to_string(kMaxTextureSide) +
+                      " pixels on a side");
+    TextureImage image;  // raw BGRA texels
+    image.name = path;
+    image.width = texture->mWidth;
+    image.height = texture->mHeight;
+    image.rgba.reserve(std::size_t{image.width} * image.height * 4);
+    for (std::size_t i = 0; i < std::size_t{image.width} * image.height; ++i) {
+      const aiTexel& t = texture->pcData[i];
+      image.rgba.insert(image.rgba.end(), {t.r, t.g, t.b, t.a});
+    }
+    return image;
+  }
+
+  std::optional<TextureImage> from_file(std::string path) const {
+    std::replace(path.begin(), path.end(), '\\', '/');
+    const std::filesystem::path given(path);
+    std::vector<std::filesystem::path> tries;
+    if (given.is_relative()) tries.push_back(dir_ / given);
+    tries.push_back(dir_ / given.filename());
+    for (const std::filesystem::path& file : tries) {
+      std::error_code error;
+      if (!std::filesystem::is_regular_file(file, error)) continue;
+      const std::uintmax_t size = std::filesystem::file_size(file, error);
+      if (error || size > kMaxTextureFileBytes)
+        throw MeshError("texture '" + file.string() + "' is larger than " +
+                        std::to_string(kMaxTextureFileBytes >> 20) + " MiB");
+      std::ifstream in(file, std::ios::binary);
+      std::string bytes(static_cast<std::size_t>(size), '\0');
+      if (!in.read(bytes.data(), static_cast<std::streamsize>(size)))
+        throw MeshError("texture '" + file.string() + "' cannot be read");
+      return decode_texture_image(bytes, file.string());
+    }
+    return std::nullopt;
+  }
+
+  const aiScene* scene_;
+  std::filesystem::path dir_;
+  bool read_files_;
+  TriangleMesh& mesh_;
+  std::map<std::string, int32_t> known_;
+};
+
+// `beside_file`: the model is a file, and textures it names by path may be read beside it.
+TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request, bool beside_file);
 
 }  // namespace
 
@@ -74,7 +176,7 @@ TriangleMesh load_model_mesh(const ModelRequest& request) {
   return read_isolated(
       [&] {
         Assimp::Importer importer;
-        return mesh_of(read_scene(importer, request.path), request);
+        return mesh_of(read_scene(importer, request.path), request, true);
       },
       request.path);
 }
@@ -89,14 +191,14 @@ TriangleMesh load_model_mesh_from_memory(std::string_view bytes, const std::stri
         prepare(importer);
         const aiScene* scene =
             importer.ReadFileFromMemory(bytes.data(), bytes.size(), kReadFlags, hint.c_str());
-        return mesh_of(checked(scene, importer, request.path), request);
+        return mesh_of(checked(scene, importer, request.path), request, false);
       },
       request.path);
 }
 
 namespace {
 
-TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request) {
+TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request, bool beside_file) {
   TriangleMesh mesh;
   mesh.source = request.path + (request.node.empty() ? "" : " node '" + request.node + "'");
   const aiNode* top = scene->mRootNode;
@@ -114,6 +216,7 @@ TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request) {
   }
   if (!(request.scale > 0.0) || !std::isfinite(request.scale))
     throw MeshError(mesh.source + ": scale must be a positive number");
+  TextureTable textures(scene, request.path, beside_file, mesh);
   // every mesh of the node and its children, placed by the transforms below the node
   const std::function<void(const aiNode*, const aiMatrix4x4&)> visit = [&](const aiNode* node,
                                                                            const aiMatrix4x4& X) {
@@ -123,11 +226,17 @@ TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request) {
       const aiMesh* part = scene->mMeshes[node->mMeshes[m]];
       if ((part->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
       const std::array<float, 4> rgba = base_color(scene, part);
+      const std::string texture_file = request.textures ? texture_path(scene, part) : "";
+      const int32_t texture = texture_file.empty() ? -1 : textures.index_of(texture_file);
       const auto base = static_cast<uint32_t>(mesh.vertices_m.size());
       for (unsigned v = 0; v < part->mNumVertices; ++v) {
         const aiVector3D p = X * part->mVertices[v];
         mesh.vertices_m.emplace_back(p.x, p.y, p.z);
         mesh.colors_rgba.push_back(rgba);
+        // (assimp gives every format's coordinates with v up from the image's bottom)
+        mesh.uv.push_back(texture < 0 ? Eigen::Vector2f::Zero()
+                                      : Eigen::Vector2f(part->mTextureCoords[0][v].x,
+                                                        part->mTextureCoords[0][v].y));
         if (part->HasNormals()) {
           aiVector3D n = normal_X * part->mNormals[v];
           n.Normalize();
@@ -143,6 +252,7 @@ TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request) {
                        c = base + face.mIndices[2];
         mesh.triangles.push_back(mirrored ? std::array<uint32_t, 3>{a, c, b}
                                           : std::array<uint32_t, 3>{a, b, c});
+        mesh.triangle_texture.push_back(texture);
       }
     }
     for (unsigned c = 0; c < node->mNumChildren; ++c)
@@ -154,6 +264,11 @@ TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request) {
   const bool usable = std::all_of(mesh.normals.begin(), mesh.normals.end(),
                                   [](const Eigen::Vector3f& n) { return n.allFinite(); });
   if (mesh.normals.size() != mesh.vertices_m.size() || !usable) mesh.normals.clear();
+  if (std::all_of(mesh.triangle_texture.begin(), mesh.triangle_texture.end(),
+                  [](int32_t t) { return t < 0; })) {
+    mesh.uv.clear();
+    mesh.triangle_texture.clear();
+  }
   for (Eigen::Vector3d& v : mesh.vertices_m) {
     if (request.up == UpAxis::kY) v = Eigen::Vector3d(v.x(), -v.z(), v.y());
     v *= request.scale;

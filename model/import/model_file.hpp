@@ -24,16 +24,21 @@ struct ModelRequest {
   // (Blender's exports, FlightGear's models); turned to the project's +z up by a quarter turn
   // about x: (x, y, z) -> (x, -z, y).
   UpAxis up = UpAxis::kY;
+  // Decode the parts' texture images (the image generator's need; the physics never reads them).
+  bool textures = false;
 };
 
 // Throws MeshError naming the file (and node): missing, unsupported, unreadable, no such node
 // (with the file's node names), no triangles, a non-finite vertex, every triangle degenerate, or
 // the reader crashed or hung on it (it runs in a child process: isolated_reader.hpp). Triangles
-// with no area among good ones are left out and counted (TriangleMesh::degenerate_dropped).
+// with no area among good ones are left out and counted (TriangleMesh::degenerate_dropped), as
+// are texture images that are not found or cannot be decoded (TriangleMesh::textures_left_out):
+// their triangles keep their colour.
 TriangleMesh load_model_mesh(const ModelRequest& request);
 
 // The same from the bytes of a file in memory, of the format its `extension` names ("gltf",
-// "glb", "obj", "ac"); request.path only names it in messages (files it refers to are not read).
+// "glb", "obj", "ac"); request.path only names it in messages (files it refers to are not read:
+// only embedded textures are).
 TriangleMesh load_model_mesh_from_memory(std::string_view bytes, const std::string& extension,
                                          const ModelRequest& request);
 

@@ -497,6 +497,47 @@ TEST_F(RenderTest, AModelMeshShowsInTheCachedLayerWithItsMaterial) {
   }
 }
 
+// A model's texture (the placard of tests/data/models: red, green, blue and yellow quadrants)
+// shows on its face the right way up and unmirrored, in each format's file: each quadrant's
+// centre, projected, is its colour, lit; the placard drawn as a moving instance too.
+TEST_F(RenderTest, AModelTextureShowsTheRightWayUpInEachFormat) {
+  const std::string dir = std::string(std::getenv("VCOCKPIT_SOURCE_DIR")) + "/tests/data/models/";
+  for (const char* file : {"placard.gltf", "placard_embedded.gltf", "placard.obj", "placard.ac"}) {
+    SCOPED_TRACE(file);
+    const model::TriangleMesh placard =
+        model::load_model_mesh({dir + file, "placard", 1.0, model::UpAxis::kY, true});
+    auto data = std::make_shared<const MeshData>(model_mesh_data(placard));
+    ASSERT_EQ(data->groups.size(), 1u);
+    ASSERT_EQ(data->textures.size(), 1u);
+    for (const bool fixed : {true, false}) {
+      Instance instance = make(Primitive::kMesh, at(0.8, 0.0, kHeadHeightM), Eigen::Vector3d::Ones(),
+                               {1.0f, 1.0f, 1.0f, 1.0f});
+      instance.mesh = data;
+      instance.fixed = fixed;
+      renderer().render({instance}, head_pose());
+      EXPECT_EQ(renderer().gl_error_count(), 0u);
+      // seen from the eye (looking along +x), +y is to the left
+      struct Quadrant {
+        double y_m, z_m;
+        const char* name;
+        bool (*is)(const Rgb&);
+      };
+      const Quadrant quadrants[] = {
+          {0.05, 0.025, "top left red", [](const Rgb& c) { return c.r > 120 && c.g < 40 && c.b < 40; }},
+          {-0.05, 0.025, "top right green", [](const Rgb& c) { return c.g > 100 && c.r < 40 && c.b < 40; }},
+          {0.05, -0.025, "bottom left blue", [](const Rgb& c) { return c.b > 120 && c.r < 40 && c.g < 40; }},
+          {-0.05, -0.025, "bottom right yellow", [](const Rgb& c) { return c.r > 120 && c.g > 120 && c.b < 40; }},
+      };
+      for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+        for (const Quadrant& q : quadrants) {
+          const Rgb c = pixel_at(renderer(), eye, projected(config(), eye, {0.8, q.y_m, kHeadHeightM + q.z_m}));
+          EXPECT_TRUE(q.is(c)) << q.name << (fixed ? " (cached layer) " : " (instance) ") << c;
+        }
+      }
+    }
+  }
+}
+
 // A red 0.1 m cube 1 m ahead at head height shows, lit, where project_to_pixel says, in both
 // eyes, against the background elsewhere.
 TEST_F(RenderTest, RedBoxAppearsAtItsProjectionInBothEyes) {

@@ -4,8 +4,10 @@
 // allocates nothing, and a control's light follows its control_state.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
@@ -99,6 +101,47 @@ TEST(SceneCache, AMeshObjectIsDrawnAsItsModelOrItsBoxWhenTheFileFails) {
   EXPECT_EQ(cache.models_refused(), 1u);
   EXPECT_NE(cache.last_model_error().find("no_such.glb: no such file"), std::string::npos)
       << cache.last_model_error();
+  EXPECT_EQ(cache.model_textures(), 0u);
+}
+
+// A textured model part brings its image to the draw; one whose image is not found is drawn
+// without it, counted and named for the log.
+TEST(SceneCache, AModelsTexturesAreLoadedAndAMissingOneCounted) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("vcockpit_scene_cache_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string models = test::source_dir() + "/tests/data/models/";
+  for (const char* name : {"placard.obj", "placard.mtl"})
+    std::filesystem::copy_file(models + name, dir / name, std::filesystem::copy_options::overwrite_existing);
+  SceneCache cache;
+  const auto mesh_info = [&](uint32_t id, const std::string& file) {
+    cockpit::ObjectInfo info;
+    info.object_id(id);
+    info.kind(cockpit::STATIC_OBJECT);
+    info.shape(cockpit::MESH);
+    info.dimensions_m({0.01, 0.2, 0.1});
+    info.mesh_file(file);
+    info.mesh_node("placard");
+    info.mesh_scale(1.0);
+    info.mesh_z_up(false);
+    cache.on_info(info);
+    place_at_origin(cache, id);
+  };
+  mesh_info(0, models + "placard.gltf");
+  mesh_info(1, (dir / "placard.obj").string());
+  std::vector<render::Instance> out;
+  cache.build(out);
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(out.size(), 2u);
+  ASSERT_TRUE(out[0].mesh && out[1].mesh);
+  ASSERT_EQ(out[0].mesh->textures.size(), 1u);
+  EXPECT_EQ(out[0].mesh->textures[0].width, 64u);
+  EXPECT_TRUE(out[1].mesh->textures.empty());
+  EXPECT_EQ(cache.model_textures(), 1u);
+  EXPECT_EQ(cache.textures_left_out(), 1u);
+  EXPECT_NE(cache.last_texture_left_out().find("placard.obj node 'placard': texture 'placard.png' not found"),
+            std::string::npos)
+      << cache.last_texture_left_out();
 }
 
 // A control with a light: its cap (object 0) and its annunciator (object 1) are drawn dull while

@@ -1,0 +1,19 @@
+#pragma once
+// A model's texture image decoded from its bytes (a file next to the model, or embedded in a
+// .glb): PNG through libpng, JPEG through libjpeg-turbo, the two formats glTF 2.0 allows and
+// the ones OBJ and AC3D cockpits use. Anything else, a corrupt image, or one larger than
+// kMaxTextureSide on a side is refused with a MeshError naming `name`.
+
+#include <string>
+#include <string_view>
+
+#include "model/triangle_mesh.hpp"
+
+namespace vcockpit::model {
+
+inline constexpr uint32_t kMaxTextureSide = 8192;
+
+// 8-bit RGBA, rows from the top; greyscale and palette images expanded, 16-bit ones reduced.
+TextureImage decode_texture_image(std::string_view bytes, const std::string& name);
+
+}  // namespace vcockpit::model
