@@ -65,6 +65,15 @@ bool UntypedWriter::wait_for_acknowledgments(int64_t timeout_ns) const {
          ReturnCode_t::RETCODE_OK;
 }
 
+void wait_for_acknowledgments(std::initializer_list<const UntypedWriter*> writers, int64_t timeout_ns) {
+  const int64_t deadline_ns = monotonic_now_ns() + timeout_ns;
+  for (const UntypedWriter* writer : writers) {
+    const int64_t left_ns = deadline_ns - monotonic_now_ns();
+    if (left_ns <= 0) break;
+    writer->wait_for_acknowledgments(left_ns);
+  }
+}
+
 int UntypedReader::matched_count() const {
   dds::SubscriptionMatchedStatus status;
   reader_->get_subscription_matched_status(status);

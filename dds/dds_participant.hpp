@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <map>
+#include <initializer_list>
 #include <string>
 
 #include "dds/dds_options.hpp"
@@ -39,6 +40,10 @@ class UntypedWriter {
  protected:
   dds::DataWriter* writer_;
 };
+
+// Until every matched reader of each writer acknowledged everything written, on one budget for
+// all (a stop stays quick however many readers lag).
+void wait_for_acknowledgments(std::initializer_list<const UntypedWriter*> writers, int64_t timeout_ns);
 
 template <class T>
 class Writer : public UntypedWriter {

@@ -302,16 +302,8 @@ void StatePublisher::publish_status(const cockpit::NodeStatus& status) {
 }
 
 void StatePublisher::flush(int64_t timeout_ns) {
-  // one budget for all writers: a stop must stay quick however many readers lag
-  const int64_t deadline_ns = monotonic_now_ns() + timeout_ns;
-  for (const UntypedWriter* writer :
-       {static_cast<const UntypedWriter*>(&event_writer_), static_cast<const UntypedWriter*>(&object_writer_),
-        static_cast<const UntypedWriter*>(&status_writer_), static_cast<const UntypedWriter*>(&info_writer_),
-        static_cast<const UntypedWriter*>(&hand_info_writer_)}) {
-    const int64_t left_ns = deadline_ns - monotonic_now_ns();
-    if (left_ns <= 0) break;
-    writer->wait_for_acknowledgments(left_ns);
-  }
+  wait_for_acknowledgments({&event_writer_, &object_writer_, &status_writer_, &info_writer_, &hand_info_writer_},
+                           timeout_ns);
 }
 
 }  // namespace vcockpit::physics_node

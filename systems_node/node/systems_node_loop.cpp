@@ -118,10 +118,14 @@ class Node {
       frame_reader_.wait_for_data(20'000'000);
     }
     // The physics is stopped with us and flushes its last frames as it goes: they are taken
-    // until none comes for 100 ms (at most 1 s), so the run's end is scored on the whole run.
+    // while its writer is still there (at most 1 s: a killed one stays matched until its lease
+    // ends), so the run's end is scored on the whole run.
     const int64_t drain_end_ns = monotonic_now_ns() + 1'000'000'000;
-    do take_frames();
-    while (frame_reader_.wait_for_data(100'000'000) && monotonic_now_ns() < drain_end_ns);
+    while (monotonic_now_ns() < drain_end_ns) {
+      take_frames();
+      if (frame_reader_.matched_count() == 0) break;
+      frame_reader_.wait_for_data(20'000'000);
+    }
     take_frames();
     if (session_) {
       drain_waiting();
@@ -129,7 +133,8 @@ class Node {
       session_->finish([this](const Systems&, const systems::StepOutcome& outcome) {
         publish_scores(outcome.score_events);
       });
-      flush_writers(1'000'000'000);  // the final scores must reach the launcher's summary
+      // the final scores must reach the launcher's summary
+      wait_for_acknowledgments({&score_writer_, &event_writer_, &state_writer_}, 500'000'000);
       const auto& c = session_->counts();
       spdlog::info("stopped at step {} (t {:.3f} s): {} frames taken, {} periods without a frame, "
                    "{} stale, {} off the grid; {} events",
@@ -143,18 +148,6 @@ class Node {
   }
 
  private:
-  // Until every reader acknowledged what was written, on one budget for all writers.
-  void flush_writers(int64_t timeout_ns) const {
-    const int64_t deadline_ns = monotonic_now_ns() + timeout_ns;
-    for (const UntypedWriter* writer :
-         {static_cast<const UntypedWriter*>(&score_writer_), static_cast<const UntypedWriter*>(&event_writer_),
-          static_cast<const UntypedWriter*>(&state_writer_)}) {
-      const int64_t left_ns = deadline_ns - monotonic_now_ns();
-      if (left_ns <= 0) break;
-      writer->wait_for_acknowledgments(left_ns);
-    }
-  }
-
   void take_infos() {
     cockpit::ControlInfo info;
     while (info_reader_.take(info)) {
