@@ -8,7 +8,7 @@ namespace vcockpit::model {
 namespace {
 
 void check_textures(const TriangleMesh& mesh) {
-  if (mesh.triangle_texture.empty()) return;
+  if (mesh.triangle_texture.empty() && mesh.uv.empty()) return;
   if (mesh.uv.size() != mesh.vertices_m.size())
     throw MeshError(mesh.source + ": " + std::to_string(mesh.uv.size()) +
                     " texture coordinates for " + std::to_string(mesh.vertices_m.size()) + " vertices");
@@ -58,6 +58,8 @@ void check_mesh(const TriangleMesh& mesh, double min_area_m2) {
 }
 
 void drop_degenerate_triangles(TriangleMesh& mesh, double min_area_m2) {
+  // (a texture list that does not match the triangles is left as it is, for check_mesh to name)
+  const bool textured = mesh.triangle_texture.size() == mesh.triangles.size();
   std::size_t kept = 0;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
@@ -73,12 +75,11 @@ void drop_degenerate_triangles(TriangleMesh& mesh, double min_area_m2) {
       if (mesh.degenerate_dropped++ == 0) mesh.first_degenerate = t;
       continue;
     }
-    if (!mesh.triangle_texture.empty() && t < mesh.triangle_texture.size())
-      mesh.triangle_texture[kept] = mesh.triangle_texture[t];
+    if (textured) mesh.triangle_texture[kept] = mesh.triangle_texture[t];
     mesh.triangles[kept++] = tri;
   }
   mesh.triangles.resize(kept);
-  if (!mesh.triangle_texture.empty()) mesh.triangle_texture.resize(kept);
+  if (textured) mesh.triangle_texture.resize(kept);
   if (kept == 0 && mesh.degenerate_dropped > 0)
     throw MeshError(mesh.source + ": every one of its " + std::to_string(mesh.degenerate_dropped) +
                     " triangles is degenerate (no area)");

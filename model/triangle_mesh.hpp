@@ -62,7 +62,6 @@ class MeshError : public std::runtime_error {
 // area (below min_area_m2), naming mesh.source and the first offending vertex or triangle; and
 // texture data that does not fit together (coordinates not one per vertex or not finite, a
 // triangle's image that is not there, an image whose pixels are not width x height).
-
 void check_mesh(const TriangleMesh& mesh, double min_area_m2 = 1e-14);
 
 // Volume, centroid and inertia of the solid a closed, outward-oriented mesh bounds, at unit

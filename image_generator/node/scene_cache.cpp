@@ -71,7 +71,7 @@ std::shared_ptr<const render::MeshData> SceneCache::model_mesh(const cockpit::Ob
       textures_left_out_ += mesh.textures_left_out;
       last_texture_left_out_ = mesh.source + ": " + mesh.first_texture_left_out;
     }
-    data = std::make_shared<const render::MeshData>(render::model_mesh_data(mesh));
+    data = std::make_shared<const render::MeshData>(render::model_mesh_data(std::move(mesh)));
   } catch (const model::MeshError& e) {
     ++models_refused_;
     last_model_error_ = e.what();

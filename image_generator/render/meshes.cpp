@@ -131,7 +131,7 @@ MeshData unit_cylinder(int slices) {
   return mesh;
 }
 
-MeshData model_mesh_data(const model::TriangleMesh& mesh) {
+MeshData model_mesh_data(model::TriangleMesh mesh) {
   MeshData out;
   const auto f3 = [](const auto& v) {
     return std::array<float, 3>{static_cast<float>(v.x()), static_cast<float>(v.y()),
@@ -182,7 +182,7 @@ MeshData model_mesh_data(const model::TriangleMesh& mesh) {
       out.vertices.push_back({f3(mesh.vertices_m[v]), f3(n), rgb_of(v), st_of(v)});
     }
   }
-  out.textures = mesh.textures;
+  out.textures = std::move(mesh.textures);
   return out;
 }
 

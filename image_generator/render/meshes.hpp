@@ -49,6 +49,6 @@ MeshData unit_hemisphere(int slices = 12, int stacks = 3);
 // A model's mesh to draw in its own frame (scale 1): its normals and colours per vertex where it
 // has them, else flat faces (each triangle its own three vertices and normal) in white; its
 // triangles grouped by the texture they sample.
-MeshData model_mesh_data(const model::TriangleMesh& mesh);
+MeshData model_mesh_data(model::TriangleMesh mesh);  // (its images are moved, not copied)
 
 }  // namespace vcockpit::render

@@ -17,6 +17,9 @@
 namespace vcockpit::model {
 namespace {
 
+// The most a child may answer (a mesh with its images): past it the read is stopped.
+constexpr std::size_t kMaxAnswerBytes = std::size_t{2} << 30;
+
 // The child's message: a status byte (1 mesh, 0 error), then the error's text or the mesh's
 // source, vertices, triangles, normals, colours, counts, texture coordinates and images, each
 // as a count and its raw bytes.
@@ -119,11 +122,17 @@ class Child {
   }
 
   // Everything the child writes until it closes its end, or false at the deadline.
+  bool too_large = false;  // read_all stopped at kMaxAnswerBytes
+
   bool read_all(std::string& answer, int64_t deadline_ms) {
     char buffer[1 << 16];
     for (;;) {
       const int64_t left_ms = deadline_ms - now_ms();
       if (left_ms <= 0) return false;
+      if (answer.size() > kMaxAnswerBytes) {
+        too_large = true;
+        return false;
+      }
       pollfd p{fd_, POLLIN, 0};
       const int ready = ::poll(&p, 1, static_cast<int>(left_ms));
       if (ready <= 0) continue;  // (EINTR, or the deadline checked above)
@@ -213,6 +222,9 @@ TriangleMesh read_isolated(const std::function<TriangleMesh()>& read, const std:
   const bool answered = child.read_all(answer, now_ms() + int64_t{timeout_s} * 1000);
   if (!answered) child.kill();
   const int status = child.wait();
+  if (child.too_large)
+    throw MeshError(what + ": the model is larger than " + std::to_string(kMaxAnswerBytes >> 30) +
+                    " GiB of triangles and images (stopped)");
   if (!answered || (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU))
     throw MeshError(what + ": the model reader took more than " + std::to_string(timeout_s) +
                     " s on it (stopped)");

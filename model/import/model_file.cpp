@@ -85,6 +85,9 @@ std::string texture_path(const aiScene* scene, const aiMesh* part) {
 }
 
 constexpr std::uintmax_t kMaxTextureFileBytes = 64u << 20;
+// The pixels a model part's images may have together (256 MiB as RGBA): past it, an image is
+// left out like a missing one.
+constexpr uint64_t kMaxModelTexturePixels = uint64_t{64} << 20;
 
 // The images a mesh's parts name, each decoded once into mesh.textures: embedded in the file
 // ("*0", or a .glb's named image), or (read_files) a file found by its path from the model's
@@ -105,12 +108,22 @@ class TextureTable {
     std::optional<TextureImage> image;
     try {
       image = embedded(path);
-      if (!image && read_files_) image = from_file(path);
+      if (!image && read_files_) {
+        // the same file named two ways ("a.png", "./a.png") is decoded once
+        const std::optional<std::filesystem::path> file = find_file(path);
+        if (file) {
+          const std::string key = std::filesystem::weakly_canonical(*file).string();
+          if (const auto same = by_file_.find(key); same != by_file_.end()) return index = same->second;
+          image = from_file(*file);
+          by_file_[key] = static_cast<int32_t>(mesh_.textures.size());
+        }
+      }
       if (!image) throw MeshError("texture '" + path + "' not found");
     } catch (const MeshError& e) {
       if (mesh_.textures_left_out++ == 0) mesh_.first_texture_left_out = e.what();
       return index;
     }
+    pixels_left_ -= uint64_t{image->width} * image->height;
     index = static_cast<int32_t>(mesh_.textures.size());
     mesh_.textures.push_back(std::move(*image));
     return index;
@@ -122,10 +135,15 @@ class TextureTable {
     if (texture == nullptr) return std::nullopt;
     if (texture->mHeight == 0)  // compressed: mWidth bytes of a PNG or JPEG
       return decode_texture_image(
-          std::string_view(reinterpret_cast<const char*>(texture->pcData), texture->mWidth), path);
-    if (texture->mWidth > kMaxTextureSide || texture->mHeight > kMaxTextureSide)
-      throw MeshError("texture '" + path + "' is larger than " + std::to_string(kMaxTextureSide) +
-                      " pixels on a side");
+          std::string_view(reinterpret_cast<const char*>(texture->pcData), texture->mWidth), path,
+          pixels_left_);
+    if (texture->mWidth == 0 || texture->mWidth > kMaxTextureSide ||
+        texture->mHeight > kMaxTextureSide ||
+        uint64_t{texture->mWidth} * texture->mHeight > pixels_left_)
+      throw MeshError("texture '" + path + "' is " + std::to_string(texture->mWidth) + " x " +
+                      std::to_string(texture->mHeight) + " pixels: at most " +
+                      std::to_string(kMaxTextureSide) + " on a side, " +
+                      std::to_string(pixels_left_) + " in all left");
     TextureImage image;  // raw BGRA texels
     image.name = path;
     image.width = texture->mWidth;
@@ -138,7 +156,8 @@ class TextureTable {
     return image;
   }
 
-  std::optional<TextureImage> from_file(std::string path) const {
+  // The file an image path names: from the model's directory, else by its name there.
+  std::optional<std::filesystem::path> find_file(std::string path) const {
     std::replace(path.begin(), path.end(), '\\', '/');
     const std::filesystem::path given(path);
     std::vector<std::filesystem::path> tries;
@@ -146,25 +165,31 @@ class TextureTable {
     tries.push_back(dir_ / given.filename());
     for (const std::filesystem::path& file : tries) {
       std::error_code error;
-      if (!std::filesystem::is_regular_file(file, error)) continue;
-      const std::uintmax_t size = std::filesystem::file_size(file, error);
-      if (error || size > kMaxTextureFileBytes)
-        throw MeshError("texture '" + file.string() + "' is larger than " +
-                        std::to_string(kMaxTextureFileBytes >> 20) + " MiB");
-      std::ifstream in(file, std::ios::binary);
-      std::string bytes(static_cast<std::size_t>(size), '\0');
-      if (!in.read(bytes.data(), static_cast<std::streamsize>(size)))
-        throw MeshError("texture '" + file.string() + "' cannot be read");
-      return decode_texture_image(bytes, file.string());
+      if (std::filesystem::is_regular_file(file, error)) return file;
     }
     return std::nullopt;
+  }
+
+  TextureImage from_file(const std::filesystem::path& file) const {
+    std::error_code error;
+    const std::uintmax_t size = std::filesystem::file_size(file, error);
+    if (error || size > kMaxTextureFileBytes)
+      throw MeshError("texture '" + file.string() + "' is larger than " +
+                      std::to_string(kMaxTextureFileBytes >> 20) + " MiB");
+    std::ifstream in(file, std::ios::binary);
+    std::string bytes(static_cast<std::size_t>(size), '\0');
+    if (!in.read(bytes.data(), static_cast<std::streamsize>(size)))
+      throw MeshError("texture '" + file.string() + "' cannot be read");
+    return decode_texture_image(bytes, file.string(), pixels_left_);
   }
 
   const aiScene* scene_;
   std::filesystem::path dir_;
   bool read_files_;
   TriangleMesh& mesh_;
-  std::map<std::string, int32_t> known_;
+  std::map<std::string, int32_t> known_;    // by the name the file gives
+  std::map<std::string, int32_t> by_file_;  // by the image file's canonical path
+  uint64_t pixels_left_ = kMaxModelTexturePixels;
 };
 
 // `beside_file`: the model is a file, and textures it names by path may be read beside it.

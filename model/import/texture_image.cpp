@@ -5,7 +5,9 @@
 
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <memory>
 
 namespace vcockpit::model {
 namespace {
@@ -14,38 +16,45 @@ bool starts_with(std::string_view bytes, std::string_view magic) {
   return bytes.size() >= magic.size() && bytes.substr(0, magic.size()) == magic;
 }
 
-void check_size(uint32_t width, uint32_t height, const std::string& name) {
+// Refused on the header, before any pixel is decoded: a side past kMaxTextureSide, or more
+// pixels than the caller has left.
+void check_size(uint64_t width, uint64_t height, uint64_t max_pixels, const std::string& name) {
   if (width == 0 || height == 0 || width > kMaxTextureSide || height > kMaxTextureSide)
     throw MeshError("texture '" + name + "' is " + std::to_string(width) + " x " +
                     std::to_string(height) + " pixels: at most " + std::to_string(kMaxTextureSide) +
                     " on a side");
+  if (width * height > max_pixels)
+    throw MeshError("texture '" + name + "' is " + std::to_string(width) + " x " +
+                    std::to_string(height) + " pixels: more than the " +
+                    std::to_string(max_pixels) + " left of its model's budget");
 }
 
-TextureImage decode_png(std::string_view bytes, const std::string& name) {
+TextureImage decode_png(std::string_view bytes, const std::string& name, uint64_t max_pixels) {
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
+  // (libpng frees the image itself on each error it reports)
   if (png_image_begin_read_from_memory(&image, bytes.data(), bytes.size()) == 0)
     throw MeshError("texture '" + name + "' is not a readable PNG: " + image.message);
   TextureImage out;
-  out.name = name;
-  out.width = image.width;
-  out.height = image.height;
   try {
-    check_size(out.width, out.height, name);
+    check_size(image.width, image.height, max_pixels, name);
+    out.name = name;
+    out.width = image.width;
+    out.height = image.height;
+    image.format = PNG_FORMAT_RGBA;
+    out.rgba.resize(PNG_IMAGE_SIZE(image));
   } catch (...) {
     png_image_free(&image);
     throw;
   }
-  image.format = PNG_FORMAT_RGBA;
-  out.rgba.resize(PNG_IMAGE_SIZE(image));
   if (png_image_finish_read(&image, nullptr, out.rgba.data(), 0, nullptr) == 0)
     throw MeshError("texture '" + name + "' is not a readable PNG: " + image.message);
   return out;
 }
 
-// libjpeg reports errors through error_exit, which must not return: back to decode_jpeg's
-// setjmp, with the message kept.
+// libjpeg reports errors through error_exit, which must not return: it jumps back to
+// run_jpeg's setjmp with the message kept.
 struct JpegErrors {
   jpeg_error_mgr manager;
   std::jmp_buf back;
@@ -60,52 +69,92 @@ void jpeg_error_exit(j_common_ptr info) {
 
 void jpeg_silent(j_common_ptr) {}  // warnings (a truncated scan is decoded as far as it goes)
 
-TextureImage decode_jpeg(std::string_view bytes, const std::string& name) {
-  // nothing with a destructor is made between setjmp and a longjmp back to it
-  TextureImage out;
-  out.name = name;
+// One JPEG decode, all its state here (reached through the pointer, so a longjmp leaves it as
+// it was): run_jpeg has no locals that change after its setjmp and nothing with a destructor.
+struct JpegJob {
   jpeg_decompress_struct info;
   JpegErrors errors;
-  info.err = jpeg_std_error(&errors.manager);
-  errors.manager.error_exit = jpeg_error_exit;
-  errors.manager.output_message = jpeg_silent;
-  errors.message[0] = '\0';
-  bool size_ok = true;
-  if (setjmp(errors.back) != 0) {
-    jpeg_destroy_decompress(&info);
-    throw MeshError("texture '" + name + "' is not a readable JPEG: " + errors.message);
+  const unsigned char* data = nullptr;
+  unsigned long size = 0;
+  uint64_t max_pixels = 0;
+  uint32_t width = 0, height = 0;
+  unsigned char* pixels = nullptr;  // malloc'd, width * height * 4; the caller frees it
+  bool too_large = false;
+};
+
+// True with job->pixels decoded; false with job->errors.message, or job->too_large and the
+// header's size in width and height.
+bool run_jpeg(JpegJob* job) {
+  std::memset(&job->info, 0, sizeof job->info);
+  job->info.err = jpeg_std_error(&job->errors.manager);
+  job->errors.manager.error_exit = jpeg_error_exit;
+  job->errors.manager.output_message = jpeg_silent;
+  job->errors.message[0] = '\0';
+  if (setjmp(job->errors.back) != 0) {
+    jpeg_destroy_decompress(&job->info);
+    std::free(job->pixels);
+    job->pixels = nullptr;
+    return false;
   }
-  jpeg_create_decompress(&info);
-  jpeg_mem_src(&info, reinterpret_cast<const unsigned char*>(bytes.data()),
-               static_cast<unsigned long>(bytes.size()));
-  jpeg_read_header(&info, TRUE);
-  size_ok = info.image_width > 0 && info.image_height > 0 && info.image_width <= kMaxTextureSide &&
-            info.image_height <= kMaxTextureSide;
-  if (size_ok) {
-    info.out_color_space = JCS_EXT_RGBA;  // (libjpeg-turbo: greyscale and YCbCr to RGBA)
-    jpeg_start_decompress(&info);
-    out.width = info.output_width;
-    out.height = info.output_height;
-    out.rgba.resize(std::size_t{out.width} * out.height * 4);
-    while (info.output_scanline < info.output_height) {
-      JSAMPROW row = out.rgba.data() + std::size_t{info.output_scanline} * out.width * 4;
-      jpeg_read_scanlines(&info, &row, 1);
-    }
-    jpeg_finish_decompress(&info);
-  } else {
-    out.width = info.image_width;
-    out.height = info.image_height;
+  jpeg_create_decompress(&job->info);
+  jpeg_mem_src(&job->info, job->data, job->size);
+  jpeg_read_header(&job->info, TRUE);
+  job->width = job->info.image_width;
+  job->height = job->info.image_height;
+  if (job->width == 0 || job->height == 0 || job->width > kMaxTextureSide ||
+      job->height > kMaxTextureSide || uint64_t{job->width} * job->height > job->max_pixels) {
+    job->too_large = true;
+    jpeg_destroy_decompress(&job->info);
+    return false;
   }
-  jpeg_destroy_decompress(&info);
-  check_size(out.width, out.height, name);
+  job->info.out_color_space = JCS_EXT_RGBA;  // (libjpeg-turbo: greyscale and YCbCr to RGBA)
+  jpeg_start_decompress(&job->info);
+  job->width = job->info.output_width;
+  job->height = job->info.output_height;
+  job->pixels = static_cast<unsigned char*>(std::malloc(std::size_t{job->width} * job->height * 4));
+  if (job->pixels == nullptr) {
+    std::strcpy(job->errors.message, "out of memory");
+    jpeg_destroy_decompress(&job->info);
+    return false;
+  }
+  while (job->info.output_scanline < job->info.output_height) {
+    JSAMPROW row = job->pixels + std::size_t{job->info.output_scanline} * job->width * 4;
+    jpeg_read_scanlines(&job->info, &row, 1);
+  }
+  jpeg_finish_decompress(&job->info);
+  jpeg_destroy_decompress(&job->info);
+  return true;
+}
+
+TextureImage decode_jpeg(std::string_view bytes, const std::string& name, uint64_t max_pixels) {
+  auto job = std::make_unique<JpegJob>();
+  job->data = reinterpret_cast<const unsigned char*>(bytes.data());
+  job->size = static_cast<unsigned long>(bytes.size());
+  job->max_pixels = max_pixels;
+  if (!run_jpeg(job.get())) {
+    if (job->too_large) check_size(job->width, job->height, max_pixels, name);  // (throws)
+    throw MeshError("texture '" + name + "' is not a readable JPEG: " + job->errors.message);
+  }
+  TextureImage out;
+  out.name = name;
+  out.width = job->width;
+  out.height = job->height;
+  try {
+    out.rgba.assign(job->pixels, job->pixels + std::size_t{out.width} * out.height * 4);
+  } catch (...) {
+    std::free(job->pixels);
+    throw;
+  }
+  std::free(job->pixels);
   return out;
 }
 
 }  // namespace
 
-TextureImage decode_texture_image(std::string_view bytes, const std::string& name) {
-  if (starts_with(bytes, "\x89PNG\r\n\x1a\n")) return decode_png(bytes, name);
-  if (starts_with(bytes, "\xff\xd8\xff")) return decode_jpeg(bytes, name);
+TextureImage decode_texture_image(std::string_view bytes, const std::string& name,
+                                  uint64_t max_pixels) {
+  if (starts_with(bytes, "\x89PNG\r\n\x1a\n")) return decode_png(bytes, name, max_pixels);
+  if (starts_with(bytes, "\xff\xd8\xff")) return decode_jpeg(bytes, name, max_pixels);
   throw MeshError("texture '" + name + "' is not a PNG or JPEG image" +
                   (bytes.empty() ? " (no bytes)" : ""));
 }

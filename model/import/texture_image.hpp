@@ -4,6 +4,7 @@
 // the ones OBJ and AC3D cockpits use. Anything else, a corrupt image, or one larger than
 // kMaxTextureSide on a side is refused with a MeshError naming `name`.
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -14,6 +15,10 @@ namespace vcockpit::model {
 inline constexpr uint32_t kMaxTextureSide = 8192;
 
 // 8-bit RGBA, rows from the top; greyscale and palette images expanded, 16-bit ones reduced.
-TextureImage decode_texture_image(std::string_view bytes, const std::string& name);
+// An image of more than `max_pixels` is refused on its header, before it is decoded (a few kB
+// of JPEG can claim 8192 x 8192: 256 MiB).
+TextureImage decode_texture_image(std::string_view bytes, const std::string& name,
+                                  uint64_t max_pixels = uint64_t{kMaxTextureSide} *
+                                                        kMaxTextureSide);
 
 }  // namespace vcockpit::model

@@ -227,5 +227,45 @@ TEST(TextureImage, AJpegDecodesToItsPixelsAndACutOneIsRefused) {
   }
 }
 
+TEST(TextureImage, AnImagePastItsModelsPixelBudgetIsRefusedOnItsHeader) {
+  const std::string jpeg = jpeg_of_halves();                          // 32 x 16
+  const std::string png = read_bytes(models_dir() + "/placard.png");  // 64 x 32
+  EXPECT_EQ(decode_texture_image(jpeg, "halves.jpg", 512).width, 32u) << "exactly the budget";
+  for (const auto& [bytes, name] : {std::pair{jpeg, "halves.jpg"}, std::pair{png, "placard.png"}}) {
+    try {
+      decode_texture_image(bytes, name, 511);
+      FAIL() << name << " was decoded past its budget";
+    } catch (const MeshError& e) {
+      EXPECT_NE(std::string(e.what()).find("more than the 511 left of its model's budget"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+// A triangle with no area dropped from a textured mesh takes its texture index with it: the
+// others keep theirs.
+TEST(TriangleMesh, DroppingADegenerateTriangleKeepsTheTexturesInStep) {
+  TriangleMesh mesh;
+  mesh.source = "test";
+  mesh.vertices_m = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}, {0, 0, 1}};
+  mesh.uv.assign(mesh.vertices_m.size(), Eigen::Vector2f::Zero());
+  mesh.triangles = {{0, 1, 2}, {0, 1, 3}, {0, 1, 4}};  // the middle one has no area
+  mesh.triangle_texture = {-1, 0, 0};
+  mesh.textures.push_back({"white", 1, 1, {255, 255, 255, 255}});
+  drop_degenerate_triangles(mesh);
+  ASSERT_EQ(mesh.triangles.size(), 2u);
+  EXPECT_EQ(mesh.triangle_texture, (std::vector<int32_t>{-1, 0}));
+  check_mesh(mesh);
+  mesh.uv.pop_back();  // coordinates no longer one per vertex: named
+  try {
+    check_mesh(mesh);
+    FAIL() << "4 texture coordinates for 5 vertices passed";
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("4 texture coordinates for 5 vertices"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace vcockpit::model

@@ -538,6 +538,52 @@ TEST_F(RenderTest, AModelTextureShowsTheRightWayUpInEachFormat) {
   }
 }
 
+// A model with an untextured part before a textured one: two draw groups, the textured one
+// starting past the first's indices. Each shows what it should: the plain plate its white
+// material, the placard its quadrants.
+TEST_F(RenderTest, AModelsUntexturedAndTexturedPartsDrawAsTwoGroups) {
+  const std::string dir = std::string(std::getenv("VCOCKPIT_SOURCE_DIR")) + "/tests/data/models/";
+  const model::TriangleMesh placard =
+      model::load_model_mesh({dir + "placard.gltf", "placard", 1.0, model::UpAxis::kY, true});
+  model::TriangleMesh both = placard;  // the plain plate first, 0.25 m to the pilot's right
+  both.vertices_m.clear();
+  both.triangles.clear();
+  both.triangle_texture.clear();
+  both.uv.clear();
+  both.colors_rgba.clear();
+  both.normals.clear();
+  for (const int32_t texture : {-1, 0}) {
+    const auto base = static_cast<uint32_t>(both.vertices_m.size());
+    const Eigen::Vector3d shift(0.0, texture < 0 ? -0.25 : 0.0, 0.0);
+    for (std::size_t v = 0; v < placard.vertices_m.size(); ++v) {
+      both.vertices_m.push_back(placard.vertices_m[v] + shift);
+      both.uv.push_back(placard.uv[v]);
+      both.colors_rgba.push_back(placard.colors_rgba[v]);
+    }
+    for (const auto& t : placard.triangles) {
+      both.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+      both.triangle_texture.push_back(texture);
+    }
+  }
+  model::check_mesh(both);
+  auto data = std::make_shared<const MeshData>(model_mesh_data(both));
+  ASSERT_EQ(data->groups.size(), 2u);
+  EXPECT_EQ(data->groups[1].first_index, 6u) << "the textured group after the plain one's 6 indices";
+  Instance instance = make(Primitive::kMesh, at(0.8, 0.0, kHeadHeightM), Eigen::Vector3d::Ones(),
+                           {1.0f, 1.0f, 1.0f, 1.0f});
+  instance.mesh = data;
+  renderer().render({instance}, head_pose());
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    const Rgb plain = pixel_at(renderer(), eye, projected(config(), eye, {0.8, -0.25, kHeadHeightM}));
+    EXPECT_TRUE(plain.r > 80 && std::abs(plain.r - plain.g) < 10 && std::abs(plain.r - plain.b) < 10)
+        << "the plain plate, white lit: " << plain;
+    const Rgb red = pixel_at(renderer(), eye, projected(config(), eye, {0.8, 0.05, kHeadHeightM + 0.025}));
+    EXPECT_TRUE(red.r > 120 && red.g < 40 && red.b < 40) << "the placard's top left: " << red;
+    const Rgb yellow = pixel_at(renderer(), eye, projected(config(), eye, {0.8, -0.05, kHeadHeightM - 0.025}));
+    EXPECT_TRUE(yellow.r > 120 && yellow.g > 120 && yellow.b < 40) << "its bottom right: " << yellow;
+  }
+}
+
 // A red 0.1 m cube 1 m ahead at head height shows, lit, where project_to_pixel says, in both
 // eyes, against the background elsewhere.
 TEST_F(RenderTest, RedBoxAppearsAtItsProjectionInBothEyes) {
