@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -59,21 +60,28 @@ void add_box(SceneCache& cache) {
 
 constexpr std::size_t kHandInstances = 16;  // palm box + 15 phalanx capsules
 
+// A MESH object's info: a node of a +y-up model file at scale 1, the box round it `size_m`.
+cockpit::ObjectInfo mesh_object_info(uint32_t id, cockpit::ObjectKind kind, const std::string& file,
+                                     const std::string& node, const std::array<double, 3>& size_m) {
+  cockpit::ObjectInfo info;
+  info.object_id(id);
+  info.kind(kind);
+  info.shape(cockpit::MESH);
+  info.dimensions_m(size_m);
+  info.mesh_file(file);
+  info.mesh_node(node);
+  info.mesh_scale(1.0);
+  info.mesh_z_up(false);
+  return info;
+}
+
 // A MESH object: its model file is loaded once, in the frame the physics node gives it (the node
 // origin at mesh_origin_m), and drawn as that mesh; two objects of the same part share it. A file
 // that cannot be read here is counted and its object drawn as the box round its vertices.
 TEST(SceneCache, AMeshObjectIsDrawnAsItsModelOrItsBoxWhenTheFileFails) {
   SceneCache cache;
   const auto mesh_info = [&](uint32_t id, const std::string& file) {
-    cockpit::ObjectInfo info;
-    info.object_id(id);
-    info.kind(cockpit::DYNAMIC_OBJECT);
-    info.shape(cockpit::MESH);
-    info.dimensions_m({0.024, 0.024, 0.012});
-    info.mesh_file(file);
-    info.mesh_node("button");
-    info.mesh_scale(1.0);
-    info.mesh_z_up(false);
+    cockpit::ObjectInfo info = mesh_object_info(id, cockpit::DYNAMIC_OBJECT, file, "button", {0.024, 0.024, 0.012});
     info.mesh_origin_m(to_idl(Eigen::Vector3d(0.0, 0.0, 0.001)));
     info.mesh_center_m(to_idl(Eigen::Vector3d(0.0, 0.0, 0.002)));
     cache.on_info(info);
@@ -115,16 +123,7 @@ TEST(SceneCache, AModelsTexturesAreLoadedAndAMissingOneCounted) {
     std::filesystem::copy_file(models + name, dir / name, std::filesystem::copy_options::overwrite_existing);
   SceneCache cache;
   const auto mesh_info = [&](uint32_t id, const std::string& file) {
-    cockpit::ObjectInfo info;
-    info.object_id(id);
-    info.kind(cockpit::STATIC_OBJECT);
-    info.shape(cockpit::MESH);
-    info.dimensions_m({0.01, 0.2, 0.1});
-    info.mesh_file(file);
-    info.mesh_node("placard");
-    info.mesh_scale(1.0);
-    info.mesh_z_up(false);
-    cache.on_info(info);
+    cache.on_info(mesh_object_info(id, cockpit::STATIC_OBJECT, file, "placard", {0.01, 0.2, 0.1}));
     place_at_origin(cache, id);
   };
   mesh_info(0, models + "placard.gltf");
