@@ -112,7 +112,9 @@ class TextureTable {
         // the same file named two ways ("a.png", "./a.png") is decoded once
         const std::optional<std::filesystem::path> file = find_file(path);
         if (file) {
-          const std::string key = std::filesystem::weakly_canonical(*file).string();
+          std::error_code error;
+          const std::filesystem::path canonical = std::filesystem::weakly_canonical(*file, error);
+          const std::string key = (error ? *file : canonical).string();
           if (const auto same = by_file_.find(key); same != by_file_.end()) return index = same->second;
           image = from_file(*file);
           by_file_[key] = static_cast<int32_t>(mesh_.textures.size());
