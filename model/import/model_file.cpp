@@ -139,13 +139,7 @@ class TextureTable {
       return decode_texture_image(
           std::string_view(reinterpret_cast<const char*>(texture->pcData), texture->mWidth), path,
           pixels_left_);
-    if (texture->mWidth == 0 || texture->mWidth > kMaxTextureSide ||
-        texture->mHeight > kMaxTextureSide ||
-        uint64_t{texture->mWidth} * texture->mHeight > pixels_left_)
-      throw MeshError("texture '" + path + "' is " + std::to_string(texture->mWidth) + " x " +
-                      std::to_string(texture->mHeight) + " pixels: at most " +
-                      std::to_string(kMaxTextureSide) + " on a side, " +
-                      std::to_string(pixels_left_) + " in all left");
+    check_texture_size(texture->mWidth, texture->mHeight, pixels_left_, path);
     TextureImage image;  // raw BGRA texels
     image.name = path;
     image.width = texture->mWidth;

@@ -16,19 +16,6 @@ bool starts_with(std::string_view bytes, std::string_view magic) {
   return bytes.size() >= magic.size() && bytes.substr(0, magic.size()) == magic;
 }
 
-// Refused on the header, before any pixel is decoded: a side past kMaxTextureSide, or more
-// pixels than the caller has left.
-void check_size(uint64_t width, uint64_t height, uint64_t max_pixels, const std::string& name) {
-  if (width == 0 || height == 0 || width > kMaxTextureSide || height > kMaxTextureSide)
-    throw MeshError("texture '" + name + "' is " + std::to_string(width) + " x " +
-                    std::to_string(height) + " pixels: at most " + std::to_string(kMaxTextureSide) +
-                    " on a side");
-  if (width * height > max_pixels)
-    throw MeshError("texture '" + name + "' is " + std::to_string(width) + " x " +
-                    std::to_string(height) + " pixels: more than the " +
-                    std::to_string(max_pixels) + " left of its model's budget");
-}
-
 TextureImage decode_png(std::string_view bytes, const std::string& name, uint64_t max_pixels) {
   png_image image;
   std::memset(&image, 0, sizeof image);
@@ -38,7 +25,7 @@ TextureImage decode_png(std::string_view bytes, const std::string& name, uint64_
     throw MeshError("texture '" + name + "' is not a readable PNG: " + image.message);
   TextureImage out;
   try {
-    check_size(image.width, image.height, max_pixels, name);
+    check_texture_size(image.width, image.height, max_pixels, name);
     out.name = name;
     out.width = image.width;
     out.height = image.height;
@@ -132,7 +119,7 @@ TextureImage decode_jpeg(std::string_view bytes, const std::string& name, uint64
   job->size = static_cast<unsigned long>(bytes.size());
   job->max_pixels = max_pixels;
   if (!run_jpeg(job.get())) {
-    if (job->too_large) check_size(job->width, job->height, max_pixels, name);  // (throws)
+    if (job->too_large) check_texture_size(job->width, job->height, max_pixels, name);  // (throws)
     throw MeshError("texture '" + name + "' is not a readable JPEG: " + job->errors.message);
   }
   TextureImage out;
@@ -150,6 +137,20 @@ TextureImage decode_jpeg(std::string_view bytes, const std::string& name, uint64
 }
 
 }  // namespace
+
+// Refused on the header, before any pixel is decoded: a side past kMaxTextureSide, or more
+// pixels than the caller has left.
+void check_texture_size(uint64_t width, uint64_t height, uint64_t max_pixels,
+                        const std::string& name) {
+  if (width == 0 || height == 0 || width > kMaxTextureSide || height > kMaxTextureSide)
+    throw MeshError("texture '" + name + "' is " + std::to_string(width) + " x " +
+                    std::to_string(height) + " pixels: at most " + std::to_string(kMaxTextureSide) +
+                    " on a side");
+  if (width * height > max_pixels)
+    throw MeshError("texture '" + name + "' is " + std::to_string(width) + " x " +
+                    std::to_string(height) + " pixels: more than the " +
+                    std::to_string(max_pixels) + " left of its model's budget");
+}
 
 TextureImage decode_texture_image(std::string_view bytes, const std::string& name,
                                   uint64_t max_pixels) {

@@ -497,6 +497,21 @@ TEST_F(RenderTest, AModelMeshShowsInTheCachedLayerWithItsMaterial) {
   }
 }
 
+// The placard's quadrants (tests/data/models, scripts/make_test_models.py) as the eye sees the
+// plate at x = 0.8 (looking along +x, +y is to the left): where each centre is on the plate and
+// the colour it must show, lit.
+struct PlacardQuadrant {
+  double y_m, z_m;
+  const char* name;
+  bool (*is)(const Rgb&);
+};
+const PlacardQuadrant kPlacardQuadrants[] = {
+    {0.05, 0.025, "top left red", [](const Rgb& c) { return c.r > 120 && c.g < 40 && c.b < 40; }},
+    {-0.05, 0.025, "top right green", [](const Rgb& c) { return c.g > 100 && c.r < 40 && c.b < 40; }},
+    {0.05, -0.025, "bottom left blue", [](const Rgb& c) { return c.b > 120 && c.r < 40 && c.g < 40; }},
+    {-0.05, -0.025, "bottom right yellow", [](const Rgb& c) { return c.r > 120 && c.g > 120 && c.b < 40; }},
+};
+
 // A model's texture (the placard of tests/data/models: red, green, blue and yellow quadrants)
 // shows on its face the right way up and unmirrored, in each format's file: each quadrant's
 // centre, projected, is its colour, lit; the placard drawn as a moving instance too.
@@ -516,20 +531,8 @@ TEST_F(RenderTest, AModelTextureShowsTheRightWayUpInEachFormat) {
       instance.fixed = fixed;
       renderer().render({instance}, head_pose());
       EXPECT_EQ(renderer().gl_error_count(), 0u);
-      // seen from the eye (looking along +x), +y is to the left
-      struct Quadrant {
-        double y_m, z_m;
-        const char* name;
-        bool (*is)(const Rgb&);
-      };
-      const Quadrant quadrants[] = {
-          {0.05, 0.025, "top left red", [](const Rgb& c) { return c.r > 120 && c.g < 40 && c.b < 40; }},
-          {-0.05, 0.025, "top right green", [](const Rgb& c) { return c.g > 100 && c.r < 40 && c.b < 40; }},
-          {0.05, -0.025, "bottom left blue", [](const Rgb& c) { return c.b > 120 && c.r < 40 && c.g < 40; }},
-          {-0.05, -0.025, "bottom right yellow", [](const Rgb& c) { return c.r > 120 && c.g > 120 && c.b < 40; }},
-      };
       for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
-        for (const Quadrant& q : quadrants) {
+        for (const PlacardQuadrant& q : kPlacardQuadrants) {
           const Rgb c = pixel_at(renderer(), eye, projected(config(), eye, {0.8, q.y_m, kHeadHeightM + q.z_m}));
           EXPECT_TRUE(q.is(c)) << q.name << (fixed ? " (cached layer) " : " (instance) ") << c;
         }
@@ -577,10 +580,10 @@ TEST_F(RenderTest, AModelsUntexturedAndTexturedPartsDrawAsTwoGroups) {
     const Rgb plain = pixel_at(renderer(), eye, projected(config(), eye, {0.8, -0.25, kHeadHeightM}));
     EXPECT_TRUE(plain.r > 80 && std::abs(plain.r - plain.g) < 10 && std::abs(plain.r - plain.b) < 10)
         << "the plain plate, white lit: " << plain;
-    const Rgb red = pixel_at(renderer(), eye, projected(config(), eye, {0.8, 0.05, kHeadHeightM + 0.025}));
-    EXPECT_TRUE(red.r > 120 && red.g < 40 && red.b < 40) << "the placard's top left: " << red;
-    const Rgb yellow = pixel_at(renderer(), eye, projected(config(), eye, {0.8, -0.05, kHeadHeightM - 0.025}));
-    EXPECT_TRUE(yellow.r > 120 && yellow.g > 120 && yellow.b < 40) << "its bottom right: " << yellow;
+    for (const PlacardQuadrant& q : kPlacardQuadrants) {
+      const Rgb c = pixel_at(renderer(), eye, projected(config(), eye, {0.8, q.y_m, kHeadHeightM + q.z_m}));
+      EXPECT_TRUE(q.is(c)) << "the placard's " << q.name << ": " << c;
+    }
   }
 }
 
