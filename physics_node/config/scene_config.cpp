@@ -420,7 +420,7 @@ physics::ContactParams parse_contact(const ConfigNode& node) {
 
 physics::ProxyParams parse_proxy(const ConfigNode& node) {
   node.expect_keys({"enabled", "max_speed_mps", "max_spin_radps", "push_speed_mps",
-                    "grip_force_N", "grip_weight_ratio", "static_depth_m"});
+                    "grip_force_N", "grip_weight_ratio", "static_depth_m", "finger_pull_ratio"});
   physics::ProxyParams p;
   auto pos = [](const ConfigNode& n) { return positive(n); };
   if (auto e = node.find("enabled")) p.enabled = e->as_bool();
@@ -429,6 +429,11 @@ physics::ProxyParams parse_proxy(const ConfigNode& node) {
   read_optional(node, "push_speed_mps", p.push_speed_mps, pos);
   read_optional(node, "grip_force_N", p.grip_force_N, pos);
   read_optional(node, "grip_weight_ratio", p.grip_weight_ratio, pos);
+  read_optional(node, "finger_pull_ratio", p.finger_pull_ratio,
+                [](const ConfigNode& n) {
+                  const double v = n.as_double();
+                  return require(n, v, v >= 0.0 && v <= 100.0, "must be in [0, 100]");
+                });
   // the promise is "never more than 1 mm inside a static object"
   read_optional(node, "static_depth_m", p.static_depth_m,
                 [](const ConfigNode& n) { return in_open_closed(n, 0.0, 1.0e-3); });

@@ -17,7 +17,7 @@ namespace {
 
 constexpr char kMagic[8] = {'V', 'C', 'K', 'P', 'O', 'I', 'N', 'T'};
 // 2: GraspHold::opposed_fingers and palm_opposed; 3: GraspHold::grip_tightest_rad
-constexpr uint64_t kVersion = 3;
+constexpr uint64_t kVersion = 4;
 constexpr uint64_t kFrozenFlag = 1;
 // anchors are per touching pair: far more than any scene makes, far less than a corrupt length
 constexpr uint64_t kMaxVarCount = 1u << 16;
@@ -154,6 +154,8 @@ void check_indices(const physics::WorldState& s, const physics::Scene& scene) {
   for (const physics::HandState& h : s.hands) {
     if (h.blocking_out_G.size() > static_cast<std::size_t>(physics::kMaxBlockingPlanes))
       bad("more blocking planes than a hand keeps");
+    if (h.finger_pull_G.norm() > 1.001 * physics::kMaxFingerPull_m)
+      bad("a finger pull farther than a hand keeps");
     for (const physics::GraspHold& g : h.grasp) {
       // (a static object's ring is empty)
       const std::size_t n = g.history.size();

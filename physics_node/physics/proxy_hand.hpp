@@ -55,6 +55,10 @@ struct ProxyPose {
   JointAngles q_rad{};
 };
 
+// The farthest the fingers pull the wrist from the tracked one (ProxyParams::finger_pull_ratio):
+// a tracked hand that has gone through an object does not drag the drawn one far off.
+inline constexpr double kMaxFingerPull_m = 0.02;
+
 // The most static surfaces the proxy keeps as resting on between steps.
 inline constexpr int kMaxBlockingPlanes = 4;
 

@@ -186,7 +186,12 @@ int World::choose_substeps(bool holding) {
       const bool this_holds = holding && sim.holds_any;
       sim.proxy_start = {hs.X_GH, hs.q_rad};
       sim.fingers_kept = 0;
-      sim.proxy_goal = sim.proxy->step_goal(sim.proxy_start, hs.from, hs.to, hs.pushing, this_holds,
+      // (the tracked hand where the fingers the world holds back pull it: finger_pull_G)
+      HandInput from = hs.from;
+      HandInput to = hs.to;
+      from.X_GH.translation() += hs.finger_pull_G;
+      to.X_GH.translation() += hs.finger_pull_G;
+      sim.proxy_goal = sim.proxy->step_goal(sim.proxy_start, from, to, hs.pushing, this_holds,
                                             hs.blocking_out_G, scene_.step_s);
       sweep = {&hs.X_GL, sim.proxy_goal.X_GH, sim.proxy_goal.q_rad};
     } else {
@@ -194,6 +199,57 @@ int World::choose_substeps(bool holding) {
     }
   }
   return substep_choice_.choose(state_.bodies, sweeps_);
+}
+
+Eigen::Vector3d World::finger_pull_G(int hand) const {
+  const HandSim& sim = hands_[static_cast<std::size_t>(hand)];
+  const HandState& hs = hand_state(hand);
+  const double ratio = scene_.proxy.finger_pull_ratio;
+  if (!sim.proxy || !hs.active || ratio <= 0.0) return Eigen::Vector3d::Zero();
+  // Each finger link's deepest shortfall on a heavy loose object this hand does not hold: how
+  // much farther into it the tracked link goes than the proxy's, along the contact normal (a
+  // control's joint holds it, and its gestures grip where they aim)
+  const int link_base = object_count_ + hand * kLinkCount;
+  std::array<double, kLinkCount> short_m{};
+  std::array<Eigen::Vector3d, kLinkCount> n_G{};
+  bool observed = false;
+  for (const ContactPoint& c : sim.contacts) {
+    if (c.body_a >= object_count_ || c.body_b < link_base || c.body_b >= link_base + kLinkCount)
+      continue;
+    const auto o = static_cast<std::size_t>(c.body_a);
+    if ((state_.bodies[o].holders & sim.holder_bit) != 0 || scene_.objects[o].control >= 0) continue;
+    // what a finger cannot push along holds it back: an object weighing at least the grip force
+    // (at one standard g, as the grip's depth limit); a lighter one is pushed ahead of it
+    constexpr double kStandardGravity_mps2 = 9.80665;
+    if (scene_.objects[o].mass_kg * kStandardGravity_mps2 < scene_.proxy.grip_force_N) continue;
+    const auto l = static_cast<std::size_t>(c.body_b - link_base);
+    Finger finger;
+    if (!finger_of(static_cast<Link>(l), finger)) continue;  // the palm is the wrist's own
+    if (!observed) observe_tracked_hand(hand);
+    observed = true;
+    // n points from the object into the link: the tracked point lies deeper along -n
+    const Eigen::Vector3d p_tracked_G = sim.tracked_X_GL[l] * (hs.X_GL[l].inverse() * c.p_G);
+    const double short_by_m = c.n_G.dot(c.p_G - p_tracked_G);
+    if (short_by_m > short_m[l]) {
+      short_m[l] = short_by_m;
+      n_G[l] = c.n_G;
+    }
+  }
+  if (!observed) return Eigen::Vector3d::Zero();
+  // The wrist's offset s where its spring balances the fingers' (each r times as stiff), each
+  // finger's shortfall shrinking by s along its normal as the wrist gives:
+  // s = r sum_l (u_l - n_l.s) n_l, i.e. (I + r sum n n^T) s = r sum u_l n_l.
+  Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (std::size_t l = 0; l < kLinkCount; ++l) {
+    if (short_m[l] <= 0.0) continue;
+    A += ratio * n_G[l] * n_G[l].transpose();
+    b += ratio * short_m[l] * n_G[l];
+  }
+  Eigen::Vector3d s = A.ldlt().solve(b);  // A is symmetric positive definite
+  const double s_m = s.norm();
+  if (s_m > kMaxFingerPull_m) s *= kMaxFingerPull_m / s_m;
+  return s;
 }
 
 void World::restore(const WorldState& state) {
@@ -330,6 +386,8 @@ void World::step() {
     body_check_.check(state_.bodies, start_bodies_, state_.time_ns);
   }
   grasp_stage();
+  for (std::size_t h = 0; h < hands_.size(); ++h)
+    state_.hands[h].finger_pull_G = finger_pull_G(static_cast<int>(h));
   for (std::size_t h = 0; h < hands_.size(); ++h) {
     hands_[h].tracked_observed = false;
     state_.hands[h].from = state_.hands[h].to;

@@ -180,6 +180,8 @@ class World {
   void constrain_proxies(double dt_s);
   void constrain_proxy(int hand, double dt_s);
   void observe_tracked_hand(int hand) const;  // on demand: one forward kinematics a step
+  // HandState::finger_pull_G at the end of a step, from the last substep's contacts.
+  Eigen::Vector3d finger_pull_G(int hand) const;
   // The links of hand `hand`'s glove (tracked) hand that overlap `object` now (bit l); 0 unless
   // that hand is clearing it after a release (GraspHold::hand_clearing), the only time they
   // matter.

@@ -99,6 +99,7 @@ void visit_world_state(V& v, S& s) {
     v.var_count(hand.blocking_out_G);
     for (auto& n : hand.blocking_out_G)
       f::vec3(v, n);
+    f::vec3(v, hand.finger_pull_G);
     v.count(hand.grasp);
     for (auto& g : hand.grasp)
       f::grasp_hold(v, g);

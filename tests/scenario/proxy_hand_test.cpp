@@ -6,7 +6,9 @@
 //   - a cup squeezed by the palm against the console is neither crushed into it nor set
 //     chattering (with the proxy off, it is pressed several mm into the console);
 //   - the wrist approaches a far tracked pose no faster than max_speed_mps;
-//   - a held grip presses as hard on each side (the thumb's and the fingers').
+//   - a held grip presses as hard on each side (the thumb's and the fingers');
+//   - a finger that a heavy block stops short of the tracked one pulls the wrist back by the
+//     share finger_pull_ratio gives (half for 1), and not at all for 0.
 // Geometry is checked analytically: each capsule's lowest end point and the palm box's corners
 // against the console's top face.
 
@@ -293,6 +295,90 @@ TEST(ProxyHand, AHeldGripPressesAsHardOnEachSide) {
   proxy.balance_held_grips(against_palm, held);
   EXPECT_DOUBLE_EQ(proxy.depth_limit_m(torch, body(Link::kPalm)), free_limit_m / 2.0);
   EXPECT_DOUBLE_EQ(proxy.depth_limit_m(torch, body(Link::kIndexDistal)), free_limit_m);
+}
+
+// The index finger, alone flexed, closes 1 cm into the top of a 5 kg block resting on the
+// console, the wrist held still above it. The block stops the proxy's fingertip; the tracked one
+// goes on. With finger_pull_ratio r the wrist rises by r / (1 + r) of the fingertip's shortfall
+// (the finger's spring and the wrist's balance), so for r = 1 half of it; for r = 0 the wrist
+// stays on the tracked one. The block is not pushed into the console.
+struct FingerPull {
+  double wrist_rise_m = 0.0;  // the proxy's wrist above the tracked one
+  double shortfall_m = 0.0;   // the tracked fingertip's depth in the block less the proxy's
+  double block_sink_m = 0.0;
+  double proxy_tip_depth_m = 0.0;
+};
+
+FingerPull pull_of_a_flexed_index(double ratio) {
+  constexpr double kBlockTop_m = kConsoleTop_m + 0.04;
+  constexpr double kIndexFlex_rad = 50.0 * M_PI / 180.0;
+  constexpr double kInto_m = 0.01;
+  Scene scene = console_scene(true);
+  scene.proxy.finger_pull_ratio = ratio;
+  const HandModel hand = scene.hands[0];
+  HandInput open = hand_at(hand, {0.3, 0.0, 1.0});
+  for (int j = 0; j < kJointCount; ++j) open.q_rad[j] = std::clamp(0.0, hand.joints[j].min_rad, hand.joints[j].max_rad);
+  HandInput flexed = open;
+  const int mcp = static_cast<int>(hand::Joint::kIndexMcp);
+  flexed.q_rad[mcp] = kIndexFlex_rad;
+  const auto tip_G = [&](const HandInput& in) {
+    HandLinkPoses links;
+    forward_kinematics(hand, in.q_rad, links);
+    return Eigen::Vector3d(in.X_GH * links.p_H_tip[static_cast<std::size_t>(Finger::kIndex)]);
+  };
+  const auto distal = static_cast<std::size_t>(Link::kIndexDistal);
+  const double radius_m = hand.capsules[distal].radius_m;
+  // the wrist so high that the flexed tracked fingertip ends kInto_m below the block's top
+  const Eigen::Vector3d tip = tip_G(flexed);
+  const double wrist_z = open.X_GH.translation().z() + (kBlockTop_m - kInto_m + radius_m - tip.z());
+  open.X_GH.translation().z() = wrist_z;
+  flexed.X_GH.translation().z() = wrist_z;
+  const Eigen::Vector3d tip_at = tip_G(flexed);
+  scene.objects.push_back(test::dynamic_object("block", Shape::box({0.03, 0.03, 0.04}),
+                                               5.0, at(tip_at.x(), tip_at.y(), kConsoleTop_m + 0.02),
+                                               test::material(5.0e4, 0.8, 0.7, 0.9)));
+  World world(std::move(scene));
+  const int block = world.scene().find_object("block");
+  const auto block_z = [&] { return world.bodies()[block].X_GO.translation().z(); };
+  double settled_z = 0.0;  // the block on the console under its own weight (m g / k: ~2 mm in)
+  FingerPull out;
+  for (int step = 0; step < 1000; ++step) {
+    const double t_s = step * 1e-3;
+    HandInput in = open;
+    in.q_rad[mcp] = lerp(0.0, kIndexFlex_rad, (t_s - 0.2) / 0.3);
+    world.set_hand_input(in);
+    world.step();
+    if (step == 199) settled_z = block_z();
+    if (step >= 200) out.block_sink_m = std::max(out.block_sink_m, settled_z - block_z());
+  }
+  const double top_m = block_z() + 0.02;
+  const double tracked_tip_low_m = (world.tracked_X_GL()[distal] *
+                                    Eigen::Vector3d(hand.capsules[distal].length_m, 0, 0)).z() - radius_m;
+  const double proxy_tip_low_m = (world.X_GL()[distal] *
+                                  Eigen::Vector3d(hand.capsules[distal].length_m, 0, 0)).z() - radius_m;
+  out.wrist_rise_m = world.X_GH().translation().z() - wrist_z;
+  out.proxy_tip_depth_m = top_m - proxy_tip_low_m;
+  out.shortfall_m = (top_m - tracked_tip_low_m) - out.proxy_tip_depth_m;
+  return out;
+}
+
+TEST(ProxyHand, AFingerAHeavyBlockStopsPullsTheWristBackByItsShare) {
+  const FingerPull half = pull_of_a_flexed_index(1.0);
+  const FingerPull none = pull_of_a_flexed_index(0.0);
+  std::printf("finger pull: r = 1: wrist up %.2f mm for a %.2f mm shortfall (tip %.2f mm in); "
+              "r = 0: wrist up %.2f mm for %.2f mm\n",
+              half.wrist_rise_m * 1e3, half.shortfall_m * 1e3, half.proxy_tip_depth_m * 1e3,
+              none.wrist_rise_m * 1e3, none.shortfall_m * 1e3);
+  EXPECT_GT(none.shortfall_m, 6e-3) << "the block stops the proxy's fingertip";
+  EXPECT_GT(half.shortfall_m, 6e-3);
+  EXPECT_NEAR(none.wrist_rise_m, 0.0, 1e-5);
+  // r / (1 + r) of the shortfall (to within the tracked and the proxy's fingertips' different
+  // tilts: the pull is measured at the contact point, not the lowest point)
+  EXPECT_NEAR(half.wrist_rise_m, 0.5 * half.shortfall_m, 0.15 * half.shortfall_m);
+  EXPECT_GT(half.wrist_rise_m, 3e-3);
+  EXPECT_LT(half.proxy_tip_depth_m, 1e-3) << "the fingertip stays on the block's top";
+  EXPECT_LT(half.block_sink_m, 5e-4) << "the finger presses it at most with the grip force";
+  EXPECT_LT(none.block_sink_m, 5e-4);
 }
 
 }  // namespace
