@@ -5,9 +5,10 @@
 // hands by Borst & Indugula 2005 and Jacobs & Froehlich 2011): the proxy goes where the tracked
 // hand goes as far as the world lets it, and each substep
 //
-//   1. heads for the tracked pose at bounded speed (step_goal, advance): the wrist at
-//      max_speed_mps / max_spin_radps, or push_speed_mps while a link pushes a free object, so
-//      no hand motion imparts more than about push_speed_mps to an object it pushes;
+//   1. heads for the tracked pose (moved by the fingers' pull, World::finger_pull_G) at bounded
+//      speed (step_goal, advance): the wrist at max_speed_mps / max_spin_radps, or
+//      push_speed_mps while a link pushes a free object, so no hand motion imparts more than
+//      about push_speed_mps to an object it pushes;
 //   2. after the narrowphase at that tentative pose, holds each finger back (constrain) where
 //      its own joints would take a link deeper than
 //        static_depth_m into a static object, or

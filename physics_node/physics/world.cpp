@@ -205,10 +205,11 @@ Eigen::Vector3d World::finger_pull_G(int hand) const {
   const HandSim& sim = hands_[static_cast<std::size_t>(hand)];
   const HandState& hs = hand_state(hand);
   const double ratio = scene_.proxy.finger_pull_ratio;
-  if (!sim.proxy || !hs.active || ratio <= 0.0) return Eigen::Vector3d::Zero();
-  // Each finger link's deepest shortfall on a heavy loose object this hand does not hold: how
-  // much farther into it the tracked link goes than the proxy's, along the contact normal (a
-  // control's joint holds it, and its gestures grip where they aim)
+  // (a lost glove's hand stays where it was: no pull on its last, stale shape)
+  if (!sim.proxy || !hs.active || !hs.to.tracking || ratio <= 0.0) return Eigen::Vector3d::Zero();
+  // Each finger link's deepest shortfall on a heavy loose object (no hand holds it; not a
+  // control: its joint holds it, and its gestures grip where they aim): how much farther into
+  // it the tracked link goes than the proxy's, along the contact normal
   const int link_base = object_count_ + hand * kLinkCount;
   std::array<double, kLinkCount> short_m{};
   std::array<Eigen::Vector3d, kLinkCount> n_G{};
@@ -217,7 +218,7 @@ Eigen::Vector3d World::finger_pull_G(int hand) const {
     if (c.body_a >= object_count_ || c.body_b < link_base || c.body_b >= link_base + kLinkCount)
       continue;
     const auto o = static_cast<std::size_t>(c.body_a);
-    if ((state_.bodies[o].holders & sim.holder_bit) != 0 || scene_.objects[o].control >= 0) continue;
+    if (state_.bodies[o].holders != 0 || scene_.objects[o].control >= 0) continue;
     // what a finger cannot push along holds it back: an object weighing at least the grip force
     // (at one standard g, as the grip's depth limit); a lighter one is pushed ahead of it
     constexpr double kStandardGravity_mps2 = 9.80665;
@@ -302,6 +303,7 @@ void World::reset_objects(const WorldState& saved) {
     }
     hs.pushing = false;
     hs.fingers_on_held = 0;
+    hs.finger_pull_G.setZero();  // (what pulled it is elsewhere now)
     hands_[h].proxy_prev_links_valid = false;
   }
   state_.bodies = saved.bodies;

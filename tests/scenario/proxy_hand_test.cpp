@@ -301,7 +301,8 @@ TEST(ProxyHand, AHeldGripPressesAsHardOnEachSide) {
 // console, the wrist held still above it. The block stops the proxy's fingertip; the tracked one
 // goes on. With finger_pull_ratio r the wrist rises by r / (1 + r) of the fingertip's shortfall
 // (the finger's spring and the wrist's balance), so for r = 1 half of it; for r = 0 the wrist
-// stays on the tracked one. The block is not pushed into the console.
+// stays on the tracked one. The block is not pushed into the console. A 200 g block (lighter
+// than the grip force: a finger pushes such a thing along) does not pull at all.
 struct FingerPull {
   double wrist_rise_m = 0.0;  // the proxy's wrist above the tracked one
   double shortfall_m = 0.0;   // the tracked fingertip's depth in the block less the proxy's
@@ -309,7 +310,7 @@ struct FingerPull {
   double proxy_tip_depth_m = 0.0;
 };
 
-FingerPull pull_of_a_flexed_index(double ratio) {
+FingerPull pull_of_a_flexed_index(double ratio, double block_kg = 5.0) {
   constexpr double kBlockTop_m = kConsoleTop_m + 0.04;
   constexpr double kIndexFlex_rad = 50.0 * M_PI / 180.0;
   constexpr double kInto_m = 0.01;
@@ -335,7 +336,7 @@ FingerPull pull_of_a_flexed_index(double ratio) {
   flexed.X_GH.translation().z() = wrist_z;
   const Eigen::Vector3d tip_at = tip_G(flexed);
   scene.objects.push_back(test::dynamic_object("block", Shape::box({0.03, 0.03, 0.04}),
-                                               5.0, at(tip_at.x(), tip_at.y(), kConsoleTop_m + 0.02),
+                                               block_kg, at(tip_at.x(), tip_at.y(), kConsoleTop_m + 0.02),
                                                test::material(5.0e4, 0.8, 0.7, 0.9)));
   World world(std::move(scene));
   const int block = world.scene().find_object("block");
@@ -365,6 +366,7 @@ FingerPull pull_of_a_flexed_index(double ratio) {
 TEST(ProxyHand, AFingerAHeavyBlockStopsPullsTheWristBackByItsShare) {
   const FingerPull half = pull_of_a_flexed_index(1.0);
   const FingerPull none = pull_of_a_flexed_index(0.0);
+  const FingerPull light = pull_of_a_flexed_index(1.0, 0.2);
   std::printf("finger pull: r = 1: wrist up %.2f mm for a %.2f mm shortfall (tip %.2f mm in); "
               "r = 0: wrist up %.2f mm for %.2f mm\n",
               half.wrist_rise_m * 1e3, half.shortfall_m * 1e3, half.proxy_tip_depth_m * 1e3,
@@ -379,6 +381,8 @@ TEST(ProxyHand, AFingerAHeavyBlockStopsPullsTheWristBackByItsShare) {
   EXPECT_LT(half.proxy_tip_depth_m, 1e-3) << "the fingertip stays on the block's top";
   EXPECT_LT(half.block_sink_m, 5e-4) << "the finger presses it at most with the grip force";
   EXPECT_LT(none.block_sink_m, 5e-4);
+  EXPECT_NEAR(light.wrist_rise_m, 0.0, 1e-5) << "a light block is pushed, it does not pull";
+  EXPECT_GT(light.shortfall_m, 6e-3);
 }
 
 }  // namespace

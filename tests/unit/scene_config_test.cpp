@@ -574,6 +574,8 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
       {"proxy_push_faster_than_max", "contact: {slip_speed_mps: 0.002, max_substeps: 16}",
        "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {max_speed_mps: 1, push_speed_mps: 2}", "proxy:",
        "proxy.push_speed_mps", "must not exceed max_speed_mps 1"},
+      {"proxy_finger_pull_negative", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {finger_pull_ratio: -1}",
+       "proxy:", "proxy.finger_pull_ratio", "must be in [0, 100]"},
       {"proxy_grip_force_zero", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {grip_force_N: 0}",
        "proxy:", "proxy.grip_force_N", "must be positive"},
       {"proxy_unknown_key", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {speed: 1}", "proxy:",

@@ -240,6 +240,7 @@ TEST(WorldState, HashSeesEveryPart) {
   EXPECT_TRUE(changed([](WorldState& s) { s.hands[0].to.q_rad[5] = 0.1; }));
   EXPECT_TRUE(changed([](WorldState& s) { s.hands[0].from.tracking = false; }));
   EXPECT_TRUE(changed([](WorldState& s) { s.hands[0].X_GL[3].translation().y() = 0.5; }));
+  EXPECT_TRUE(changed([](WorldState& s) { s.hands[0].finger_pull_G.x() = 1e-3; }));
   EXPECT_TRUE(changed([&](WorldState& s) { s.hands[0].grasp[cockpit.cup].released_at_ns = 0; }));
   EXPECT_TRUE(
       changed([&](WorldState& s) { s.hands[0].grasp[cockpit.cup].history[1].translation().z() = 1; }));
@@ -516,6 +517,9 @@ TEST(WorldCheckpoint, DamagedForeignOrOutOfSceneCheckpointsAreRefusedWithWhy) {
                 .find("ring"),
             std::string::npos);
   EXPECT_NE(refusal(with([](WorldState& s) { s.bodies.pop_back(); }), fresh).find("another scene"),
+            std::string::npos);
+  EXPECT_NE(refusal(with([](WorldState& s) { s.hands[0].finger_pull_G.z() = 0.5; }), fresh)
+                .find("finger pull"),
             std::string::npos);
   const int floor = cockpit.scene.find_object("floor");
   ASSERT_GE(floor, 0);
