@@ -230,6 +230,18 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
       row.x_m = body.X_GO.translation().x();
       row.y_m = body.X_GO.translation().y();
       row.z_m = z_m;
+      for (int h = 0; h < static_cast<int>(world.scene().hands.size()); ++h) {
+        for (int l = 0; l < hand::kLinkCount; ++l) {
+          const double lag_mm = 1e3 * (world.X_GL(h)[static_cast<std::size_t>(l)].translation() -
+                                       world.tracked_X_GL(h)[static_cast<std::size_t>(l)].translation())
+                                          .norm();
+          if (lag_mm <= row.lag_mm) continue;
+          row.lag_mm = lag_mm;
+          row.lag_link = "h" + std::to_string(h) + " " +
+                         std::string(hand::link_name(static_cast<hand::Link>(l)));
+        }
+      }
+      if (row.lag_mm < 0.005) row.lag_link.clear();  // (none off, to the column's 0.01 mm)
       std::sort(touching_links.begin(), touching_links.end());
       touching_links.erase(std::unique(touching_links.begin(), touching_links.end()), touching_links.end());
       for (const int l : touching_links) {

@@ -71,6 +71,10 @@ struct TimelineRow {
   double x_m = 0.0;  // the object's position (world frame)
   double y_m = 0.0;
   double z_m = 0.0;
+  // the proxy's link farthest from its tracked one, any hand ("h0 thumb_distal"; empty when
+  // none is off), and by how much (mm): what the world holds back
+  double lag_mm = 0.0;
+  std::string lag_link;
   std::string touching;  // the hand links touching the target ("h0 thumb_distal; h1 palm")
   std::string events;  // the target's grasp events since the last row ("grasp h0; release h1: why")
 };
