@@ -231,10 +231,12 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
       row.y_m = body.X_GO.translation().y();
       row.z_m = z_m;
       for (int h = 0; h < static_cast<int>(world.scene().hands.size()); ++h) {
+        const auto& proxy_X_GL = world.X_GL(h);
+        const auto& tracked_X_GL = world.tracked_X_GL(h);
         for (int l = 0; l < hand::kLinkCount; ++l) {
-          const double lag_mm = 1e3 * (world.X_GL(h)[static_cast<std::size_t>(l)].translation() -
-                                       world.tracked_X_GL(h)[static_cast<std::size_t>(l)].translation())
-                                          .norm();
+          const auto k = static_cast<std::size_t>(l);
+          const double lag_mm =
+              1e3 * (proxy_X_GL[k].translation() - tracked_X_GL[k].translation()).norm();
           if (lag_mm <= row.lag_mm) continue;
           row.lag_mm = lag_mm;
           row.lag_link = "h" + std::to_string(h) + " " +

@@ -36,10 +36,15 @@ ProxyHand::ProxyHand(const Scene& scene, int hand)
       link_base_(object_count_ + hand * kLinkCount) {
   depth_limit_m_.resize(scene.objects.size());
   dynamic_.resize(scene.objects.size());
+  holds_fingers_back_.resize(scene.objects.size());
   grip_balance_.assign(scene.objects.size(), GripBalance{});
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const ObjectSpec& o = scene.objects[i];
     dynamic_[i] = o.dynamic ? 1 : 0;
+    holds_fingers_back_[i] = o.dynamic && o.control < 0 &&
+                                     o.mass_kg * kStandardGravity_mps2 >= params_.grip_force_N
+                                 ? 1
+                                 : 0;
     // a light object is pressed no harder than a few times its weight (at one standard g, so a
     // weightless scene grips alike): a finger that arrives first nudges a 60 g bar, not flings it.
     // A control's joint holds it: a finger presses a 5 g button cap with what its spring asks.

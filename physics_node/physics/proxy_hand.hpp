@@ -127,6 +127,13 @@ class ProxyHand {
                                   std::vector<ContactPoint>& hand_static,
                                   std::vector<Eigen::Vector3d>& blocking_out_G);
 
+  // Whether object `object` holds back a finger that meets it, so that the finger pulls the
+  // wrist (ProxyParams::finger_pull_ratio, World::finger_pull_G): a loose dynamic object
+  // weighing at least grip_force_N (a lighter one is pushed along; a control's joint holds it).
+  bool holds_fingers_back(int object) const {
+    return holds_fingers_back_[static_cast<std::size_t>(object)] != 0;
+  }
+
   // How deep a link may go into object `object` (m): static_depth_m for a static one, d_grip
   // for a dynamic one.
   double depth_limit_m(int object) const { return depth_limit_m_[static_cast<std::size_t>(object)]; }
@@ -206,6 +213,7 @@ class ProxyHand {
   std::vector<double> depth_limit_m_;                        // per object
   const std::vector<uint32_t>* resting_links_ = nullptr;     // per object
   std::vector<uint8_t> dynamic_;                             // per object
+  std::vector<uint8_t> holds_fingers_back_;                  // per object
   struct GripBalance {  // depth limit scales of a held object's grip, this substep
     double opposing_scale = 1.0;  // thumb and palm
     double finger_scale = 1.0;    // index to little

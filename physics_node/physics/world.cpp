@@ -207,9 +207,9 @@ Eigen::Vector3d World::finger_pull_G(int hand) const {
   const double ratio = scene_.proxy.finger_pull_ratio;
   // (a lost glove's hand stays where it was: no pull on its last, stale shape)
   if (!sim.proxy || !hs.active || !hs.to.tracking || ratio <= 0.0) return Eigen::Vector3d::Zero();
-  // Each finger link's deepest shortfall on a heavy loose object (no hand holds it; not a
-  // control: its joint holds it, and its gestures grip where they aim): how much farther into
-  // it the tracked link goes than the proxy's, along the contact normal
+  // Each finger link's deepest shortfall on an object that holds it back and no hand holds
+  // (ProxyHand::holds_fingers_back): how much farther into it the tracked link goes than the
+  // proxy's, along the contact normal
   const int link_base = object_count_ + hand * kLinkCount;
   std::array<double, kLinkCount> short_m{};
   std::array<Eigen::Vector3d, kLinkCount> n_G{};
@@ -217,12 +217,9 @@ Eigen::Vector3d World::finger_pull_G(int hand) const {
   for (const ContactPoint& c : sim.contacts) {
     if (c.body_a >= object_count_ || c.body_b < link_base || c.body_b >= link_base + kLinkCount)
       continue;
-    const auto o = static_cast<std::size_t>(c.body_a);
-    if (state_.bodies[o].holders != 0 || scene_.objects[o].control >= 0) continue;
-    // what a finger cannot push along holds it back: an object weighing at least the grip force
-    // (at one standard g, as the grip's depth limit); a lighter one is pushed ahead of it
-    constexpr double kStandardGravity_mps2 = 9.80665;
-    if (scene_.objects[o].mass_kg * kStandardGravity_mps2 < scene_.proxy.grip_force_N) continue;
+    if (state_.bodies[static_cast<std::size_t>(c.body_a)].holders != 0 ||
+        !sim.proxy->holds_fingers_back(c.body_a))
+      continue;
     const auto l = static_cast<std::size_t>(c.body_b - link_base);
     Finger finger;
     if (!finger_of(static_cast<Link>(l), finger)) continue;  // the palm is the wrist's own
