@@ -247,15 +247,18 @@ int run(int argc, char** argv) {
     std::filesystem::create_directories(timeline_dir);
     for (std::size_t r = 0; r < compared; ++r) {
       std::string csv =
-          "t_s,links,residual_force_N,residual_torque_Nm,held,verdict,x_m,y_m,z_m,lag_mm,lag_link,"
-          "touching,events\n";
+          "t_s,target,links,residual_force_N,residual_torque_Nm,held,verdict,opposition_deg,"
+          "x_m,y_m,z_m,lag_mm,lag_link,touching,events\n";
       run_trial(source_dir, objects[timeline_of], rules[r], variation_of(timeline_of, timeline_index),
                 [&](const TimelineRow& row) {
                   char line[200];
-                  std::snprintf(line, sizeof line, "%.3f,%d,%.4f,%.5f,%d,%s,%.5f,%.5f,%.5f,%.2f,", row.t_s,
+                  std::snprintf(line, sizeof line, "%.3f,", row.t_s);
+                  csv += line;
+                  csv += row.target + ",";
+                  std::snprintf(line, sizeof line, "%d,%.4f,%.5f,%d,%s,%.1f,%.5f,%.5f,%.5f,%.2f,",
                                 row.links, row.residual_force_N, row.residual_torque_Nm,
-                                row.held ? 1 : 0, row.verdict.c_str(), row.x_m, row.y_m, row.z_m,
-                                row.lag_mm);
+                                row.held ? 1 : 0, row.verdict.c_str(), row.opposition_deg, row.x_m,
+                                row.y_m, row.z_m, row.lag_mm);
                   csv += line;
                   csv += "\"" + row.lag_link + "\",";
                   csv += "\"" + row.touching + "\",\"" + row.events + "\"\n";

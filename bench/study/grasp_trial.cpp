@@ -75,6 +75,7 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
     targets.push_back(o);
   }
   const int object = targets.front();
+  int focus = object;  // the timeline's target (a control case has several)
   std::vector<char> is_target(scene.objects.size(), 0);
   for (int t : targets) is_target[static_cast<std::size_t>(t)] = 1;
 
@@ -176,6 +177,18 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
     bool hand_touch = false, object_touch = false;
     first_hand.clear();
     touching_links.clear();
+    // the target the timeline follows: a held one, else one a hand touches, else the last one
+    {
+      int touched = -1;
+      for (const auto& a : world.contacts())
+        if (a.contact.body_a < static_cast<int>(object_count) &&
+            is_target[static_cast<std::size_t>(a.contact.body_a)] &&
+            a.contact.body_b >= static_cast<int>(object_count) && touched < 0)
+          touched = a.contact.body_a;
+      if (touched >= 0) focus = touched;
+      for (const int t : targets)
+        if (world.bodies()[static_cast<std::size_t>(t)].held()) focus = t;
+    }
     for (const auto& a : world.contacts()) {
       const auto& c = a.contact;
       // a target is always body_a against a hand link (the objects come first)
@@ -190,8 +203,8 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
         hand_touch = true;
         hand_deepest_m = std::max(hand_deepest_m, c.depth_m);
         const int body_in_hands = other - static_cast<int>(object_count);
-        if (target == object) touching_links.push_back(body_in_hands);
-        if (target == object && body_in_hands < hand::kLinkCount) {  // the first hand's link
+        if (target == focus) touching_links.push_back(body_in_hands);
+        if (target == focus && body_in_hands < hand::kLinkCount) {  // the first hand's link
           physics::HandContact hc;
           hc.link = static_cast<physics::Link>(body_in_hands);
           hc.p_G = c.p_G;
@@ -216,20 +229,24 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
       ++object_pen_steps;
     }
     if (timeline && t_ns % kTimelineEvery_ns == 0) {
-      const auto& o = world.scene().objects[object];
+      const auto& o = world.scene().objects[static_cast<std::size_t>(focus)];
+      const physics::BodyState& seen = world.bodies()[static_cast<std::size_t>(focus)];
       const physics::GraspCheck check = physics::evaluate_grasp(
-          first_hand.data(), first_hand.size(), body.X_GO.translation(), o.mass_kg,
-          world.scene().gravity_mps2, world.scene().grasp, body.held());
+          first_hand.data(), first_hand.size(), seen.X_GO.translation(), o.mass_kg,
+          world.scene().gravity_mps2, world.scene().grasp, seen.held(),
+          world.grasp_joint_of(focus));
       TimelineRow row;
       row.t_s = static_cast<double>(t_ns) * 1e-9;
+      row.target = o.name;
       row.links = check.links_in_contact;
       row.residual_force_N = check.residual_force_N;
       row.residual_torque_Nm = check.residual_torque_Nm;
-      row.held = body.held();
+      row.held = seen.held();
       row.verdict = physics::grasp_reason_name(check.verdict);
-      row.x_m = body.X_GO.translation().x();
-      row.y_m = body.X_GO.translation().y();
-      row.z_m = z_m;
+      row.opposition_deg = check.best_opposition_deg;
+      row.x_m = seen.X_GO.translation().x();
+      row.y_m = seen.X_GO.translation().y();
+      row.z_m = seen.X_GO.translation().z();
       for (int h = 0; h < static_cast<int>(world.scene().hands.size()); ++h) {
         const auto& proxy_X_GL = world.X_GL(h);
         const auto& tracked_X_GL = world.tracked_X_GL(h);

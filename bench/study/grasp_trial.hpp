@@ -63,11 +63,14 @@ struct TrialResult {
 // One row of a trial's timeline (every 10 ms): what the grasp rule saw of the first hand.
 struct TimelineRow {
   double t_s = 0.0;
+  std::string target;  // the object or control part seen: a held one, else one a hand touches
   int links = 0;  // links of the first hand touching the object
   double residual_force_N = 0.0;
   double residual_torque_Nm = 0.0;
   bool held = false;
   std::string verdict;
+  // the widest angle between the thumb's (or the palm's) contact normal and a finger's (deg)
+  double opposition_deg = 0.0;
   double x_m = 0.0;  // the object's position (world frame)
   double y_m = 0.0;
   double z_m = 0.0;

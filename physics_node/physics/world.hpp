@@ -84,6 +84,8 @@ class World {
   void restore(const WorldState& state);
 
   const Scene& scene() const { return scene_; }
+  // A control's joint as the grasp test sees it (nullptr: a free object).
+  const GraspJoint* grasp_joint_of(int object) const { return controls_.grasp_joint_of(object); }
   int64_t time_ns() const { return state_.time_ns; }
   uint64_t step_count() const { return state_.steps; }
   int substeps() const { return state_.substeps; }  // of the last step (chosen every step)
