@@ -41,10 +41,11 @@ ProxyHand::ProxyHand(const Scene& scene, int hand)
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const ObjectSpec& o = scene.objects[i];
     dynamic_[i] = o.dynamic ? 1 : 0;
-    holds_fingers_back_[i] = o.dynamic && o.control < 0 &&
-                                     o.mass_kg * kStandardGravity_mps2 >= params_.grip_force_N
-                                 ? 1
-                                 : 0;
+    const bool lever =
+        o.control >= 0 &&
+        scene.controls[static_cast<std::size_t>(o.control)].kind == ControlKind::kLever;
+    const bool heavy = o.control < 0 && o.mass_kg * kStandardGravity_mps2 >= params_.grip_force_N;
+    holds_fingers_back_[i] = o.dynamic && (lever || heavy) ? 1 : 0;
     // a light object is pressed no harder than a few times its weight (at one standard g, so a
     // weightless scene grips alike): a finger that arrives first nudges a 60 g bar, not flings it.
     // A control's joint holds it: a finger presses a 5 g button cap with what its spring asks.

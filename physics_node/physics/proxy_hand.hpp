@@ -129,7 +129,10 @@ class ProxyHand {
 
   // Whether object `object` holds back a finger that meets it, so that the finger pulls the
   // wrist (ProxyParams::finger_pull_ratio, World::finger_pull_G): a loose dynamic object
-  // weighing at least grip_force_N (a lighter one is pushed along; a control's joint holds it).
+  // weighing at least grip_force_N (a lighter one is pushed along), or a lever's handle (its
+  // joint holds it, and a hand closes round it as round a bar). Not a knob, which fingertips
+  // pinch on their own, nor a button or switch, which a finger presses against its spring: held
+  // back, the hand would not press it.
   bool holds_fingers_back(int object) const {
     return holds_fingers_back_[static_cast<std::size_t>(object)] != 0;
   }

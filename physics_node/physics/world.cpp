@@ -207,6 +207,12 @@ Eigen::Vector3d World::finger_pull_G(int hand) const {
   const double ratio = scene_.proxy.finger_pull_ratio;
   // (a lost glove's hand stays where it was: no pull on its last, stale shape)
   if (!sim.proxy || !hs.active || !hs.to.tracking || ratio <= 0.0) return Eigen::Vector3d::Zero();
+  // A hand that holds something keeps the pull it grasped with, turning with the wrist: the grip
+  // it centred stays centred. Dropped at the grasp, it would shift the hand and what it holds by
+  // up to kMaxFingerPull_m in one step (a lever a few degrees).
+  for (int i = 0; i < object_count_; ++i)
+    if ((state_.bodies[static_cast<std::size_t>(i)].holders & sim.holder_bit) != 0)
+      return hs.to.X_GH.linear() * hs.from.X_GH.linear().transpose() * hs.finger_pull_G;
   // Each finger link's deepest shortfall on an object that holds it back and no hand holds
   // (ProxyHand::holds_fingers_back): how much farther into it the tracked link goes than the
   // proxy's, along the contact normal

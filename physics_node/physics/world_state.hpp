@@ -42,9 +42,10 @@ struct HandState {
   // the proxy slides along a panel it touches (a god-object) instead of going in and being
   // shifted back out every step.
   std::vector<Eigen::Vector3d> blocking_out_G;
-  // Where the fingers held back by loose objects at the end of the last step pull the wrist,
-  // from the tracked one (ProxyParams::finger_pull_ratio): the next step's wrist heads for the
-  // tracked pose moved by this.
+  // Where the fingers held back by heavy loose objects or levers at the end of the last step
+  // pull the wrist, from the tracked one (ProxyParams::finger_pull_ratio): the next step's wrist
+  // heads for the tracked pose moved by this. Kept (turning with the wrist) while the hand holds
+  // an object.
   Eigen::Vector3d finger_pull_G = Eigen::Vector3d::Zero();
   std::vector<GraspHold> grasp;  // per object: this hand's grasp of it
 };

@@ -8,7 +8,9 @@
 //   - the wrist approaches a far tracked pose no faster than max_speed_mps;
 //   - a held grip presses as hard on each side (the thumb's and the fingers');
 //   - a finger that a heavy block stops short of the tracked one pulls the wrist back by the
-//     share finger_pull_ratio gives (half for 1), and not at all for 0.
+//     share finger_pull_ratio gives (half for 1), and not at all for 0; of the default cockpit's
+//     objects, the heavy bar and the levers' handles pull, knobs, buttons and light objects do
+//     not; a hand that holds something keeps its pull, turned with the wrist.
 // Geometry is checked analytically: each capsule's lowest end point and the palm box's corners
 // against the console's top face.
 
@@ -22,6 +24,7 @@
 
 #include "common/pose.hpp"
 #include "hand/config/hand_yaml.hpp"
+#include "physics_node/config/scene_config.hpp"
 #include "physics_node/physics/proxy_hand.hpp"
 #include "physics_node/physics/world.hpp"
 #include "tests/support/scene_builder.hpp"
@@ -383,6 +386,60 @@ TEST(ProxyHand, AFingerAHeavyBlockStopsPullsTheWristBackByItsShare) {
   EXPECT_LT(none.block_sink_m, 5e-4);
   EXPECT_NEAR(light.wrist_rise_m, 0.0, 1e-5) << "a light block is pushed, it does not pull";
   EXPECT_GT(light.shortfall_m, 6e-3);
+}
+
+TEST(ProxyHand, HeavyObjectsAndLeverHandlesHoldFingersBackKnobsAndButtonsDoNot) {
+  const Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
+  const ProxyHand proxy(scene);
+  const auto part = [&](const char* control) {
+    const int c = scene.find_control(control);
+    EXPECT_GE(c, 0) << control;
+    return scene.controls[static_cast<std::size_t>(c)].body;
+  };
+  EXPECT_TRUE(proxy.holds_fingers_back(scene.find_object("heavy_bar")));  // 2.5 kg
+  EXPECT_TRUE(proxy.holds_fingers_back(part("throttle")));
+  EXPECT_TRUE(proxy.holds_fingers_back(part("flaps")));
+  EXPECT_FALSE(proxy.holds_fingers_back(scene.find_object("cup")));  // lighter than the grip force
+  EXPECT_FALSE(proxy.holds_fingers_back(part("nav_mode")));
+  EXPECT_FALSE(proxy.holds_fingers_back(part("heading_bug")));
+  EXPECT_FALSE(proxy.holds_fingers_back(part("master_caution")));
+  EXPECT_FALSE(proxy.holds_fingers_back(scene.find_object("left_pedestal")));  // static
+}
+
+// A hand that holds an object keeps the pull it had, turned with the wrist (the grip it centred
+// stays centred); once it holds nothing, the pull is found afresh from its contacts (none here).
+TEST(ProxyHand, AHoldingHandKeepsItsFingerPullTurnedWithTheWrist) {
+  Scene scene = console_scene(true);
+  scene.objects.push_back(test::dynamic_object("bar", Shape::box({0.3, 0.03, 0.03}), 2.5,
+                                               at(0.4, 0.0, 0.715),
+                                               test::material(5.0e4, 0.8, 0.7, 0.9)));
+  World world(std::move(scene));
+  const int bar = world.scene().find_object("bar");
+  const HandModel& hand = world.scene().hands[0];
+  const HandInput in = hand_at(hand, {0.2, 0.0, 1.2});
+  world.set_hand_input(in);
+  world.step();
+  const Eigen::Vector3d pull_G(0.004, -0.003, 0.002);
+  const auto turned = [&](const Eigen::Vector3d& v) {
+    return Eigen::Vector3d(Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ()) * v);
+  };
+  HandInput turning = in;
+  turning.X_GH.linear() = Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  for (const bool holds : {true, false}) {
+    World w(world.scene());
+    WorldState state = world.state();
+    state.hands[0].finger_pull_G = pull_G;
+    state.bodies[static_cast<std::size_t>(bar)].holders = holds ? 1 : 0;
+    w.restore(state);
+    w.set_hand_input(turning);  // the wrist turns 0.01 rad about z in this step
+    w.step();
+    const Eigen::Vector3d after_G = w.state().hands[0].finger_pull_G;
+    if (holds) {
+      EXPECT_LT((after_G - turned(pull_G)).norm(), 1e-12) << after_G.transpose();
+    } else {
+      EXPECT_EQ(after_G, Eigen::Vector3d::Zero()) << "no finger touches the bar";
+    }
+  }
 }
 
 }  // namespace
