@@ -41,9 +41,11 @@ ProxyHand::ProxyHand(const Scene& scene, int hand)
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const ObjectSpec& o = scene.objects[i];
     dynamic_[i] = o.dynamic ? 1 : 0;
-    const bool lever =
-        o.control >= 0 &&
-        scene.controls[static_cast<std::size_t>(o.control)].kind == ControlKind::kLever;
+    // (a lever that turns about a pivot; the gear's, which slides, is a knob a fingertip pushes)
+    const ControlSpec* control =
+        o.control >= 0 ? &scene.controls[static_cast<std::size_t>(o.control)] : nullptr;
+    const bool lever = control != nullptr && control->kind == ControlKind::kLever &&
+                       control->joint == JointKind::kRevolute;
     const bool heavy = o.control < 0 && o.mass_kg * kStandardGravity_mps2 >= params_.grip_force_N;
     holds_fingers_back_[i] = o.dynamic && (lever || heavy) ? 1 : 0;
     // a light object is pressed no harder than a few times its weight (at one standard g, so a

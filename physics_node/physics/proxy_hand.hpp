@@ -129,10 +129,11 @@ class ProxyHand {
 
   // Whether object `object` holds back a finger that meets it, so that the finger pulls the
   // wrist (ProxyParams::finger_pull_ratio, World::finger_pull_G): a loose dynamic object
-  // weighing at least grip_force_N (a lighter one is pushed along), or a lever's handle (its
-  // joint holds it, and a hand closes round it as round a bar). Not a knob, which fingertips
-  // pinch on their own, nor a button or switch, which a finger presses against its spring: held
-  // back, the hand would not press it.
+  // weighing at least grip_force_N (a lighter one is pushed along), or the handle of a lever
+  // that turns about a pivot (its joint holds it, and a hand closes round it as round a bar).
+  // Not a knob, which fingertips pinch on their own, nor a button, a switch or a sliding lever's
+  // knob (the gear's), which one finger pushes: a push needs no centring, and the pressing
+  // gestures keep their events.
   bool holds_fingers_back(int object) const {
     return holds_fingers_back_[static_cast<std::size_t>(object)] != 0;
   }

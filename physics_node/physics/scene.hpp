@@ -177,8 +177,8 @@ struct ProxyParams {
   double grip_force_N = 8.0;       // a link goes into an object only as deep as this force needs,
   double grip_weight_ratio = 3.0;  // or this many times the object's weight (at 1 g), if less
   double static_depth_m = 2.0e-4;  // how deep a link may rest in a static object
-  // A finger link that a loose object weighing at least grip_force_N, or a lever's handle, holds
-  // back short of the tracked finger pulls the wrist away from the object (a lighter one is
+  // A finger link that a loose object weighing at least grip_force_N, or a pivoting lever's
+  // handle, holds back short of the tracked finger pulls the wrist away from the object (a lighter one is
   // pushed along): the fingers' coupling is this many times as stiff as the wrist's, so a finger
   // held back by u alone moves the wrist by u r / (1 + r) along the contact normal. A grip
   // closing round a heavy object or a handle centres on it (a thumb stopped by a bar draws the

@@ -9,8 +9,9 @@
 //   - a held grip presses as hard on each side (the thumb's and the fingers');
 //   - a finger that a heavy block stops short of the tracked one pulls the wrist back by the
 //     share finger_pull_ratio gives (half for 1), and not at all for 0; of the default cockpit's
-//     objects, the heavy bar and the levers' handles pull, knobs, buttons and light objects do
-//     not; a hand that holds something keeps its pull, turned with the wrist.
+//     objects, the heavy bar and the pivoting levers' handles pull, knobs, buttons, switches,
+//     the sliding gear lever and light objects do not; a hand that holds something keeps its
+//     pull, turned with the wrist.
 // Geometry is checked analytically: each capsule's lowest end point and the palm box's corners
 // against the console's top face.
 
@@ -403,6 +404,8 @@ TEST(ProxyHand, HeavyObjectsAndLeverHandlesHoldFingersBackKnobsAndButtonsDoNot) 
   EXPECT_FALSE(proxy.holds_fingers_back(part("nav_mode")));
   EXPECT_FALSE(proxy.holds_fingers_back(part("heading_bug")));
   EXPECT_FALSE(proxy.holds_fingers_back(part("master_caution")));
+  EXPECT_FALSE(proxy.holds_fingers_back(part("landing_lights")));
+  EXPECT_FALSE(proxy.holds_fingers_back(part("gear")));  // it slides: a fingertip pushes it
   EXPECT_FALSE(proxy.holds_fingers_back(scene.find_object("left_pedestal")));  // static
 }
 
