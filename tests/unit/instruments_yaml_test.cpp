@@ -28,7 +28,7 @@ TEST(InstrumentsYaml, TheBundledPanelDrawsTheDefaultAircraftsSystems) {
   EXPECT_EQ(spec.gauges.size(), 4u);
   EXPECT_EQ(spec.headings.size(), 1u);
   EXPECT_EQ(spec.lamps.size(), 14u);
-  EXPECT_EQ(spec.labels.size(), 24u);
+  EXPECT_EQ(spec.labels.size(), 26u);
   const systems::SystemsModel aircraft = load_systems_model(source_dir() + "/config/aircraft.yaml");
   std::set<std::string> names;
   for (const systems::Element& e : aircraft.elements) names.insert(e.name);

@@ -3,7 +3,7 @@
 // each image that holds it (the 5 x 7 panel font's rows a pixel each). Each lies on the panel's
 // face, clear of the other labels, of the instruments (dials, bezels, lamps and their
 // surrounds) and of what stands on it (config/cockpit.yaml: the controls' parts where they rest,
-// their annunciators). The controls the pilot works on the panel are named.
+// their annunciators). Every control on the panel has a label within 3 cm.
 
 #include <gtest/gtest.h>
 
@@ -163,11 +163,28 @@ TEST(PanelLabels, EveryLabelReadsAtTheDesignEyeAndClearsTheInstrumentsAndControl
   std::printf("%zu objects stand on the face:%s\n", on_the_face, names.c_str());
   EXPECT_EQ(on_the_face, 13u);
 
-  // the panel's controls are named
+  // every control on the panel is named: a label within 3 cm of where its part rests
+  const physics::Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
+  for (std::size_t k = 0; k < on_the_face; ++k) {
+    const FaceBox& part = others[k];
+    if (scene.find_control(part.what) < 0) continue;  // an annunciator
+    double nearest_m = 1e9;
+    std::string nearest;
+    for (const FaceBox& l : labels) {
+      const Eigen::Vector2d gap =
+          (l.lo - part.hi).cwiseMax(part.lo - l.hi).cwiseMax(Eigen::Vector2d::Zero());
+      if (gap.norm() < nearest_m) {
+        nearest_m = gap.norm();
+        nearest = l.what;
+      }
+    }
+    EXPECT_LE(nearest_m, 0.03) << part.what << ": the nearest label, " << nearest << ", is "
+                               << nearest_m * 1e3 << " mm off";
+  }
   std::set<std::string> texts;
   for (const render::LabelSpec& l : spec.labels) texts.insert(l.text);
-  for (const char* name : {"GEAR", "FLAPS", "LDG LT", "FUEL", "START", "CAUTION", "AVIONICS",
-                           "NAV", "HDG", "VOR", "GPS", "LOC", "APP"})
+  for (const char* name : {"LDG LT", "FUEL", "START", "CAUTION", "AVIONICS", "NAV", "HDG", "UP",
+                           "DN", "GEAR", "VOR", "GPS", "LOC", "APP"})
     EXPECT_TRUE(texts.count(name)) << name;
 }
 
