@@ -178,12 +178,12 @@ struct ProxyParams {
   double grip_weight_ratio = 3.0;  // or this many times the object's weight (at 1 g), if less
   double static_depth_m = 2.0e-4;  // how deep a link may rest in a static object
   // A finger link that a loose object weighing at least grip_force_N, or a pivoting lever's
-  // handle, holds back short of the tracked finger pulls the wrist away from the object (a lighter one is
-  // pushed along): the fingers' coupling is this many times as stiff as the wrist's, so a finger
-  // held back by u alone moves the wrist by u r / (1 + r) along the contact normal. A grip
-  // closing round a heavy object or a handle centres on it (a thumb stopped by a bar draws the
-  // fingers in onto its far side) instead of stopping short on one side; the hand keeps that
-  // pull while it holds. 0: the wrist ignores the fingers.
+  // handle, holds back short of the tracked finger pulls the wrist away from the object (a
+  // lighter one is pushed along): the fingers' coupling is this many times as stiff as the
+  // wrist's, so a finger held back by u alone moves the wrist by u r / (1 + r) along the contact
+  // normal. A grip closing round a heavy object or a handle centres on it (a thumb stopped by a
+  // bar draws the fingers in onto its far side) instead of stopping short on one side; the hand
+  // keeps that pull while it holds. 0: the wrist ignores the fingers.
   double finger_pull_ratio = 1.0;
 };
 
