@@ -177,15 +177,21 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
     bool hand_touch = false, object_touch = false;
     first_hand.clear();
     touching_links.clear();
-    // the target the timeline follows: a held one, else one a hand touches, else the last one
+    // the target the timeline follows: a held one, else the one it followed while the first
+    // hand still touches it, else one the first hand touches, else the last one
     {
       int touched = -1;
-      for (const auto& a : world.contacts())
-        if (a.contact.body_a < static_cast<int>(object_count) &&
-            is_target[static_cast<std::size_t>(a.contact.body_a)] &&
-            a.contact.body_b >= static_cast<int>(object_count) && touched < 0)
-          touched = a.contact.body_a;
-      if (touched >= 0) focus = touched;
+      bool still_touched = false;
+      for (const auto& a : world.contacts()) {
+        const int body = a.contact.body_a;
+        const int link = a.contact.body_b - static_cast<int>(object_count);
+        if (body >= static_cast<int>(object_count) || !is_target[static_cast<std::size_t>(body)] ||
+            link < 0 || link >= hand::kLinkCount)
+          continue;
+        if (touched < 0) touched = body;
+        still_touched = still_touched || body == focus;
+      }
+      if (touched >= 0 && !still_touched) focus = touched;
       for (const int t : targets)
         if (world.bodies()[static_cast<std::size_t>(t)].held()) focus = t;
     }
