@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -410,37 +411,44 @@ TEST(ProxyHand, HeavyObjectsAndLeverHandlesHoldFingersBackKnobsAndButtonsDoNot) 
 }
 
 // A hand that holds an object keeps the pull it had, turned with the wrist (the grip it centred
-// stays centred); once it holds nothing, the pull is found afresh from its contacts (none here).
+// stays centred); a hand that holds nothing, even while the other hand holds the bar, finds its
+// pull afresh from its own contacts (none here). Two hands, far apart above the console.
 TEST(ProxyHand, AHoldingHandKeepsItsFingerPullTurnedWithTheWrist) {
   Scene scene = console_scene(true);
+  scene.hands.push_back(hand::mirrored(scene.hands[0]));
   scene.objects.push_back(test::dynamic_object("bar", Shape::box({0.3, 0.03, 0.03}), 2.5,
                                                at(0.4, 0.0, 0.715),
                                                test::material(5.0e4, 0.8, 0.7, 0.9)));
   World world(std::move(scene));
   const int bar = world.scene().find_object("bar");
-  const HandModel& hand = world.scene().hands[0];
-  const HandInput in = hand_at(hand, {0.2, 0.0, 1.2});
-  world.set_hand_input(in);
+  const std::array<HandInput, 2> in = {hand_at(world.scene().hands[0], {0.2, -0.2, 1.2}),
+                                       hand_at(world.scene().hands[1], {0.2, 0.2, 1.2})};
+  for (int h = 0; h < 2; ++h) world.set_hand_input(in[static_cast<std::size_t>(h)], h);
   world.step();
   const Eigen::Vector3d pull_G(0.004, -0.003, 0.002);
-  const auto turned = [&](const Eigen::Vector3d& v) {
-    return Eigen::Vector3d(Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ()) * v);
-  };
-  HandInput turning = in;
-  turning.X_GH.linear() = Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  for (const bool holds : {true, false}) {
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.01, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  // the bar held by: no hand, hand 0, hand 1, both (BodyState::holders, a bit per hand)
+  for (const uint8_t holders : {0, 1, 2, 3}) {
     World w(world.scene());
     WorldState state = world.state();
-    state.hands[0].finger_pull_G = pull_G;
-    state.bodies[static_cast<std::size_t>(bar)].holders = holds ? 1 : 0;
+    for (HandState& hs : state.hands) hs.finger_pull_G = pull_G;
+    state.bodies[static_cast<std::size_t>(bar)].holders = holders;
     w.restore(state);
-    w.set_hand_input(turning);  // the wrist turns 0.01 rad about z in this step
+    for (int h = 0; h < 2; ++h) {  // each wrist turns 0.01 rad about z in this step
+      HandInput turning = in[static_cast<std::size_t>(h)];
+      turning.X_GH.linear() = turn;
+      w.set_hand_input(turning, h);
+    }
     w.step();
-    const Eigen::Vector3d after_G = w.state().hands[0].finger_pull_G;
-    if (holds) {
-      EXPECT_LT((after_G - turned(pull_G)).norm(), 1e-12) << after_G.transpose();
-    } else {
-      EXPECT_EQ(after_G, Eigen::Vector3d::Zero()) << "no finger touches the bar";
+    for (int h = 0; h < 2; ++h) {
+      const Eigen::Vector3d after_G = w.state().hands[static_cast<std::size_t>(h)].finger_pull_G;
+      if ((holders >> h & 1) != 0) {
+        EXPECT_LT((after_G - turn * pull_G).norm(), 1e-12)
+            << "hand " << h << " holds (holders " << int{holders} << "): " << after_G.transpose();
+      } else {
+        EXPECT_EQ(after_G, Eigen::Vector3d::Zero())
+            << "hand " << h << " holds nothing (holders " << int{holders} << ")";
+      }
     }
   }
 }
