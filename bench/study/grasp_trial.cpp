@@ -179,7 +179,7 @@ TrialResult run_trial(const std::string& source_dir, const StudyObject& study_ob
     touching_links.clear();
     // the target the timeline follows: a held one, else the one it followed while the first
     // hand still touches it, else one the first hand touches, else the last one
-    {
+    if (timeline) {
       int touched = -1;
       bool still_touched = false;
       for (const auto& a : world.contacts()) {

@@ -21,6 +21,7 @@
 #include "image_generator/node/instruments_yaml.hpp"
 #include "image_generator/render/camera.hpp"
 #include "physics_node/config/scene_config.hpp"
+#include "physics_node/physics/broadphase.hpp"
 #include "physics_node/physics/world.hpp"
 
 namespace vcockpit {
@@ -64,36 +65,10 @@ std::vector<FaceBox> things_on_the_face(const render::PanelFace& face) {
   const Eigen::Isometry3d X_FG = face.X_GF.inverse();
   std::vector<FaceBox> out;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    const physics::Shape& s = scene.objects[i].shape;
-    Eigen::Vector3d half = Eigen::Vector3d::Zero();
-    switch (s.kind) {
-      case physics::ShapeKind::kBox: half = 0.5 * s.box_size_m; break;
-      case physics::ShapeKind::kSphere: half.setConstant(s.radius_m); break;
-      case physics::ShapeKind::kCylinder: half = {s.radius_m, s.radius_m, 0.5 * s.length_m}; break;
-      case physics::ShapeKind::kCapsule:
-        half = {s.radius_m, s.radius_m, 0.5 * s.length_m + s.radius_m};
-        break;
-      case physics::ShapeKind::kMesh: break;
-    }
-    Eigen::Vector3d lo_O = -half, hi_O = half;
-    if (s.kind == physics::ShapeKind::kMesh) {
-      lo_O = s.mesh_bounds.min_m;
-      hi_O = s.mesh_bounds.max_m;
-    }
-    const Eigen::Isometry3d X_FO = X_FG * world.bodies()[i].X_GO;
-    FaceBox box{scene.objects[i].name, Eigen::Vector2d::Constant(1e9),
-                Eigen::Vector2d::Constant(-1e9)};
-    double nearest_out_m = 1e9, farthest_out_m = -1e9;
-    for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3d p_O((corner & 1) ? hi_O.x() : lo_O.x(),
-                                (corner & 2) ? hi_O.y() : lo_O.y(),
-                                (corner & 4) ? hi_O.z() : lo_O.z());
-      const Eigen::Vector3d p_F = X_FO * p_O;
-      box.lo = box.lo.cwiseMin(p_F.head<2>());
-      box.hi = box.hi.cwiseMax(p_F.head<2>());
-      nearest_out_m = std::min(nearest_out_m, p_F.z());
-      farthest_out_m = std::max(farthest_out_m, p_F.z());
-    }
+    const physics::Aabb box_F =
+        physics::shape_aabb(scene.objects[i].shape, X_FG * world.bodies()[i].X_GO);
+    const FaceBox box{scene.objects[i].name, box_F.lo.head<2>(), box_F.hi.head<2>()};
+    const double nearest_out_m = box_F.lo.z(), farthest_out_m = box_F.hi.z();
     const Eigen::Vector2d extent = box.hi - box.lo;
     if (nearest_out_m < 0.05 && farthest_out_m > 0.0 && extent.x() < 0.1 && extent.y() < 0.1)
       out.push_back(box);
