@@ -178,15 +178,27 @@ void ControlSystem::integrate(const std::vector<Eigen::Vector3d>& F_G_bodies,
 
 // eq. 29 restricted to the joint: the coordinate the hand's motion since the grasp asks for,
 // as far as the travel and the gates (open only while the hand has lifted the lever) let it go
-void ControlSystem::move_held(int control, int hand, const Eigen::Isometry3d& X_GH,
-                              const Eigen::Vector3d& p_held_H, double dt_s) {
+double ControlSystem::held_q(int control, const Eigen::Isometry3d& X_GH,
+                             const Eigen::Vector3d& p_held_H) const {
   const ControlSpec& c = scene_.controls[control];
-  ControlState& s = state_.controls[control];
+  const ControlState& s = state_.controls[control];
   const double lift_m = grasped_lift_m(c, s, X_GH, p_held_H);
   uint32_t gates_open = 0;
   for (std::size_t g = 0; g < c.gates.size(); ++g)
     if (lift_m >= c.gates[g].lift_m) gates_open |= 1u << g;
-  const double q = reachable_q(c, s.q, grasped_q(c, s, X_GH, p_held_H), gates_open);
+  return reachable_q(c, s.q, grasped_q(c, s, X_GH, p_held_H), gates_open);
+}
+
+Eigen::Isometry3d ControlSystem::body_pose_at(int control, double q) const {
+  return control_body_pose(scene_.controls[control], q);
+}
+
+double ControlSystem::q(int control) const { return state_.controls[control].q; }
+
+void ControlSystem::move_held(int control, int hand, const Eigen::Isometry3d& X_GH,
+                              const Eigen::Vector3d& p_held_H, double dt_s) {
+  ControlState& s = state_.controls[control];
+  const double q = held_q(control, X_GH, p_held_H);
   s.qd = (q - s.q) / dt_s;
   s.q = q;
   s.push_hand = -1;

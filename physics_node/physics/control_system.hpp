@@ -58,6 +58,13 @@ class ControlSystem {
   // body at p_held_H (the translation of its X_HO).
   void move_held(int control, int hand, const Eigen::Isometry3d& X_GH,
                  const Eigen::Vector3d& p_held_H, double dt_s);
+  // The coordinate a hand at X_GH, holding the control's body at p_held_H, moves it to: what it
+  // asks for (eq. 29 restricted to the joint), as far as the travel and the gates it has lifted
+  // the lever over let it go from where it is.
+  double held_q(int control, const Eigen::Isometry3d& X_GH, const Eigen::Vector3d& p_held_H) const;
+  // Where control `control`'s body would be at coordinate q.
+  Eigen::Isometry3d body_pose_at(int control, double q) const;
+  double q(int control) const;
   // The grasp stage's events of the step: the controls grasped and released.
   void after_grasp(const std::vector<GraspEvent>& grasp_events);
 
