@@ -65,6 +65,12 @@ Eigen::Isometry3d control_body_pose(const ControlSpec& c, double q) {
   return c.X_GJ * joint_motion(c.joint, q) * c.X_JO;
 }
 
+Eigen::Isometry3d joint_motion_G(const ControlSpec& c, double q_from, double q_to) {
+  // X_GJ M(q_to) M(q_from)^-1 X_GJ^-1, and M(q_to) M(q_from)^-1 = M(q_to - q_from) for a turn
+  // or a slide along one axis
+  return c.X_GJ * joint_motion(c.joint, q_to - q_from) * c.X_GJ.inverse();
+}
+
 double joint_inertia(const ControlSpec& c, double mass_kg, const Eigen::Matrix3d& I_O) {
   if (c.joint == JointKind::kPrismatic) return mass_kg;
   const Eigen::Matrix3d& R_JO = c.X_JO.linear();

@@ -132,6 +132,11 @@ struct ControlEvent {
 Eigen::Isometry3d joint_motion(JointKind joint, double q);
 // The control's body pose at q: X_GJ * joint_motion(q) * X_JO.
 Eigen::Isometry3d control_body_pose(const ControlSpec& c, double q);
+// The rigid motion in G that takes the control's body from where it is at q_from to where it is
+// at q_to: a turn by q_to - q_from about the joint's axis through its origin (revolute), or a
+// slide by it along the axis (prismatic). X * control_body_pose(c, q_from) is
+// control_body_pose(c, q_to).
+Eigen::Isometry3d joint_motion_G(const ControlSpec& c, double q_from, double q_to);
 // The joint's axis and a point on it, in the world.
 inline Eigen::Vector3d joint_axis_G(const ControlSpec& c) { return c.X_GJ.linear().col(2); }
 inline Eigen::Vector3d joint_origin_G(const ControlSpec& c) { return c.X_GJ.translation(); }

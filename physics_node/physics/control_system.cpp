@@ -189,12 +189,6 @@ double ControlSystem::held_q(int control, const Eigen::Isometry3d& X_GH,
   return reachable_q(c, s.q, grasped_q(c, s, X_GH, p_held_H), gates_open);
 }
 
-Eigen::Isometry3d ControlSystem::body_pose_at(int control, double q) const {
-  return control_body_pose(scene_.controls[control], q);
-}
-
-double ControlSystem::q(int control) const { return state_.controls[control].q; }
-
 void ControlSystem::move_held(int control, int hand, const Eigen::Isometry3d& X_GH,
                               const Eigen::Vector3d& p_held_H, double dt_s) {
   ControlState& s = state_.controls[control];

@@ -62,9 +62,6 @@ class ControlSystem {
   // asks for (eq. 29 restricted to the joint), as far as the travel and the gates it has lifted
   // the lever over let it go from where it is.
   double held_q(int control, const Eigen::Isometry3d& X_GH, const Eigen::Vector3d& p_held_H) const;
-  // Where control `control`'s body would be at coordinate q.
-  Eigen::Isometry3d body_pose_at(int control, double q) const;
-  double q(int control) const;
   // The grasp stage's events of the step: the controls grasped and released.
   void after_grasp(const std::vector<GraspEvent>& grasp_events);
 

@@ -117,7 +117,9 @@ struct HandOnObject {
   // only while hold->hand_clearing)
   uint32_t glove_links_inside = 0;
   // the links of the tracked hand, posed on the proxy's wrist (the hand's shape, not its lag),
-  // within release_gap_m of the object's surface (bit l); known only while this hand holds it and
+  // within release_gap_m of the object's surface (bit l), or, for a control, where the tracked
+  // hand is against the control as it would move it (World::tracked_links_near); known only
+  // while this hand holds it and
   // hold_rule is kTrackedGrip, and measured only as far as the verdict needs (the first near link
   // of the thumb or palm, and of one opposed finger)
   bool grip_known = false;

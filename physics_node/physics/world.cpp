@@ -566,23 +566,30 @@ uint32_t World::tracked_links_near(int hand, int object, const GraspHold& hold) 
   // the tracked hand's shape on the proxy's wrist: X_GH X_GT^-1 X_GL(tracked)
   const Eigen::Isometry3d X_HT = sim.proxy ? hs.X_GH * hs.to.X_GH.inverse() : Eigen::Isometry3d::Identity();
   // A held control moves only along its joint, and only as fast as the proxy's wrist: a wrist
-  // catching up (after a tracking gap) turns and shifts on its own path, not round the knob's
-  // axis, and takes the tracked fingers posed on it off a knob they still pinch. So a link also
-  // counts where the tracked hand is, against the control as that hand turns it (carried back by
-  // the joint motion the control has not yet made). A hand pulled off the control is off both.
+  // catching up (after a tracking gap) turns and shifts on its own path, not round the joint,
+  // and takes the tracked fingers posed on it off a handle or knob they still hold. So a link
+  // also counts where the tracked hand is, against the control as that hand would move it: the
+  // link carried back by the joint motion the control has yet to make (X_back, from the control
+  // at the tracked hand's coordinate to the control now). A hand pulled off the control, or
+  // past an end stop or a closed gate, is off it both ways. (For a round knob on its own axis
+  // the carrying back changes no distance; for a lever's handle it does.)
   const int control = scene_.objects[static_cast<std::size_t>(object)].control;
-  std::optional<Eigen::Isometry3d> X_back;  // the control at the tracked hand's q -> at its q now
-  if (sim.proxy && control >= 0) {
-    const double q_tracked = controls_.held_q(control, hs.to.X_GH, X_HO(object, hand).translation());
-    X_back = controls_.body_pose_at(control, controls_.q(control)) *
-             controls_.body_pose_at(control, q_tracked).inverse();
-  }
+  const double gap_m = scene_.grasp.release_gap_m;
+  std::optional<Eigen::Isometry3d> X_back;  // (worked out the first time a link needs it)
+  const auto carried_back = [&]() -> const Eigen::Isometry3d& {
+    if (!X_back) {
+      const double q_tracked = controls_.held_q(control, hs.to.X_GH, X_HO(object, hand).translation());
+      X_back = joint_motion_G(scene_.controls[static_cast<std::size_t>(control)], q_tracked,
+                              state_.controls[static_cast<std::size_t>(control)].q);
+    }
+    return *X_back;
+  };
   const auto near = [&](Link l) {
     const int i = static_cast<int>(l);
-    const double gap_m = scene_.grasp.release_gap_m;
     const Eigen::Isometry3d X_GL = sim.proxy ? X_HT * sim.tracked_X_GL[i] : hs.X_GL[i];
     if (collision_.link_within(hand, l, X_GL, object, gap_m)) return true;
-    return X_back && collision_.link_within(hand, l, *X_back * sim.tracked_X_GL[i], object, gap_m);
+    return sim.proxy && control >= 0 &&
+           collision_.link_within(hand, l, carried_back() * sim.tracked_X_GL[i], object, gap_m);
   };
   const auto bit = [](Link l) { return 1u << static_cast<int>(l); };
   // a finger's links from its tip in: the tip is the one nearest an object it grips

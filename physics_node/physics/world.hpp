@@ -190,7 +190,9 @@ class World {
   uint32_t glove_links_inside(int hand, int object, const GraspHold& hold) const;
   // The links of the tracked hand, posed on the proxy's wrist, within grasp.release_gap_m of a
   // held object (HandOnObject::tracked_links_near): the grip the pilot's hand makes round it,
-  // whatever the lag of the proxy's wrist.
+  // whatever the lag of the proxy's wrist. For a held control, a link where the tracked hand
+  // is, carried back by the joint motion the control has yet to make towards that hand, counts
+  // too (the proxy's wrist, catching up, does not move round the joint).
   // Only the links the verdict needs are measured, tips first: the opposer's (the thumb's, or the
   // palm) until one is near, then the opposed fingers' until one is near.
   uint32_t tracked_links_near(int hand, int object, const GraspHold& hold) const;

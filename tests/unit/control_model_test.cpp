@@ -209,3 +209,38 @@ TEST(ControlModel, AContinuousKnobsPositionsRepeatWithItsDetent) {
 
 }  // namespace
 }  // namespace vcockpit::physics
+
+namespace vcockpit::physics {
+namespace {
+
+// joint_motion_G carries the body from one coordinate to another: a lever's handle 12 cm above
+// a pivot on a tilted axis turns round the pivot (which stays), its centroid moving by the chord
+// 2 r sin(dq / 2); a prismatic body slides along the axis. The wrong way round (from q_to to
+// q_from) fails the first check.
+TEST(ControlModel, TheJointMotionTakesTheBodyFromOneCoordinateToAnother) {
+  ControlSpec lever;
+  lever.joint = JointKind::kRevolute;
+  lever.X_GJ.linear() = Eigen::AngleAxisd(-kPi / 2, Eigen::Vector3d::UnitX()).toRotationMatrix() *
+                        Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  lever.X_GJ.translation() = Eigen::Vector3d(0.45, 0.33, 0.70);
+  lever.X_JO.translation() = Eigen::Vector3d(0.0, -0.12, 0.0);
+  const double q_from = -20 * kDeg, q_to = 25 * kDeg;
+  const Eigen::Isometry3d X = joint_motion_G(lever, q_from, q_to);
+  const Eigen::Isometry3d moved = X * control_body_pose(lever, q_from);
+  const Eigen::Isometry3d there = control_body_pose(lever, q_to);
+  EXPECT_TRUE(moved.isApprox(there, 1e-12)) << moved.matrix() << "\n" << there.matrix();
+  EXPECT_TRUE((X * lever.X_GJ.translation()).isApprox(lever.X_GJ.translation(), 1e-12)) << "the pivot stays";
+  const double chord_m = (there.translation() - control_body_pose(lever, q_from).translation()).norm();
+  EXPECT_NEAR(chord_m, 2 * 0.12 * std::sin((q_to - q_from) / 2), 1e-12);
+  EXPECT_TRUE(joint_motion_G(lever, q_to, q_from).isApprox(X.inverse(), 1e-12));
+
+  ControlSpec slider = lever;
+  slider.joint = JointKind::kPrismatic;
+  const Eigen::Isometry3d S = joint_motion_G(slider, 0.01, 0.04);
+  EXPECT_TRUE(S.linear().isApprox(Eigen::Matrix3d::Identity(), 1e-12));
+  EXPECT_TRUE(S.translation().isApprox(0.03 * joint_axis_G(slider), 1e-12)) << S.translation().transpose();
+  EXPECT_TRUE((S * control_body_pose(slider, 0.01)).isApprox(control_body_pose(slider, 0.04), 1e-12));
+}
+
+}  // namespace
+}  // namespace vcockpit::physics
