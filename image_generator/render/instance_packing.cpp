@@ -4,10 +4,11 @@ namespace vcockpit::render {
 namespace {
 
 // The slot of `mesh` in packed.model_meshes, added if new.
-std::size_t model_slot(PackedInstances& packed, const MeshData* mesh) {
+std::size_t model_slot(PackedInstances& packed, const std::shared_ptr<const MeshData>& mesh) {
   for (std::size_t k = 0; k < packed.model_meshes.size(); ++k)
-    if (packed.model_meshes[k] == mesh) return k;
-  packed.model_meshes.push_back(mesh);
+    if (packed.model_meshes[k] == mesh.get()) return k;
+  packed.model_meshes.push_back(mesh.get());
+  packed.model_owners.push_back(mesh);
   packed.model_ranges.push_back({});
   return packed.model_meshes.size() - 1;
 }
@@ -16,11 +17,12 @@ void count(std::span<const Instance> instances, std::array<int, kUnitMeshCount>&
            PackedInstances& packed) {
   counts.fill(0);
   packed.model_meshes.clear();
+  packed.model_owners.clear();
   packed.model_ranges.clear();
   for (const Instance& instance : instances) {
     switch (instance.primitive) {
       case Primitive::kMesh:
-        if (instance.mesh) ++packed.model_ranges[model_slot(packed, instance.mesh.get())].count;
+        if (instance.mesh) ++packed.model_ranges[model_slot(packed, instance.mesh)].count;
         break;
       case Primitive::kBox:
         ++counts[0];
@@ -80,7 +82,7 @@ void pack_instances(std::span<const Instance> instances, PackedInstances& packed
     switch (instance.primitive) {
       case Primitive::kMesh:
         if (instance.mesh) {
-          const std::size_t k = model_slot(packed, instance.mesh.get());
+          const std::size_t k = model_slot(packed, instance.mesh);
           packed.records[static_cast<size_t>(model_next[k]++)] =
               make_record(instance.X_GO, s, instance);
         }

@@ -6,6 +6,7 @@
 // once the instance count has peaked.
 
 #include <array>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -37,6 +38,8 @@ struct PackedInstances {
   std::array<MeshRange, kUnitMeshCount> ranges{};
   // the model meshes drawn (in the order first met) and each one's records
   std::vector<const MeshData*> model_meshes;
+  // the same, to tell a mesh still alive from a new one made at a freed one's address
+  std::vector<std::weak_ptr<const MeshData>> model_owners;
   std::vector<MeshRange> model_ranges;
   std::vector<int> model_next;  // (packing's scratch, kept for its capacity)
 

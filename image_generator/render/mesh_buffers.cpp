@@ -120,9 +120,20 @@ MeshBuffers::~MeshBuffers() {
 }
 
 void MeshBuffers::upload(const PackedInstances& packed) {
-  for (const MeshData* data : packed.model_meshes) {
+  for (auto it = model_meshes_.begin(); it != model_meshes_.end();) {
+    if (!it->second.owner.expired()) {
+      ++it;
+      continue;
+    }
+    delete_gpu_mesh(it->second);
+    it = model_meshes_.erase(it);
+  }
+  for (std::size_t k = 0; k < packed.model_meshes.size(); ++k) {
+    const MeshData* data = packed.model_meshes[k];
     if (model_meshes_.count(data) != 0) continue;
-    make_gpu_mesh(*data, model_meshes_[data]);
+    GpuMesh& mesh = model_meshes_[data];
+    make_gpu_mesh(*data, mesh);
+    mesh.owner = packed.model_owners[k];
   }
   const size_t count = packed.records.size();
   if (count == 0) return;

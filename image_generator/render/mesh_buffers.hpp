@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -41,6 +42,7 @@ class MeshBuffers {
     GLsizei index_count = 0;
     std::vector<MeshGroup> groups;  // a model's; empty: one draw of every index
     std::vector<GLuint> textures;   // its images, as MeshGroup::texture numbers them
+    std::weak_ptr<const MeshData> owner;  // a model's data; expired: its copy here is stale
   };
 
   void make_gpu_mesh(const MeshData& data, GpuMesh& mesh) const;
@@ -51,8 +53,9 @@ class MeshBuffers {
   GLuint white_texture_ = 0;  // what the untextured sample
   size_t instance_capacity_ = 0;  // records
   std::array<GpuMesh, kUnitMeshCount> meshes_{};
-  // model meshes by address: an instance's shared_ptr keeps the data alive while it is drawn
-  // (a mesh replaced in the scene leaves its GPU copy here until the renderer goes)
+  // model meshes by address: an instance's shared_ptr keeps the data alive while it is drawn.
+  // A copy whose data has gone is deleted at the next upload, so that a new mesh made at the
+  // same address is not drawn with the old one's triangles.
   std::unordered_map<const MeshData*, GpuMesh> model_meshes_;
 };
 
