@@ -20,7 +20,7 @@ render::EyeFov parse_fov(const ConfigNode& node) {
 
 HmdSetup parse_hmd_config(const ConfigNode& root) {
   root.expect_keys(
-      {"ipd_m", "width_px", "height_px", "near_m", "far_m", "fov_deg", "head", "refresh_hz"});
+      {"ipd_m", "width_px", "height_px", "near_m", "far_m", "fov_deg", "head", "refresh_hz", "outside"});
   HmdSetup setup;
   render::HmdConfig& hmd = setup.hmd;
   hmd.ipd_m = root.get_double("ipd_m", hmd.ipd_m);
@@ -41,6 +41,13 @@ HmdSetup parse_hmd_config(const ConfigNode& root) {
     setup.X_GHead = pose_from_position_rpy_deg(
         (*head)["position"].as_doubles<3>(),
         head->has("rpy_deg") ? (*head)["rpy_deg"].as_doubles<3>() : std::array<double, 3>{0, 0, 0});
+  }
+  if (auto outside = root.find("outside")) {
+    outside->expect_keys({"ground_depth_m"});
+    hmd.outside = render::OutsideView{};
+    hmd.outside->ground_depth_m = outside->get_double("ground_depth_m", hmd.outside->ground_depth_m);
+    if (!(hmd.outside->ground_depth_m >= 0.1 && hmd.outside->ground_depth_m <= 20000.0))
+      (*outside)["ground_depth_m"].fail("must be in 0.1..20000 (m below the cockpit's floor)");
   }
   try {
     hmd.validate();

@@ -56,6 +56,8 @@ void HmdConfig::validate() const {
   if (!(near_m > 0.0)) fail("near_m", "must be > 0 m", near_m);
   if (!(far_m > near_m) || !std::isfinite(far_m))
     fail("far_m", "must be finite and > near_m", far_m);
+  if (outside && !(outside->ground_depth_m >= 0.1 && outside->ground_depth_m <= 20000.0))
+    fail("outside.ground_depth_m", "must be in [0.1, 20000] m", outside->ground_depth_m);
 }
 
 }  // namespace vcockpit::render

@@ -19,7 +19,8 @@ struct Instance {
   // (radius, length, 0) along the object's z; a capsule's length excludes its end caps.
   // Mesh: the scale of `mesh` (1, 1, 1: its vertices are in metres).
   Eigen::Vector3d size_m = Eigen::Vector3d::Zero();
-  std::array<float, 4> rgba{0.6f, 0.6f, 0.6f, 1.0f};  // 0..1; alpha is ignored (drawn opaque)
+  // 0..1; alpha below 1: translucent (glazing), blended over the opaque instances of its layer
+  std::array<float, 4> rgba{0.6f, 0.6f, 0.6f, 1.0f};
   bool highlight = false;  // drawn brighter, as if glowing (held or hovered object)
   // Part of the background layer: the cockpit's shell and whatever else does not move. The
   // renderer draws these once into a cached image per eye and redraws it only when one of them

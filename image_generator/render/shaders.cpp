@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "image_generator/render/render_error.hpp"
+#include "image_generator/render/gl_program.hpp"
 
 namespace vcockpit::render {
 namespace {
@@ -23,6 +23,7 @@ out vec3 v_normal_G;
 out vec3 v_rgb;
 out vec2 v_st;
 out float v_highlight;
+out float v_alpha;
 
 void main() {
   vec3 scale = max(a_scale_highlight.xyz, vec3(1e-6));
@@ -33,6 +34,7 @@ void main() {
   v_rgb = a_rgba.rgb * a_vertex_rgb;
   v_st = a_st;
   v_highlight = a_scale_highlight.w;
+  v_alpha = a_rgba.a;
   gl_Position = u_view_projection * p_G;
 }
 )glsl";
@@ -43,6 +45,7 @@ in vec3 v_normal_G;
 in vec3 v_rgb;
 in vec2 v_st;
 in float v_highlight;
+in float v_alpha;
 
 uniform vec3 u_eye_position_G;
 uniform sampler2D u_base_texture;
@@ -67,67 +70,17 @@ void main() {
   vec3 rgb = base * (kAmbient + kKey * lambert) + vec3(kSpecular * blinn);
   // highlighted: brighter and self-lit, so it reads even in shadow
   rgb = mix(rgb, rgb * 1.3 + base * 0.4 + vec3(0.08), v_highlight);
-  frag_rgba = vec4(clamp(rgb, 0.0, 1.0), 1.0);
+  frag_rgba = vec4(clamp(rgb, 0.0, 1.0), v_alpha);  // (blended only in the translucent pass)
 }
 )glsl";
-
-GLuint compile(GLenum stage, const char* source, const char* name) {
-  const GLuint shader = glCreateShader(stage);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (ok == GL_TRUE) return shader;
-  GLint length = 0;
-  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-  std::string log(static_cast<size_t>(length > 0 ? length : 1), '\0');
-  glGetShaderInfoLog(shader, length, nullptr, log.data());
-  glDeleteShader(shader);
-  throw RenderError(std::string("GL: ") + name + " shader does not compile: " + log.c_str());
-}
-
-GLuint link(GLuint vertex, GLuint fragment) {
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, vertex);
-  glAttachShader(program, fragment);
-  glLinkProgram(program);
-  glDeleteShader(vertex);  // flagged; freed with the program
-  glDeleteShader(fragment);
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (ok == GL_TRUE) return program;
-  GLint length = 0;
-  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-  std::string log(static_cast<size_t>(length > 0 ? length : 1), '\0');
-  glGetProgramInfoLog(program, length, nullptr, log.data());
-  glDeleteProgram(program);
-  throw RenderError(std::string("GL: shader program does not link: ") + log.c_str());
-}
-
-GLint uniform(GLuint program, const char* name) {
-  const GLint location = glGetUniformLocation(program, name);
-  if (location < 0) {
-    glDeleteProgram(program);
-    throw RenderError(std::string("GL: shader program has no uniform ") + name);
-  }
-  return location;
-}
 
 }  // namespace
 
 LitProgram::LitProgram() {
-  const GLuint vertex = compile(GL_VERTEX_SHADER, kVertexSource, "vertex");
-  GLuint fragment = 0;
-  try {
-    fragment = compile(GL_FRAGMENT_SHADER, kFragmentSource, "fragment");
-  } catch (...) {
-    glDeleteShader(vertex);
-    throw;
-  }
-  program_ = link(vertex, fragment);
-  view_projection_ = uniform(program_, "u_view_projection");
-  eye_position_G_ = uniform(program_, "u_eye_position_G");
-  const GLint base_texture = uniform(program_, "u_base_texture");
+  program_ = build_program(kVertexSource, kFragmentSource);
+  view_projection_ = uniform_location(program_, "u_view_projection");
+  eye_position_G_ = uniform_location(program_, "u_eye_position_G");
+  const GLint base_texture = uniform_location(program_, "u_base_texture");
   glUseProgram(program_);
   glUniform1i(base_texture, 0);  // texture unit 0 (MeshBuffers binds there)
   glUseProgram(0);

@@ -1,5 +1,6 @@
 #include "image_generator/render/stereo_renderer.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
@@ -9,6 +10,7 @@
 #include "image_generator/render/gl.hpp"
 #include "image_generator/render/gl_context.hpp"
 #include "image_generator/render/mesh_buffers.hpp"
+#include "image_generator/render/outside_view.hpp"
 #include "image_generator/render/render_error.hpp"
 #include "image_generator/render/shaders.hpp"
 
@@ -31,11 +33,6 @@ int64_t now_ns() {
   timespec ts{};
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return int64_t{ts.tv_sec} * 1'000'000'000 + ts.tv_nsec;
-}
-
-bool same_records(const std::vector<InstanceRecord>& a, const std::vector<InstanceRecord>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(InstanceRecord)) == 0);
 }
 
 bool same_pose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
@@ -89,8 +86,11 @@ StereoRenderer::StereoRenderer(const HmdConfig& config)
   context_ = std::make_unique<GlContext>(1, 1);
   check_gl("context creation");
   program_ = std::make_unique<LitProgram>();
-  meshes_ = std::make_unique<MeshBuffers>();
-  background_meshes_ = std::make_unique<MeshBuffers>();
+  if (config_.outside) outside_program_ = std::make_unique<OutsideViewProgram>();
+  for (Layer* layer : {&moving_, &background_}) {
+    layer->opaque_meshes = std::make_unique<MeshBuffers>();
+    layer->translucent_meshes = std::make_unique<MeshBuffers>();
+  }
   // the frame and the background layer, both eyes side by side; the same formats, so the
   // background is restored by copying images (a memcpy in llvmpipe; a blit of the depth was
   // a shader pass costing 9 ms a frame here)
@@ -105,6 +105,8 @@ StereoRenderer::StereoRenderer(const HmdConfig& config)
   glCullFace(GL_BACK);
   glFrontFace(GL_CW);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  // the translucent pass: colour over what is behind; the frame's alpha stays 1
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
   glClearColor(kBackgroundRgb[0], kBackgroundRgb[1], kBackgroundRgb[2], 1.0f);
   check_gl("renderer set-up");
 }
@@ -113,8 +115,11 @@ StereoRenderer::~StereoRenderer() {
   context_->make_current();  // GL objects are deleted by the members below, in this context
   delete_framebuffer(background_framebuffer_, background_colour_, background_depth_);
   delete_framebuffer(frame_framebuffer_, frame_colour_, frame_depth_);
-  background_meshes_.reset();
-  meshes_.reset();
+  for (Layer* layer : {&moving_, &background_}) {
+    layer->opaque_meshes.reset();
+    layer->translucent_meshes.reset();
+  }
+  outside_program_.reset();
   program_.reset();
 }
 
@@ -134,23 +139,17 @@ void StereoRenderer::begin_frame(std::span<const Instance> fixed, const Eigen::I
   cost_ = FrameCost{};
   last_draw_calls_ = 0;
   X_GHead_ = X_GHead;
-  pack_instances(fixed, background_packed_);
+  pack_layer(fixed, background_);
   if (!cache_on_) {  // everything drawn every frame, straight into the frame
     background_valid_ = false;
     glBindFramebuffer(GL_FRAMEBUFFER, frame_framebuffer_);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);  // both halves at once
-    background_meshes_->upload(background_packed_);
-    program_->use();
-    draw_eye(Eye::kLeft, X_GHead, *background_meshes_, background_packed_);
-    draw_eye(Eye::kRight, X_GHead, *background_meshes_, background_packed_);
+    draw_outside(X_GHead);
+    draw_layer(background_);
     cost_.background_ns = now_ns() - frame_start_ns_;
     return;
   }
-  if (!background_valid_ || !same_pose(X_GHead, background_X_GHead_) ||
-      !same_records(background_packed_.records, background_records_) ||
-      background_packed_.model_meshes != background_model_meshes_) {
-    redraw_background(X_GHead);
-  }
+  if (background_changed(X_GHead)) redraw_background(X_GHead);
   // the frame starts as a copy of the background: colour and depth, both eyes
   const GLsizei w = 2 * config_.width_px, h = config_.height_px;
   glCopyImageSubData(background_colour_, GL_RENDERBUFFER, 0, 0, 0, 0, frame_colour_,
@@ -161,16 +160,42 @@ void StereoRenderer::begin_frame(std::span<const Instance> fixed, const Eigen::I
   cost_.background_ns = now_ns() - frame_start_ns_;
 }
 
+bool StereoRenderer::background_changed(const Eigen::Isometry3d& X_GHead) const {
+  const PackedInstances& opaque = background_.opaque;
+  const PackedInstances& translucent = background_.translucent;
+  if (!background_valid_ || !same_pose(X_GHead, background_X_GHead_)) return true;
+  if (translucent.records.size() != background_translucent_count_) return true;
+  if (opaque.records.size() + translucent.records.size() != background_records_.size()) return true;
+  const std::size_t record = sizeof(InstanceRecord);
+  if (!opaque.records.empty() &&
+      std::memcmp(opaque.records.data(), background_records_.data(), opaque.records.size() * record) != 0)
+    return true;
+  if (!translucent.records.empty() &&
+      std::memcmp(translucent.records.data(), background_records_.data() + opaque.records.size(),
+                  translucent.records.size() * record) != 0)
+    return true;
+  const std::size_t models = opaque.model_meshes.size();
+  if (models + translucent.model_meshes.size() != background_model_meshes_.size()) return true;
+  return !std::equal(opaque.model_meshes.begin(), opaque.model_meshes.end(), background_model_meshes_.begin()) ||
+         !std::equal(translucent.model_meshes.begin(), translucent.model_meshes.end(),
+                     background_model_meshes_.begin() + static_cast<std::ptrdiff_t>(models));
+}
+
 void StereoRenderer::redraw_background(const Eigen::Isometry3d& X_GHead) {
   glBindFramebuffer(GL_FRAMEBUFFER, background_framebuffer_);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  background_meshes_->upload(background_packed_);
-  program_->use();
-  draw_eye(Eye::kLeft, X_GHead, *background_meshes_, background_packed_);
-  draw_eye(Eye::kRight, X_GHead, *background_meshes_, background_packed_);
+  draw_outside(X_GHead);
+  draw_layer(background_);
   glBindFramebuffer(GL_FRAMEBUFFER, frame_framebuffer_);
-  background_records_ = background_packed_.records;
-  background_model_meshes_ = background_packed_.model_meshes;
+  // what it shows, to compare the next frames' with (assign: no allocation once grown)
+  const PackedInstances& opaque = background_.opaque;
+  const PackedInstances& translucent = background_.translucent;
+  background_records_.assign(opaque.records.begin(), opaque.records.end());
+  background_records_.insert(background_records_.end(), translucent.records.begin(), translucent.records.end());
+  background_model_meshes_.assign(opaque.model_meshes.begin(), opaque.model_meshes.end());
+  background_model_meshes_.insert(background_model_meshes_.end(), translucent.model_meshes.begin(),
+                                  translucent.model_meshes.end());
+  background_translucent_count_ = translucent.records.size();
   background_X_GHead_ = X_GHead;
   background_valid_ = true;
   cost_.background_redrawn = true;
@@ -179,12 +204,48 @@ void StereoRenderer::redraw_background(const Eigen::Isometry3d& X_GHead) {
 
 void StereoRenderer::draw_moving(std::span<const Instance> moving) {
   const int64_t start_ns = now_ns();
-  pack_instances(moving, packed_);
-  meshes_->upload(packed_);
-  program_->use();
-  draw_eye(Eye::kLeft, X_GHead_, *meshes_, packed_);
-  draw_eye(Eye::kRight, X_GHead_, *meshes_, packed_);
+  pack_layer(moving, moving_);
+  draw_layer(moving_);
   cost_.moving_ns = now_ns() - start_ns;
+}
+
+void StereoRenderer::pack_layer(std::span<const Instance> instances, Layer& layer) {
+  layer.opaque_scratch.clear();
+  layer.translucent_scratch.clear();
+  for (const Instance& instance : instances)
+    (instance.rgba[3] < 1.0f ? layer.translucent_scratch : layer.opaque_scratch).push_back(instance);
+  pack_instances(layer.opaque_scratch, layer.opaque);
+  pack_instances(layer.translucent_scratch, layer.translucent);
+}
+
+void StereoRenderer::draw_layer(Layer& layer) {
+  layer.opaque_meshes->upload(layer.opaque);
+  const bool translucent = !layer.translucent.records.empty();
+  if (translucent) layer.translucent_meshes->upload(layer.translucent);
+  program_->use();
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    set_eye(eye, X_GHead_);
+    draw_packed(*layer.opaque_meshes, layer.opaque);
+    if (!translucent) continue;
+    glEnable(GL_BLEND);
+    glDepthMask(GL_FALSE);
+    draw_packed(*layer.translucent_meshes, layer.translucent);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+  }
+}
+
+void StereoRenderer::draw_outside(const Eigen::Isometry3d& X_GHead) {
+  if (!outside_program_) return;
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    const int i = eye_index(eye);
+    const Eigen::Isometry3d X_GE = eye_pose(config_, eye, X_GHead);
+    const Eigen::Matrix4f clip_from_G = projection_[i] * view_matrix(X_GE);
+    glViewport(i * config_.width_px, 0, config_.width_px, config_.height_px);
+    outside_program_->draw(*config_.outside, clip_from_G.inverse(), X_GE.translation().cast<float>(),
+                           Eigen::Vector4i(i * config_.width_px, 0, config_.width_px, config_.height_px));
+    ++last_draw_calls_;
+  }
 }
 
 void StereoRenderer::end_frame() {
@@ -199,13 +260,15 @@ void StereoRenderer::end_frame() {
   cost_.finish_ns = now_ns() - start_ns;
 }
 
-void StereoRenderer::draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead, const MeshBuffers& meshes,
-                              const PackedInstances& packed) {
+void StereoRenderer::set_eye(Eye eye, const Eigen::Isometry3d& X_GHead) {
   const int i = eye_index(eye);
   glViewport(i * config_.width_px, 0, config_.width_px, config_.height_px);
   const Eigen::Isometry3d X_GE = eye_pose(config_, eye, X_GHead);
   program_->set_view_projection(projection_[i] * view_matrix(X_GE));
   program_->set_eye_position(X_GE.translation().cast<float>());
+}
+
+void StereoRenderer::draw_packed(const MeshBuffers& meshes, const PackedInstances& packed) {
   for (const UnitMesh mesh : kMeshes) {
     const MeshRange& range = packed.range(mesh);
     meshes.draw(mesh, range);

@@ -35,8 +35,10 @@ namespace vcockpit::render {
 class GlContext;
 class LitProgram;
 class MeshBuffers;
+class OutsideViewProgram;
 
-// A dim cockpit interior: what shows where nothing is drawn (linear RGB 0..1).
+// A dim cockpit interior: what shows where nothing is drawn, without an outside view (linear
+// RGB 0..1).
 constexpr std::array<float, 3> kBackgroundRgb{0.11f, 0.12f, 0.14f};
 
 class StereoRenderer {
@@ -87,22 +89,36 @@ class StereoRenderer {
   std::string gl_version() const;   // e.g. "4.5 (Core Profile) Mesa 22.3.6"
   // GL errors seen after frames (counted, not thrown: the frame loop never throws).
   uint64_t gl_error_count() const { return gl_error_count_; }
-  // Draw calls issued by the last render() (at most 3 per eye).
+  // Draw calls issued by the last render(): per eye, one per unit mesh and model mesh drawn,
+  // in each layer's opaque and translucent part, and one for the outside view.
   int last_draw_calls() const { return last_draw_calls_; }
 
  private:
-  void draw_eye(Eye eye, const Eigen::Isometry3d& X_GHead, const MeshBuffers& meshes,
-                const PackedInstances& packed);
+  // One layer's instances, packed in two parts: the opaque, then the translucent (rgba alpha
+  // below 1: glazing), blended over them without writing depth. Translucent instances are not
+  // sorted among themselves: panes that do not overlap from the eye (a cockpit's windows) need
+  // no order.
+  struct Layer {
+    PackedInstances opaque, translucent;
+    std::unique_ptr<MeshBuffers> opaque_meshes, translucent_meshes;
+    std::vector<Instance> opaque_scratch, translucent_scratch;  // (kept for their capacity)
+  };
+  void pack_layer(std::span<const Instance> instances, Layer& layer);
+  void draw_layer(Layer& layer);
+  // the viewport and the programs' view for one eye
+  void set_eye(Eye eye, const Eigen::Isometry3d& X_GHead);
+  void draw_packed(const MeshBuffers& meshes, const PackedInstances& packed);
+  void draw_outside(const Eigen::Isometry3d& X_GHead);  // both eyes, if config_.outside
   void redraw_background(const Eigen::Isometry3d& X_GHead);
+  bool background_changed(const Eigen::Isometry3d& X_GHead) const;
 
   HmdConfig config_;
   std::array<Eigen::Matrix4f, 2> projection_;  // per eye, constant
   std::unique_ptr<GlContext> context_;         // declared first: destroyed last
   std::unique_ptr<LitProgram> program_;
-  std::unique_ptr<MeshBuffers> meshes_;             // the moving layer's
-  std::unique_ptr<MeshBuffers> background_meshes_;  // the fixed layer's
-  PackedInstances packed_;
-  PackedInstances background_packed_;
+  std::unique_ptr<OutsideViewProgram> outside_program_;  // with config_.outside only
+  Layer moving_;
+  Layer background_;
   std::vector<Instance> split_;  // render(): the moving instances
   std::vector<Instance> split_fixed_;
   FrameBufferPool frames_;  // read-back buffers
@@ -114,8 +130,9 @@ class StereoRenderer {
   unsigned background_colour_ = 0;
   unsigned background_depth_ = 0;
   bool background_valid_ = false;
-  std::vector<InstanceRecord> background_records_;
+  std::vector<InstanceRecord> background_records_;  // opaque, then translucent
   std::vector<const MeshData*> background_model_meshes_;
+  std::size_t background_translucent_count_ = 0;
   Eigen::Isometry3d background_X_GHead_ = Eigen::Isometry3d::Identity();
   bool cache_on_ = true;
   Eigen::Isometry3d X_GHead_ = Eigen::Isometry3d::Identity();  // this frame's

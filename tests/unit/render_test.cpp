@@ -262,6 +262,9 @@ TEST(HmdConfig, RejectsEachBadValue) {
       {"far_m", [](HmdConfig& c) { c.far_m = c.near_m; }},
       {"far_m", [](HmdConfig& c) { c.far_m = 0.01; }},
       {"far_m", [](HmdConfig& c) { c.far_m = INFINITY; }},
+      {"outside.ground_depth_m", [](HmdConfig& c) { c.outside = OutsideView{0.0}; }},
+      {"outside.ground_depth_m", [](HmdConfig& c) { c.outside = OutsideView{std::nan("")}; }},
+      {"outside.ground_depth_m", [](HmdConfig& c) { c.outside = OutsideView{25000.0}; }},
   };
   for (const Case& bad : cases) {
     HmdConfig config;
@@ -918,6 +921,112 @@ TEST_F(RenderTest, AHeldFrameIsNotOverwritten) {
   renderer().render({}, head_pose());
   renderer().render({}, head_pose());
   EXPECT_EQ(renderer().pixels(), buffer) << "let go, it is used again (the pool does not grow)";
+}
+
+// ---------------------------------------------------------------------------------------------
+// the outside view and the glazing
+
+Eigen::Vector3d elevated(double elevation_deg) {
+  return {std::cos(elevation_deg * kDeg), 0.0, std::sin(elevation_deg * kDeg)};
+}
+
+// The pixel that looks along d_G from the eye (a point 10 m along it projected).
+Eigen::Vector2d pixel_looking(const HmdConfig& config, Eye eye, const Eigen::Vector3d& d_G) {
+  const Eigen::Vector3d p_GE = eye_pose(config, eye, head_pose()).translation();
+  return projected(config, eye, p_GE + 10.0 * d_G.normalized());
+}
+
+HmdConfig with_outside_view() {
+  HmdConfig config;
+  config.outside = OutsideView{300.0};
+  return config;
+}
+
+TEST(OutsideView, SkyAboveTheHorizonGroundBelowAndTheCockpitInFront) {
+  const HmdConfig config = with_outside_view();
+  StereoRenderer renderer(config);
+  const Eigen::Vector3d p_G_box(1.0, 0.3, kHeadHeightM - 0.3);
+  renderer.render({make(Primitive::kBox, at(p_G_box.x(), p_G_box.y(), p_G_box.z()), {0.1, 0.1, 0.1}, kRed)},
+                  head_pose());
+  EXPECT_EQ(renderer.gl_error_count(), 0u);
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    const Rgb overhead = pixel_at(renderer, eye, pixel_looking(config, eye, elevated(35)));
+    const Rgb low_sky = pixel_at(renderer, eye, pixel_looking(config, eye, elevated(3)));
+    const Rgb ground = pixel_at(renderer, eye, pixel_looking(config, eye, elevated(-20)));
+    const Rgb far_ground = pixel_at(renderer, eye, pixel_looking(config, eye, elevated(-1)));
+    // a blue sky, paler towards the horizon
+    EXPECT_GT(overhead.b, overhead.g) << overhead;
+    EXPECT_GT(overhead.g, overhead.r) << overhead;
+    EXPECT_GT(overhead.b - overhead.r, low_sky.b - low_sky.r + 20) << overhead << " " << low_sky;
+    // fields below (greens and browns: blue the weakest), hazier far off
+    EXPECT_GT(ground.g, ground.b + 20) << ground;
+    EXPECT_GT(ground.r, ground.b) << ground;
+    EXPECT_FALSE(is_background(ground)) << ground;
+    EXPECT_GT(far_ground.b, ground.b + 30) << far_ground << " " << ground;
+    // the cockpit covers it
+    EXPECT_TRUE(is_red(pixel_at(renderer, eye, projected(config, eye, p_G_box))));
+    // the horizon is one soft line: no step between neighbouring rows across it (a hard line
+    // between haze and fields would step by 90 levels or more; the sky's own gradient is
+    // steepest just above it)
+    const Eigen::Vector2d above = pixel_looking(config, eye, elevated(2));
+    const Eigen::Vector2d below = pixel_looking(config, eye, elevated(-2));
+    const int column = static_cast<int>(above.x());
+    int worst_step = 0;
+    for (int row = static_cast<int>(above.y()); row < static_cast<int>(below.y()); ++row) {
+      const Rgb a = pixel_at(renderer, eye, column, row), b = pixel_at(renderer, eye, column, row + 1);
+      worst_step = std::max({worst_step, std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+    }
+    EXPECT_LE(worst_step, 12) << "rows " << above.y() << ".." << below.y();
+  }
+}
+
+// A translucent pane (rgba alpha < 1: a windscreen) tints the cockpit behind it and hides
+// nothing: it writes no depth, so what moves behind it still shows.
+TEST_F(RenderTest, GlazingTintsWhatIsBehindItAndHidesNothing) {
+  Instance pane = make(Primitive::kBox, at(0.8, 0.0, kHeadHeightM), {0.01, 1.0, 1.0}, {0.9f, 0.9f, 0.95f, 0.4f});
+  pane.fixed = true;
+  const Eigen::Vector3d p_G_red(1.2, 0.15, kHeadHeightM), p_G_green(1.2, -0.15, kHeadHeightM);
+  Instance red = make(Primitive::kBox, at(p_G_red.x(), p_G_red.y(), p_G_red.z()), {0.1, 0.1, 0.1}, kRed);
+  red.fixed = true;
+  const Instance green =
+      make(Primitive::kBox, at(p_G_green.x(), p_G_green.y(), p_G_green.z()), {0.1, 0.1, 0.1}, kGreen);
+  renderer().render({red, green}, head_pose());
+  const Rgb red_bare = pixel_at(renderer(), Eye::kLeft, projected(config(), Eye::kLeft, p_G_red));
+  renderer().render({pane, red, green}, head_pose());
+  EXPECT_EQ(renderer().gl_error_count(), 0u);
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    const Rgb red_tinted = pixel_at(renderer(), eye, projected(config(), eye, p_G_red));
+    EXPECT_GT(red_tinted.r, red_tinted.g + 40) << red_tinted;
+    EXPECT_GT(red_tinted.g, red_bare.g + 40) << red_tinted << " over " << red_bare;
+    EXPECT_TRUE(is_green(pixel_at(renderer(), eye, projected(config(), eye, p_G_green))))
+        << "the moving box behind the pane shows";
+    const Rgb glass = pixel_at(renderer(), eye, projected(config(), eye, {0.8, 0.0, kHeadHeightM + 0.3}));
+    EXPECT_GT(glass.r, static_cast<int>(kBackgroundRgb[0] * 255) + 30) << glass;
+  }
+}
+
+// The cached background holds the outside view and the glazing as a full redraw draws them.
+TEST(OutsideView, CachedBackgroundFrameEqualsAFullRedraw) {
+  const HmdConfig config = with_outside_view();
+  StereoRenderer cached(config), full(config);
+  full.set_background_cache(false);
+  Instance pane = make(Primitive::kBox, at(0.9, 0.0, kHeadHeightM + 0.2), {0.01, 1.2, 0.6}, {0.45f, 0.55f, 0.62f, 0.3f});
+  pane.fixed = true;
+  Instance panel = make(Primitive::kBox, at(0.9, 0.0, kHeadHeightM - 0.3), {0.05, 1.2, 0.4}, {0.3f, 0.3f, 0.32f, 1});
+  panel.fixed = true;
+  for (const double x : {0.6, 0.65}) {
+    const std::vector<Instance> frame{pane, panel, make(Primitive::kSphere, at(x, 0.0, kHeadHeightM - 0.1), {0.05, 0, 0}, kRed)};
+    cached.render(frame, head_pose());
+    full.render(frame, head_pose());
+    const std::size_t bytes = static_cast<std::size_t>(2 * 1280 * 720 * 4);
+    int worst = 0;
+    for (std::size_t i = 0; i < bytes; ++i)
+      worst = std::max(worst, std::abs(int{cached.pixels()[i]} - int{full.pixels()[i]}));
+    EXPECT_LE(worst, 1) << "at x " << x;
+  }
+  EXPECT_EQ(cached.background_redraws(), 1u) << "drawn once for two frames";
+  EXPECT_EQ(cached.gl_error_count(), 0u);
+  EXPECT_EQ(full.gl_error_count(), 0u);
 }
 
 TEST(StereoRenderer, RejectsABadConfig) {

@@ -1,0 +1,37 @@
+#pragma once
+// What the pilot sees beyond the cockpit's glazing: a sky that pales to a haze at the horizon,
+// and flat ground below, a patchwork of fields fading into the haze with distance. Drawn first,
+// behind everything, per pixel from the eye's ray (a full-screen triangle, no geometry): so the
+// horizon is at any distance, and it costs the same whatever the view. Where the cockpit is
+// drawn it covers it; glazing drawn translucent lets it show through.
+
+#include <Eigen/Core>
+
+#include "image_generator/render/gl.hpp"
+#include "image_generator/render/hmd_config.hpp"
+
+namespace vcockpit::render {
+
+class OutsideViewProgram {
+ public:
+  // Compiles and links (RenderError on failure); needs a current context.
+  OutsideViewProgram();
+  ~OutsideViewProgram();
+  OutsideViewProgram(const OutsideViewProgram&) = delete;
+  OutsideViewProgram& operator=(const OutsideViewProgram&) = delete;
+
+  // Fills the current viewport with the view from p_GE through the inverse of its
+  // view-projection (clip -> G), writing no depth: what is drawn afterwards covers it.
+  void draw(const OutsideView& view, const Eigen::Matrix4f& G_from_clip, const Eigen::Vector3f& p_GE,
+            const Eigen::Vector4i& viewport_px) const;
+
+ private:
+  GLuint program_ = 0;
+  GLuint empty_vertex_array_ = 0;  // a core context draws only with one bound
+  GLint G_from_clip_ = -1;
+  GLint eye_position_G_ = -1;
+  GLint viewport_ = -1;
+  GLint ground_z_ = -1;
+};
+
+}  // namespace vcockpit::render
