@@ -258,8 +258,11 @@ void SceneCache::append_hand(const Hand& hand, int64_t display_ns,
       tracked[l] = to_eigen(state.tracked_X_GL()[l]);
     }
   }
+  // drawn rounder than the physics' shapes: the palm's box with rounded edges, each phalanx's
+  // capsule tapering towards the tip (the same mean radius: within 1.1 mm of the capsule at
+  // either end for the medium hand)
   render::Instance palm;
-  palm.primitive = render::Primitive::kBox;
+  palm.primitive = render::Primitive::kRoundedBox;
   palm.X_GO = links[0];  // the palm link frame is the palm box centre (X_HP)
   palm.size_m = hand.geometry.palm_size_m;
   palm.rgba = colour;
@@ -269,7 +272,7 @@ void SceneCache::append_hand(const Hand& hand, int64_t display_ns,
   for (int l = 1; l < hand::kLinkCount; ++l) {
     const hand::Capsule& c = hand.geometry.capsules[l];
     render::Instance phalanx;
-    phalanx.primitive = render::Primitive::kCapsule;
+    phalanx.primitive = render::Primitive::kTaperedCapsule;
     phalanx.X_GO =
         links[static_cast<std::size_t>(l)] * Eigen::Translation3d(0.5 * c.length_m, 0, 0) * z_to_x;
     phalanx.size_m = Eigen::Vector3d(c.radius_m, c.length_m, 0);

@@ -10,13 +10,15 @@
 
 namespace vcockpit::render {
 
-enum class Primitive { kBox, kSphere, kCylinder, kCapsule, kMesh };
+enum class Primitive { kBox, kSphere, kCylinder, kCapsule, kTaperedCapsule, kRoundedBox, kMesh };
 
 struct Instance {
   Primitive primitive = Primitive::kBox;
   Eigen::Isometry3d X_GO = Eigen::Isometry3d::Identity();  // pose of the centroid frame in G
-  // Metres. Box: full extents (x, y, z). Sphere: (radius, 0, 0). Cylinder and capsule:
-  // (radius, length, 0) along the object's z; a capsule's length excludes its end caps.
+  // Metres. Box and rounded box: full extents (x, y, z). Sphere: (radius, 0, 0). Cylinder and
+  // capsule: (radius, length, 0) along the object's z; a capsule's length excludes its end caps.
+  // Tapered capsule (a finger's segment): (mean radius, length, 0), its radius narrowing from
+  // the -z end to the +z end by kFrustumTaper (meshes.hpp), round caps of those radii.
   // Mesh: the scale of `mesh` (1, 1, 1: its vertices are in metres).
   Eigen::Vector3d size_m = Eigen::Vector3d::Zero();
   // 0..1; alpha below 1: translucent (glazing), blended over the opaque instances of its layer

@@ -37,6 +37,13 @@ void count(std::span<const Instance> instances, std::array<int, kUnitMeshCount>&
         ++counts[2];
         counts[3] += 2;
         break;
+      case Primitive::kTaperedCapsule:
+        ++counts[4];
+        counts[3] += 2;
+        break;
+      case Primitive::kRoundedBox:
+        ++counts[5];
+        break;
     }
   }
 }
@@ -70,8 +77,8 @@ void pack_instances(std::span<const Instance> instances, PackedInstances& packed
   }
   packed.records.resize(static_cast<size_t>(first));  // no allocation within capacity
 
-  std::array<int, kUnitMeshCount> next{packed.ranges[0].first, packed.ranges[1].first,
-                                       packed.ranges[2].first, packed.ranges[3].first};
+  std::array<int, kUnitMeshCount> next{};
+  for (int m = 0; m < kUnitMeshCount; ++m) next[m] = packed.ranges[m].first;
   auto put = [&](UnitMesh mesh, const Eigen::Isometry3d& X_GO, const Eigen::Vector3d& scale,
                  const Instance& instance) {
     packed.records[static_cast<size_t>(next[static_cast<int>(mesh)]++)] =
@@ -108,6 +115,22 @@ void pack_instances(std::span<const Instance> instances, PackedInstances& packed
             Eigen::Vector3d::Constant(s.x()), instance);
         break;
       }
+      case Primitive::kTaperedCapsule: {
+        // the mean radius s.x(): the -z end's radius r0 and the +z end's taper * r0
+        const double half_length_m = 0.5 * s.y();
+        const double r0 = 2.0 * s.x() / (1.0 + kFrustumTaper), r1 = kFrustumTaper * r0;
+        put(UnitMesh::kFrustum, instance.X_GO, {r0, r0, s.y()}, instance);
+        put(UnitMesh::kCap, instance.X_GO * Eigen::Translation3d(0.0, 0.0, half_length_m),
+            Eigen::Vector3d::Constant(r1), instance);
+        put(UnitMesh::kCap,
+            instance.X_GO * Eigen::Translation3d(0.0, 0.0, -half_length_m) *
+                Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()),
+            Eigen::Vector3d::Constant(r0), instance);
+        break;
+      }
+      case Primitive::kRoundedBox:
+        put(UnitMesh::kRoundedBox, instance.X_GO, s, instance);
+        break;
     }
   }
 }

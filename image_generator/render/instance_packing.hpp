@@ -17,8 +17,9 @@ namespace vcockpit::render {
 
 // kCap: a capsule's end, the +z half of a coarser sphere (the other half is inside the
 // capsule's cylinder: not drawn, the hands' 60 caps cost a quarter of the triangles of spheres).
-enum class UnitMesh { kBox, kSphere, kCylinder, kCap };
-constexpr int kUnitMeshCount = 4;
+// A tapered capsule is a kFrustum between two caps; a rounded box is kRoundedBox.
+enum class UnitMesh { kBox, kSphere, kCylinder, kCap, kFrustum, kRoundedBox };
+constexpr int kUnitMeshCount = 6;
 
 // Matches the shader's per-instance attributes (see shaders.hpp).
 struct InstanceRecord {

@@ -75,8 +75,9 @@ MeshBuffers::MeshBuffers() {
   glGenBuffers(1, &instance_buffer_);
   const uint8_t white[4] = {255, 255, 255, 255};
   white_texture_ = make_texture(1, 1, white);
-  const std::array<MeshData, kUnitMeshCount> data{unit_box(), unit_sphere(), unit_cylinder(),
-                                                  unit_hemisphere()};
+  const std::array<MeshData, kUnitMeshCount> data{unit_box(),       unit_sphere(),
+                                                  unit_cylinder(),  unit_hemisphere(),
+                                                  unit_frustum(),   unit_rounded_box()};
   for (int m = 0; m < kUnitMeshCount; ++m)
     make_gpu_mesh(data[m], meshes_[m]);
 }

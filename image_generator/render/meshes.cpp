@@ -1,5 +1,6 @@
 #include "image_generator/render/meshes.hpp"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -109,6 +110,47 @@ MeshData unit_hemisphere(int slices, int stacks) {
       add_triangle(mesh, a, b, c);
       if (i > 0) add_triangle(mesh, a, c, d);  // the pole's collapse
     }
+  }
+  return mesh;
+}
+
+MeshData unit_frustum(int slices) {
+  MeshData mesh;
+  // the side's outward normal tilts up by the slope of the taper (radius 1 -> kFrustumTaper
+  // over a length of 1)
+  const float slope = 1.0f - kFrustumTaper;
+  const float n_scale = 1.0f / std::sqrt(1.0f + slope * slope);
+  for (int j = 0; j <= slices; ++j) {
+    const float phi = kTwoPi * static_cast<float>(j) / static_cast<float>(slices);
+    const float x = std::cos(phi), y = std::sin(phi);
+    const std::array<float, 3> n{x * n_scale, y * n_scale, slope * n_scale};
+    mesh.vertices.push_back({{x, y, -0.5f}, n});
+    mesh.vertices.push_back({{kFrustumTaper * x, kFrustumTaper * y, 0.5f}, n});
+  }
+  for (uint32_t j = 0; j < static_cast<uint32_t>(slices); ++j) {
+    const uint32_t a = 2 * j, b = a + 2, c = b + 1, d = a + 1;  // bottom j, bottom j+1, tops
+    add_triangle(mesh, a, b, c);
+    add_triangle(mesh, a, c, d);
+  }
+  return mesh;
+}
+
+MeshData unit_rounded_box(int slices, int stacks) {
+  // |x|^n + |y|^n + |z|^n = 0.5^n: the sphere's directions carried out to that surface, normals
+  // from its gradient
+  constexpr float kN = 4.0f;
+  MeshData mesh = unit_sphere(slices, stacks);
+  for (Vertex& v : mesh.vertices) {
+    const Eigen::Vector3f d(v.position.data());
+    const float k = std::pow(std::pow(std::abs(d.x()), kN) + std::pow(std::abs(d.y()), kN) +
+                                 std::pow(std::abs(d.z()), kN),
+                             -1.0f / kN);
+    const Eigen::Vector3f p = 0.5f * k * d;
+    Eigen::Vector3f n;
+    for (int i = 0; i < 3; ++i) n[i] = std::copysign(std::pow(std::abs(p[i]), kN - 1.0f), p[i]);
+    n.normalize();
+    v.position = {p.x(), p.y(), p.z()};
+    v.normal = {n.x(), n.y(), n.z()};
   }
   return mesh;
 }

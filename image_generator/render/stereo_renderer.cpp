@@ -26,8 +26,9 @@ void check_gl(const char* stage) {
   }
 }
 
-constexpr std::array<UnitMesh, kUnitMeshCount> kMeshes{UnitMesh::kBox, UnitMesh::kSphere,
-                                                       UnitMesh::kCylinder, UnitMesh::kCap};
+constexpr std::array<UnitMesh, kUnitMeshCount> kMeshes{UnitMesh::kBox,      UnitMesh::kSphere,
+                                                       UnitMesh::kCylinder, UnitMesh::kCap,
+                                                       UnitMesh::kFrustum,  UnitMesh::kRoundedBox};
 
 int64_t now_ns() {
   timespec ts{};

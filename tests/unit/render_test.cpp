@@ -320,6 +320,34 @@ TEST(InstancePacking, CapsuleIsACylinderAndTwoRoundCapsFacingOut) {
   }
 }
 
+// A tapered capsule (a finger's segment) is a frustum from radius r0 at -z to taper * r0 at +z,
+// its mean the instance's radius, closed by caps of those two radii.
+TEST(InstancePacking, ATaperedCapsuleIsAFrustumBetweenCapsOfItsEndRadii) {
+  const std::vector<Instance> instances{
+      make(Primitive::kTaperedCapsule, at(1.0, 0.5, 0.2), {0.009, 0.04, 0.0}, kYellow),
+      make(Primitive::kRoundedBox, at(0, 0, 0), {0.09, 0.08, 0.025}, kRed)};
+  PackedInstances packed;
+  pack_instances(instances, packed);
+  ASSERT_EQ(packed.records.size(), 4u);
+  EXPECT_EQ(packed.range(UnitMesh::kFrustum).count, 1);
+  EXPECT_EQ(packed.range(UnitMesh::kCap).count, 2);
+  EXPECT_EQ(packed.range(UnitMesh::kRoundedBox).count, 1);
+  EXPECT_EQ(packed.range(UnitMesh::kCylinder).count, 0);
+  const double r0 = 2 * 0.009 / (1 + kFrustumTaper), r1 = kFrustumTaper * r0;
+  EXPECT_NEAR(0.5 * (r0 + r1), 0.009, 1e-9);
+  const InstanceRecord& frustum = packed.records[packed.range(UnitMesh::kFrustum).first];
+  EXPECT_NEAR(frustum.scale_highlight[0], r0, 1e-7);
+  EXPECT_NEAR(frustum.scale_highlight[2], 0.04, 1e-7);
+  for (int i = 0; i < 2; ++i) {
+    const InstanceRecord& cap = packed.records[packed.range(UnitMesh::kCap).first + i];
+    const double z = Eigen::Map<const Eigen::Matrix4f>(cap.X_GO.data())(2, 3) - 0.2;
+    EXPECT_NEAR(cap.scale_highlight[0], z > 0 ? r1 : r0, 1e-7) << "cap at z " << z;
+    EXPECT_NEAR(std::abs(z), 0.02, 1e-6);
+  }
+  const InstanceRecord& palm = packed.records[packed.range(UnitMesh::kRoundedBox).first];
+  EXPECT_EQ(palm.scale_highlight, (std::array<float, 4>{0.09f, 0.08f, 0.025f, 0.0f}));
+}
+
 TEST(InstancePacking, ReusesItsBuffer) {
   std::vector<Instance> instances(50,
                                   make(Primitive::kCapsule, at(0, 0, 0), {0.01, 0.05, 0}, kRed));
@@ -354,7 +382,24 @@ TEST(Meshes, UnitMeshesAreOutwardWoundAndUnitSized) {
   expect_outward(unit_sphere(), "sphere");
   expect_outward(unit_cylinder(), "cylinder");
   expect_outward(unit_hemisphere(), "hemisphere");
+  expect_outward(unit_frustum(), "frustum");
+  expect_outward(unit_rounded_box(), "rounded box");
   EXPECT_EQ(unit_box().indices.size(), 36u);
+  for (const Vertex& v : unit_frustum().vertices) {
+    const float radius = std::hypot(v.position[0], v.position[1]);
+    EXPECT_NEAR(radius, v.position[2] < 0 ? 1.0f : kFrustumTaper, 1e-6f);
+    EXPECT_NEAR(Eigen::Vector3f(v.normal.data()).norm(), 1.0f, 1e-6f);
+    EXPECT_GT(v.normal[2], 0.0f) << "the side faces up the taper";
+  }
+  // on |x|^4 + |y|^4 + |z|^4 = 0.5^4: the faces' centres at 0.5, the corners cut to 0.5 / 3^0.25
+  float widest = 0.0f;
+  for (const Vertex& v : unit_rounded_box().vertices) {
+    const Eigen::Vector3f p(v.position.data());
+    EXPECT_NEAR(p.array().abs().pow(4.0f).sum(), std::pow(0.5f, 4.0f), 1e-6f);
+    widest = std::max(widest, p.cwiseAbs().maxCoeff());
+    EXPECT_GT(Eigen::Vector3f(v.normal.data()).dot(p), 0.0f) << "normals point out";
+  }
+  EXPECT_NEAR(widest, 0.5f, 1e-5f);
   for (const Vertex& v : unit_hemisphere().vertices) {
     EXPECT_NEAR(Eigen::Vector3f(v.position.data()).norm(), 1.0f, 1e-5f);
     EXPECT_GE(v.position[2], -1e-6f) << "the +z half only";
@@ -685,6 +730,39 @@ TEST_F(RenderTest, EachPrimitiveRenders) {
     EXPECT_TRUE(is_yellow(cap)) << cap;
     EXPECT_TRUE(is_background(cylinder_end)) << cylinder_end;
   }
+}
+
+// A finger's segment and a palm: the tapered capsule is wider at its -z end than at its +z end
+// (measured across the screen at equal distances from its middle), the rounded box fills its
+// centre but not the corners of its extents.
+TEST_F(RenderTest, ATaperedCapsuleNarrowsAndARoundedBoxHasRoundCorners) {
+  const Eigen::Isometry3d X_G_segment = at(1.0, 0.15, kHeadHeightM) *
+                                        Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX());  // z -> -y
+  const Eigen::Vector3d p_G_box(1.0, -0.15, kHeadHeightM);
+  renderer().render({make(Primitive::kTaperedCapsule, X_G_segment, {0.03, 0.16, 0}, kYellow),
+                     make(Primitive::kRoundedBox, at(p_G_box.x(), p_G_box.y(), p_G_box.z()),
+                          {0.02, 0.12, 0.12}, kBlue)},
+                   head_pose());
+  EXPECT_EQ(renderer().gl_error_count(), 0u);
+  const Eye eye = Eye::kLeft;
+  // the segment runs along -y: its wide (-z) end at y 0.15 + 0.06, its narrow end at 0.15 - 0.06
+  auto height_px = [&](double y_m) {
+    const Eigen::Vector2d c = projected(config(), eye, {1.0, y_m, kHeadHeightM});
+    int top = static_cast<int>(c.y()), bottom = top;
+    const int column = static_cast<int>(c.x());
+    while (top > 0 && !is_background(pixel_at(renderer(), eye, column, top - 1))) --top;
+    while (bottom + 1 < renderer().height_px() &&
+           !is_background(pixel_at(renderer(), eye, column, bottom + 1)))
+      ++bottom;
+    return bottom - top + 1;
+  };
+  const int wide = height_px(0.15 + 0.06), narrow = height_px(0.15 - 0.06);
+  // diameters there 6.5 and 5.5 cm, 1 m off: about 23 and 20 px
+  EXPECT_GE(wide, narrow + 3) << wide << " px vs " << narrow << " px";
+  EXPECT_TRUE(is_blue(pixel_at(renderer(), eye, projected(config(), eye, p_G_box))));
+  // a box's corner (at 0.058 of its 0.06 half extents) is empty: rounded off
+  EXPECT_TRUE(is_background(pixel_at(renderer(), eye, projected(config(), eye, p_G_box + Eigen::Vector3d(-0.01, 0.058, 0.058)))));
+  EXPECT_TRUE(is_blue(pixel_at(renderer(), eye, projected(config(), eye, p_G_box + Eigen::Vector3d(-0.01, 0.058, 0.0)))));
 }
 
 // A capsule lying along y: its caps follow its axis and stay round (no stretched spheres).

@@ -206,11 +206,11 @@ TEST(SceneCache, NoHandIsDrawnBeforeItsHandInfo) {
   EXPECT_EQ(cache.newest_sim_time_ns(), 5'000'000);
   cache.build(out);
   ASSERT_EQ(out.size(), 1u + kHandInstances);
-  EXPECT_EQ(out[1].primitive, render::Primitive::kBox);
+  EXPECT_EQ(out[1].primitive, render::Primitive::kRoundedBox);
   EXPECT_EQ(out[1].size_m, shipped_hand().palm_size_m);
   for (int l = 1; l < hand::kLinkCount; ++l) {
     const render::Instance& in = out[1 + static_cast<std::size_t>(l)];
-    EXPECT_EQ(in.primitive, render::Primitive::kCapsule);
+    EXPECT_EQ(in.primitive, render::Primitive::kTaperedCapsule);
     EXPECT_EQ(in.size_m.x(), shipped_hand().capsules[l].radius_m) << l;
     EXPECT_EQ(in.size_m.y(), shipped_hand().capsules[l].length_m) << l;
   }
