@@ -28,9 +28,10 @@ TEST(RealLeapGrab, TheClosedFistHoldsTheBarUntilItOpensAndLeavesItOnThePedestal)
   const real_grip::RealGripRun run = real_grip::replay_real_grip(
       source_dir() + "/tests/data/real/leap_grab_scene.yaml",
       source_dir() + "/tests/data/real/leap_grab.csv", "bar", "pedestal");
-  std::printf("%sdeepest below the pedestal top %.1f mm, fastest free %.3f m/s (at %.3f s), "
+  std::printf("%sdeepest below the pedestal top %.1f mm (at %.3f s), fastest free %.3f m/s (at %.3f s), "
               "deepest link in the bar %.2f mm, in a static object %.2f mm\n",
-              run.events.c_str(), run.deepest_below_support_m * 1e3, run.fastest_free_horizontal_mps,
+              run.events.c_str(), run.deepest_below_support_m * 1e3, run.deepest_below_support_at_s,
+              run.fastest_free_horizontal_mps,
               run.fastest_free_at_s, run.deepest_link_in_object_m * 1e3,
               run.deepest_link_in_static_m * 1e3);
   ASSERT_GE(run.grasp_s, 0.0) << "the closing fist never grasped the bar";
