@@ -170,6 +170,8 @@ class ImageGenerator {
   uint64_t late_frames_ = 0;                 // ended after their display slot
   uint64_t missed_slots_ = 0;                // display slots no frame ended in
   uint64_t background_redraws_ = 0;
+  uint64_t last_fixed_triangles_ = 0;
+  uint64_t last_moving_triangles_ = 0;
   LatencyHistogram background_ns_;  // per frame: background copied (or redrawn)
   LatencyHistogram latch_ns_;       // taking the newest state and building the moving layer
   LatencyHistogram moving_ns_;      // submitting the moving layer
@@ -217,6 +219,11 @@ void ImageGenerator::write_stats() const {
                          {"finish", part(finish_ns_)}};
   j["background_cache"] = options_.background_cache;
   j["background_redraws"] = background_redraws_;
+  // the last frame's scene, per eye: the fixed layer's (the cockpit; drawn only when the
+  // background is redrawn, else restored from the cache) and the moving layer's
+  j["triangles_per_eye"] = {{"fixed", last_fixed_triangles_},
+                            {"moving", last_moving_triangles_},
+                            {"total", last_fixed_triangles_ + last_moving_triangles_}};
   j["predict_hand"] = options_.predict_hand;
   j["late_frames"] = late_frames_;
   j["missed_slots"] = missed_slots_;
@@ -458,6 +465,8 @@ int ImageGenerator::run() {
     moving_ns_.record_ns(cost.moving_ns);
     finish_ns_.record_ns(cost.finish_ns);
     if (cost.background_redrawn) ++background_redraws_;
+    last_fixed_triangles_ = cost.fixed_triangles;
+    last_moving_triangles_ = cost.moving_triangles;
     if (period_ns > 0) {
       slot_ns += period_ns;
       if (end_ns > slot_ns) {  // missed its display slot

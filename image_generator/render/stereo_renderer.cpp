@@ -92,6 +92,8 @@ StereoRenderer::StereoRenderer(const HmdConfig& config)
     layer->opaque_meshes = std::make_unique<MeshBuffers>();
     layer->translucent_meshes = std::make_unique<MeshBuffers>();
   }
+  for (const UnitMesh mesh : kMeshes)
+    unit_mesh_triangles_[static_cast<std::size_t>(mesh)] = moving_.opaque_meshes->triangle_count(mesh);
   // the frame and the background layer, both eyes side by side; the same formats, so the
   // background is restored by copying images (a memcpy in llvmpipe; a blit of the depth was
   // a shader pass costing 9 ms a frame here)
@@ -141,6 +143,7 @@ void StereoRenderer::begin_frame(std::span<const Instance> fixed, const Eigen::I
   last_draw_calls_ = 0;
   X_GHead_ = X_GHead;
   pack_layer(fixed, background_);
+  cost_.fixed_triangles = triangles_in(background_);
   if (!cache_on_) {  // everything drawn every frame, straight into the frame
     background_valid_ = false;
     glBindFramebuffer(GL_FRAMEBUFFER, frame_framebuffer_);
@@ -175,8 +178,20 @@ bool StereoRenderer::background_changed(const Eigen::Isometry3d& X_GHead) const 
       std::memcmp(translucent.records.data(), background_records_.data() + opaque.records.size(),
                   translucent.records.size() * record) != 0)
     return true;
+  const auto same_ranges = [](const MeshRange* a, const MeshRange* b, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (a[i].first != b[i].first || a[i].count != b[i].count) return false;
+    return true;
+  };
+  if (!same_ranges(opaque.ranges.data(), background_opaque_ranges_.data(), kUnitMeshCount) ||
+      !same_ranges(translucent.ranges.data(), background_translucent_ranges_.data(), kUnitMeshCount))
+    return true;
   const std::size_t models = opaque.model_meshes.size();
   if (models + translucent.model_meshes.size() != background_model_meshes_.size()) return true;
+  if (!same_ranges(opaque.model_ranges.data(), background_model_ranges_.data(), models) ||
+      !same_ranges(translucent.model_ranges.data(), background_model_ranges_.data() + models,
+                   translucent.model_meshes.size()))
+    return true;
   return !std::equal(opaque.model_meshes.begin(), opaque.model_meshes.end(), background_model_meshes_.begin()) ||
          !std::equal(translucent.model_meshes.begin(), translucent.model_meshes.end(),
                      background_model_meshes_.begin() + static_cast<std::ptrdiff_t>(models));
@@ -197,6 +212,11 @@ void StereoRenderer::redraw_background(const Eigen::Isometry3d& X_GHead) {
   background_model_meshes_.insert(background_model_meshes_.end(), translucent.model_meshes.begin(),
                                   translucent.model_meshes.end());
   background_translucent_count_ = translucent.records.size();
+  background_opaque_ranges_ = opaque.ranges;
+  background_translucent_ranges_ = translucent.ranges;
+  background_model_ranges_.assign(opaque.model_ranges.begin(), opaque.model_ranges.end());
+  background_model_ranges_.insert(background_model_ranges_.end(), translucent.model_ranges.begin(),
+                                  translucent.model_ranges.end());
   background_X_GHead_ = X_GHead;
   background_valid_ = true;
   cost_.background_redrawn = true;
@@ -206,6 +226,7 @@ void StereoRenderer::redraw_background(const Eigen::Isometry3d& X_GHead) {
 void StereoRenderer::draw_moving(std::span<const Instance> moving) {
   const int64_t start_ns = now_ns();
   pack_layer(moving, moving_);
+  cost_.moving_triangles = triangles_in(moving_);
   draw_layer(moving_);
   cost_.moving_ns = now_ns() - start_ns;
 }
@@ -219,10 +240,26 @@ void StereoRenderer::pack_layer(std::span<const Instance> instances, Layer& laye
   pack_instances(layer.translucent_scratch, layer.translucent);
 }
 
+uint64_t StereoRenderer::triangles_in(const Layer& layer) const {
+  uint64_t triangles = 0;
+  for (const PackedInstances* packed : {&layer.opaque, &layer.translucent}) {
+    for (const UnitMesh mesh : kMeshes) {
+      triangles += static_cast<uint64_t>(packed->range(mesh).count) *
+                   static_cast<uint64_t>(unit_mesh_triangles_[static_cast<std::size_t>(mesh)]);
+    }
+    for (std::size_t k = 0; k < packed->model_meshes.size(); ++k) {
+      triangles += static_cast<uint64_t>(packed->model_ranges[k].count) *
+                   (packed->model_meshes[k]->indices.size() / 3);
+    }
+  }
+  return triangles;
+}
+
 void StereoRenderer::draw_layer(Layer& layer) {
+  // (both uploaded every time: an upload also lets go of the copies of models that are gone)
   layer.opaque_meshes->upload(layer.opaque);
+  layer.translucent_meshes->upload(layer.translucent);
   const bool translucent = !layer.translucent.records.empty();
-  if (translucent) layer.translucent_meshes->upload(layer.translucent);
   program_->use();
   for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
     set_eye(eye, X_GHead_);

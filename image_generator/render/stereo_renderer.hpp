@@ -70,6 +70,10 @@ class StereoRenderer {
     int64_t moving_ns = 0;
     int64_t finish_ns = 0;
     bool background_redrawn = false;
+    // the scene's triangles for one eye: the fixed layer's (the cockpit, whether redrawn or
+    // restored) and the moving layer's
+    uint64_t fixed_triangles = 0;
+    uint64_t moving_triangles = 0;
   };
   const FrameCost& last_cost() const { return cost_; }
   uint64_t background_redraws() const { return background_redraws_; }
@@ -97,13 +101,16 @@ class StereoRenderer {
   // One layer's instances, packed in two parts: the opaque, then the translucent (rgba alpha
   // below 1: glazing), blended over them without writing depth. Translucent instances are not
   // sorted among themselves: panes that do not overlap from the eye (a cockpit's windows) need
-  // no order.
+  // no order. The fixed layer's glazing is in the cached background, so a moving instance
+  // behind it is drawn over it, untinted (nothing moves outside a cockpit's windows); a full
+  // redraw draws in the same order.
   struct Layer {
     PackedInstances opaque, translucent;
     std::unique_ptr<MeshBuffers> opaque_meshes, translucent_meshes;
     std::vector<Instance> opaque_scratch, translucent_scratch;  // (kept for their capacity)
   };
   void pack_layer(std::span<const Instance> instances, Layer& layer);
+  uint64_t triangles_in(const Layer& layer) const;
   void draw_layer(Layer& layer);
   // the viewport and the programs' view for one eye
   void set_eye(Eye eye, const Eigen::Isometry3d& X_GHead);
@@ -117,6 +124,7 @@ class StereoRenderer {
   std::unique_ptr<GlContext> context_;         // declared first: destroyed last
   std::unique_ptr<LitProgram> program_;
   std::unique_ptr<OutsideViewProgram> outside_program_;  // with config_.outside only
+  std::array<int, kUnitMeshCount> unit_mesh_triangles_{};
   Layer moving_;
   Layer background_;
   std::vector<Instance> split_;  // render(): the moving instances
@@ -133,6 +141,10 @@ class StereoRenderer {
   std::vector<InstanceRecord> background_records_;  // opaque, then translucent
   std::vector<const MeshData*> background_model_meshes_;
   std::size_t background_translucent_count_ = 0;
+  // (and which unit mesh or model each of those records drew: a box turned rounded box with the
+  // same pose and size has the same record)
+  std::array<MeshRange, kUnitMeshCount> background_opaque_ranges_{}, background_translucent_ranges_{};
+  std::vector<MeshRange> background_model_ranges_;
   Eigen::Isometry3d background_X_GHead_ = Eigen::Isometry3d::Identity();
   bool cache_on_ = true;
   Eigen::Isometry3d X_GHead_ = Eigen::Isometry3d::Identity();  // this frame's

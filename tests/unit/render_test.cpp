@@ -765,6 +765,23 @@ TEST_F(RenderTest, ATaperedCapsuleNarrowsAndARoundedBoxHasRoundCorners) {
   EXPECT_TRUE(is_blue(pixel_at(renderer(), eye, projected(config(), eye, p_G_box + Eigen::Vector3d(-0.01, 0.058, 0.0)))));
 }
 
+// The frame's cost in triangles, per eye and layer: each instance's unit mesh (a capsule is a
+// cylinder and two caps), a model's own triangles.
+TEST_F(RenderTest, TheFrameCountsTheTrianglesOfEachLayer) {
+  auto triangles = [](const MeshData& mesh) { return static_cast<uint64_t>(mesh.indices.size() / 3); };
+  Instance panel = make(Primitive::kBox, at(1.2, 0.0, kHeadHeightM - 0.3), {0.1, 1.0, 0.4}, kBlue);
+  panel.fixed = true;
+  Instance pane = make(Primitive::kBox, at(1.1, 0.0, kHeadHeightM + 0.2), {0.01, 1.0, 0.4}, {1, 1, 1, 0.3f});
+  pane.fixed = true;
+  renderer().render({panel, pane, make(Primitive::kSphere, at(1.0, 0.1, kHeadHeightM), {0.05, 0, 0}, kRed),
+                     make(Primitive::kCapsule, at(1.0, -0.1, kHeadHeightM), {0.02, 0.1, 0}, kGreen)},
+                    head_pose());
+  const auto& cost = renderer().last_cost();
+  EXPECT_EQ(cost.fixed_triangles, 2 * triangles(unit_box()));
+  EXPECT_EQ(cost.moving_triangles,
+            triangles(unit_sphere()) + triangles(unit_cylinder()) + 2 * triangles(unit_hemisphere()));
+}
+
 // A capsule lying along y: its caps follow its axis and stay round (no stretched spheres).
 TEST_F(RenderTest, CapsuleCapsFollowItsAxis) {
   const double r_m = 0.03, length_m = 0.3;
@@ -870,13 +887,18 @@ std::vector<Instance> cockpit_scene() {
                          {0.9f, 0.2f, 0.2f, 1}));
   }
   for (int hand = 0; hand < 2; ++hand) {
+    scene.push_back(make(Primitive::kRoundedBox, at(0.5, hand ? -0.2 : 0.2, 1.0), {0.09, 0.08, 0.025},
+                         {0.9f, 0.75f, 0.6f, 1}));
     for (int link = 0; link < 10; ++link) {
       const Eigen::Isometry3d X_GO =
           at(0.55 + 0.02 * (link % 5), (hand ? -0.2 : 0.2) + 0.02 * (link / 5), 1.0) *
           Eigen::AngleAxisd(80 * kDeg, Eigen::Vector3d::UnitY());
-      scene.push_back(make(Primitive::kCapsule, X_GO, {0.009, 0.03, 0}, {0.9f, 0.75f, 0.6f, 1}));
+      scene.push_back(make(link % 2 ? Primitive::kTaperedCapsule : Primitive::kCapsule, X_GO,
+                           {0.009, 0.03, 0}, {0.9f, 0.75f, 0.6f, 1}));
     }
   }
+  // glazing: drawn translucent, in a pass of its own
+  scene.push_back(make(Primitive::kBox, at(0.95, 0.0, 1.3), {0.02, 1.2, 0.5}, {0.45f, 0.55f, 0.62f, 0.3f}));
   return scene;
 }
 
@@ -981,6 +1003,10 @@ TEST_F(RenderTest, CachedBackgroundFrameEqualsAFullRedraw) {
   renderer().render(lit, head_pose() * Eigen::Translation3d(0, 0.01, 0));
   EXPECT_EQ(renderer().background_redraws(), redraws_before + 3);
   EXPECT_FALSE(renderer().last_cost().background_redrawn);
+  // a fixed box drawn rounded instead, same pose, size and colour (the same record): redrawn
+  lit[0].primitive = Primitive::kRoundedBox;
+  renderer().render(lit, head_pose() * Eigen::Translation3d(0, 0.01, 0));
+  EXPECT_EQ(renderer().background_redraws(), redraws_before + 4);
 }
 
 // A frame a consumer keeps (shared_pixels) stays as it was while the renderer goes on: later
