@@ -5,11 +5,12 @@
 namespace vcockpit::render {
 namespace {
 
-// one triangle that covers the viewport: clip (-1,-1), (3,-1), (-1,3)
+// one triangle that covers the viewport, clip (-1,-1), (3,-1), (-1,3), at the far plane (depth
+// 1, the cleared depth): drawn after the opaque cockpit, it shades only what nothing covers
 constexpr const char* kVertexSource = R"glsl(#version 450 core
 void main() {
   vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-  gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+  gl_Position = vec4(corner * 2.0 - 1.0, 1.0, 1.0);
 }
 )glsl";
 
@@ -82,7 +83,9 @@ void OutsideViewProgram::draw(const OutsideView& view, const Eigen::Matrix4f& G_
   const Eigen::Vector4f viewport = viewport_px.cast<float>();
   glUniform4fv(viewport_, 1, viewport.data());
   glUniform1f(ground_z_, static_cast<float>(-view.ground_depth_m));
-  glDisable(GL_DEPTH_TEST);
+  // where the depth is still the cleared 1: nothing drawn there (the renderer's depth test is
+  // GL_LESS, which would reject the far plane itself)
+  glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
   glDisable(GL_CULL_FACE);  // (the renderer's front faces wind clockwise; this one does not)
   glBindVertexArray(empty_vertex_array_);
@@ -90,7 +93,7 @@ void OutsideViewProgram::draw(const OutsideView& view, const Eigen::Matrix4f& G_
   glBindVertexArray(0);
   glEnable(GL_CULL_FACE);
   glDepthMask(GL_TRUE);
-  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
 }
 
 }  // namespace vcockpit::render

@@ -148,8 +148,7 @@ void StereoRenderer::begin_frame(std::span<const Instance> fixed, const Eigen::I
     background_valid_ = false;
     glBindFramebuffer(GL_FRAMEBUFFER, frame_framebuffer_);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);  // both halves at once
-    draw_outside(X_GHead);
-    draw_layer(background_);
+    draw_layer(background_, true);
     cost_.background_ns = now_ns() - frame_start_ns_;
     return;
   }
@@ -200,8 +199,7 @@ bool StereoRenderer::background_changed(const Eigen::Isometry3d& X_GHead) const 
 void StereoRenderer::redraw_background(const Eigen::Isometry3d& X_GHead) {
   glBindFramebuffer(GL_FRAMEBUFFER, background_framebuffer_);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  draw_outside(X_GHead);
-  draw_layer(background_);
+  draw_layer(background_, true);
   glBindFramebuffer(GL_FRAMEBUFFER, frame_framebuffer_);
   // what it shows, to compare the next frames' with (assign: no allocation once grown)
   const PackedInstances& opaque = background_.opaque;
@@ -227,7 +225,7 @@ void StereoRenderer::draw_moving(std::span<const Instance> moving) {
   const int64_t start_ns = now_ns();
   pack_layer(moving, moving_);
   cost_.moving_triangles = triangles_in(moving_);
-  draw_layer(moving_);
+  draw_layer(moving_, false);
   cost_.moving_ns = now_ns() - start_ns;
 }
 
@@ -255,22 +253,30 @@ uint64_t StereoRenderer::triangles_in(const Layer& layer) const {
   return triangles;
 }
 
-void StereoRenderer::draw_layer(Layer& layer) {
+void StereoRenderer::draw_layer(Layer& layer, bool with_outside) {
   // (both uploaded every time: an upload also lets go of the copies of models that are gone)
   layer.opaque_meshes->upload(layer.opaque);
   layer.translucent_meshes->upload(layer.translucent);
-  const bool translucent = !layer.translucent.records.empty();
   program_->use();
   for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
     set_eye(eye, X_GHead_);
     draw_packed(*layer.opaque_meshes, layer.opaque);
-    if (!translucent) continue;
-    glEnable(GL_BLEND);
-    glDepthMask(GL_FALSE);
-    draw_packed(*layer.translucent_meshes, layer.translucent);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
   }
+  // the outside view after the opaque cockpit, at the far plane: only the pixels nothing
+  // covers are shaded (the depth test rejects the rest first), then the glazing over it
+  if (with_outside && outside_program_) {
+    draw_outside(X_GHead_);
+    program_->use();
+  }
+  if (layer.translucent.records.empty()) return;
+  glEnable(GL_BLEND);
+  glDepthMask(GL_FALSE);
+  for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+    set_eye(eye, X_GHead_);
+    draw_packed(*layer.translucent_meshes, layer.translucent);
+  }
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
 }
 
 void StereoRenderer::draw_outside(const Eigen::Isometry3d& X_GHead) {

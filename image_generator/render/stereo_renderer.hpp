@@ -111,11 +111,13 @@ class StereoRenderer {
   };
   void pack_layer(std::span<const Instance> instances, Layer& layer);
   uint64_t triangles_in(const Layer& layer) const;
-  void draw_layer(Layer& layer);
+  // with_outside: the outside view between the opaque and the translucent part (the fixed
+  // layer's)
+  void draw_layer(Layer& layer, bool with_outside);
   // the viewport and the programs' view for one eye
   void set_eye(Eye eye, const Eigen::Isometry3d& X_GHead);
   void draw_packed(const MeshBuffers& meshes, const PackedInstances& packed);
-  void draw_outside(const Eigen::Isometry3d& X_GHead);  // both eyes, if config_.outside
+  void draw_outside(const Eigen::Isometry3d& X_GHead);  // both eyes
   void redraw_background(const Eigen::Isometry3d& X_GHead);
   bool background_changed(const Eigen::Isometry3d& X_GHead) const;
 
