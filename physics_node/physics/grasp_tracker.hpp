@@ -119,9 +119,8 @@ struct HandOnObject {
   // the links of the tracked hand, posed on the proxy's wrist (the hand's shape, not its lag),
   // within release_gap_m of the object's surface (bit l), or, for a control, where the tracked
   // hand is against the control as it would move it (World::tracked_links_near); known only
-  // while this hand holds it and
-  // hold_rule is kTrackedGrip, and measured only as far as the verdict needs (the first near link
-  // of the thumb or palm, and of one opposed finger)
+  // while this hand holds it and hold_rule is kTrackedGrip, and measured only as far as the
+  // verdict needs (the first near link of the thumb or palm, and of one opposed finger)
   bool grip_known = false;
   uint32_t tracked_links_near = 0;
   GraspHold* hold = nullptr;  // this hand's grasp state of the object
