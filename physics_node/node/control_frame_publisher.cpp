@@ -10,7 +10,7 @@ namespace vcockpit::physics_node {
 
 ControlFramePublisher::ControlFramePublisher(DdsParticipant& participant,
                                              const physics::Scene& scene, double hz)
-    : writer_(participant.make_writer<cockpit::ControlFrame>("event")) {
+    : writer_(participant.make_writer<cockpit::ControlFrame>("control_frames")) {
   if (hz == 0.0) return;
   const int64_t period_ns = physics_io::control_frame_interval_ns(hz, scene);
   if (scene.controls.size() > 64)

@@ -77,7 +77,7 @@ class Node {
       : model_(std::move(model)),
         options_(options),
         info_reader_(participant.make_reader<cockpit::ControlInfo>("state")),
-        frame_reader_(participant.make_reader<cockpit::ControlFrame>("event")),
+        frame_reader_(participant.make_reader<cockpit::ControlFrame>("control_frames")),
         failure_reader_(participant.make_reader<cockpit::FailureCommand>("command")),
         sim_reader_(participant.make_reader<cockpit::SimCommand>("command")),
         sim_ack_writer_(participant.make_writer<cockpit::SimAck>("event")),

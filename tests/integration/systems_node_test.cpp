@@ -127,7 +127,7 @@ TEST_F(SystemsNodeTest, KilledDuringAGearTransitResumesWhereItWas) {
   const physics::Scene scene = load_scene(config_path("cockpit.yaml"));
   DdsParticipant participant(resolve_dds_options(DdsFlags{}), "systems_node_test");
   auto infos = participant.make_writer<cockpit::ControlInfo>("state");
-  auto frames = participant.make_writer<cockpit::ControlFrame>("event");
+  auto frames = participant.make_writer<cockpit::ControlFrame>("control_frames");
   auto events = participant.make_reader<cockpit::SystemsEvent>("event");
   cockpit::ControlFrame frame;
   int gear = -1;
@@ -216,6 +216,72 @@ TEST_F(SystemsNodeTest, KilledDuringAGearTransitResumesWhereItWas) {
   EXPECT_EQ(up_at["gear_left"], std::vector<int64_t>{8'000'000'000});
   EXPECT_EQ(up_at["gear_right"], std::vector<int64_t>{8'500'000'000});
   EXPECT_NE(text("systems2.log").find("resumed from"), std::string::npos) << text("systems2.log");
+  EXPECT_EQ(systems->stop(), 0);
+}
+
+// A burst of control frames written while the systems node is stopped (a loaded machine stalls
+// a reader so): every frame arrives once it goes on, and a 0.3 s flick of the gear lever
+// in its middle is stepped on at its own frames' times. With the frames' history as deep as the
+// other events' (100), the writer dropped frames: the systems stepped over the gaps with later
+// frames' controls, and the gear moved a step early (a CI run lost a 0.85 s switch pulse so).
+TEST_F(SystemsNodeTest, ABurstOfFramesReachesItWholeWithAShortFlickInIt) {
+  const physics::Scene scene = load_scene(config_path("cockpit.yaml"));
+  DdsParticipant participant(resolve_dds_options(DdsFlags{}), "systems_node_test");
+  auto infos = participant.make_writer<cockpit::ControlInfo>("state");
+  auto frames = participant.make_writer<cockpit::ControlFrame>("control_frames");
+  auto events = participant.make_reader<cockpit::SystemsEvent>("event");
+  cockpit::ControlFrame frame;
+  int gear = -1;
+  for (std::size_t c = 0; c < scene.controls.size(); ++c) {
+    const physics::ControlSpec& spec = scene.controls[c];
+    cockpit::ControlInfo info;
+    info.control_id(static_cast<uint32_t>(c));
+    info.name(spec.name);
+    info.joint(spec.joint == physics::JointKind::kRevolute ? cockpit::REVOLUTE : cockpit::PRISMATIC);
+    std::string names;
+    for (const physics::ControlPosition& p : spec.positions) names += p.name + "|";
+    info.position_names(names);
+    info.position_count(static_cast<uint32_t>(spec.positions.size()));
+    infos.write(info);
+    const int position = spec.name == "avionics_master" ? 1 : 0;
+    if (spec.name == "gear") gear = static_cast<int>(c);
+    frame.position().push_back(position);
+    frame.coordinate().push_back(spec.positions[static_cast<std::size_t>(position)].q);
+  }
+  ASSERT_GE(gear, 0);
+  auto statuses = participant.make_reader<cockpit::NodeStatus>("state");
+  auto systems = std::make_unique<ChildProcess>(start("systems_node", {}, "systems.log"));
+  ASSERT_TRUE(frames.wait_for_matched(1, 30 * kSecond)) << text("systems.log");
+  // the first frame alone, taken (the node bound to the controls); then, while the node is
+  // stopped (a stalled reader), 1,499 more of 10 ms; the lever up from 5.00 s to 5.30 s only
+  frame.sim_time_ns(10'000'000);
+  frame.seq(1);
+  frames.write(frame);
+  ASSERT_TRUE(wait_for_frames_taken(statuses, 1, 30 * kSecond)) << text("systems.log");
+  systems->signal(SIGSTOP);
+  for (uint64_t seq = 2; seq <= 1500; ++seq) {
+    frame.sim_time_ns(static_cast<int64_t>(seq) * 10'000'000);
+    frame.seq(seq);
+    const bool up = frame.sim_time_ns() >= 5 * kSecond && frame.sim_time_ns() < 5'300'000'000;
+    frame.position()[static_cast<std::size_t>(gear)] = up ? 1 : 0;
+    frames.write(frame);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  systems->signal(SIGCONT);
+  // the gear starts up as the lever goes up at 5 s, and back down as it comes down at 5.3 s
+  std::vector<int64_t> retracting_at, extending_at;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  cockpit::SystemsEvent e;
+  while (extending_at.empty() && std::chrono::steady_clock::now() < until) {
+    while (events.take(e)) {
+      if (e.kind() != cockpit::SYSTEM_CHANGED || e.name().to_string() != "gear_nose") continue;
+      if (e.to_text().to_string() == "retracting") retracting_at.push_back(e.sim_time_ns());
+      if (e.to_text().to_string() == "extending") extending_at.push_back(e.sim_time_ns());
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(retracting_at, std::vector<int64_t>{5 * kSecond}) << text("systems.log");
+  EXPECT_EQ(extending_at, std::vector<int64_t>{5'300'000'000}) << text("systems.log");
   EXPECT_EQ(systems->stop(), 0);
 }
 
