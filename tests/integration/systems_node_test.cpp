@@ -40,6 +40,30 @@ bool wait_for_frames_taken(Reader<cockpit::NodeStatus>& statuses, uint64_t frame
   return false;
 }
 
+// Plays the physics' start: every control's info written, and `frame` set to every control in
+// its first position but the avionics master, on. Returns the gear lever's index (-1: none).
+int publish_control_infos(const physics::Scene& scene, Writer<cockpit::ControlInfo>& infos,
+                          cockpit::ControlFrame& frame) {
+  int gear = -1;
+  for (std::size_t c = 0; c < scene.controls.size(); ++c) {
+    const physics::ControlSpec& spec = scene.controls[c];
+    cockpit::ControlInfo info;
+    info.control_id(static_cast<uint32_t>(c));
+    info.name(spec.name);
+    info.joint(spec.joint == physics::JointKind::kRevolute ? cockpit::REVOLUTE : cockpit::PRISMATIC);
+    std::string names;
+    for (const physics::ControlPosition& p : spec.positions) names += p.name + "|";
+    info.position_names(names);
+    info.position_count(static_cast<uint32_t>(spec.positions.size()));
+    infos.write(info);
+    const int position = spec.name == "avionics_master" ? 1 : 0;
+    if (spec.name == "gear") gear = static_cast<int>(c);
+    frame.position().push_back(position);
+    frame.coordinate().push_back(spec.positions[static_cast<std::size_t>(position)].q);
+  }
+  return gear;
+}
+
 // One bundled log in a lockstep rig and offline; `failures` for both, `expected` the pinned
 // score (tests/data/procedures/) or "" when none is pinned.
 struct RigCase {
@@ -130,25 +154,7 @@ TEST_F(SystemsNodeTest, KilledDuringAGearTransitResumesWhereItWas) {
   auto frames = participant.make_writer<cockpit::ControlFrame>("control_frames");
   auto events = participant.make_reader<cockpit::SystemsEvent>("event");
   cockpit::ControlFrame frame;
-  int gear = -1;
-  for (std::size_t c = 0; c < scene.controls.size(); ++c) {
-    const physics::ControlSpec& spec = scene.controls[c];
-    cockpit::ControlInfo info;
-    info.control_id(static_cast<uint32_t>(c));
-    info.name(spec.name);
-    info.joint(spec.joint == physics::JointKind::kRevolute ? cockpit::REVOLUTE : cockpit::PRISMATIC);
-    std::string names;
-    for (const physics::ControlPosition& p : spec.positions) names += p.name + "|";
-    info.position_names(names);
-    info.position_count(static_cast<uint32_t>(spec.positions.size()));
-    infos.write(info);
-    // every control in its first position, the avionics master on
-    int position = 0;
-    if (spec.name == "avionics_master") position = 1;
-    if (spec.name == "gear") gear = static_cast<int>(c);
-    frame.position().push_back(position);
-    frame.coordinate().push_back(spec.positions[static_cast<std::size_t>(position)].q);
-  }
+  const int gear = publish_control_infos(scene, infos, frame);
   ASSERT_GE(gear, 0);
   const std::string checkpoint = dir_ + "/state/systems.ckpt";
   const std::vector<std::string> args = {"--checkpoint", checkpoint, "--checkpoint-every", "0.5"};
@@ -231,23 +237,7 @@ TEST_F(SystemsNodeTest, ABurstOfFramesReachesItWholeWithAShortFlickInIt) {
   auto frames = participant.make_writer<cockpit::ControlFrame>("control_frames");
   auto events = participant.make_reader<cockpit::SystemsEvent>("event");
   cockpit::ControlFrame frame;
-  int gear = -1;
-  for (std::size_t c = 0; c < scene.controls.size(); ++c) {
-    const physics::ControlSpec& spec = scene.controls[c];
-    cockpit::ControlInfo info;
-    info.control_id(static_cast<uint32_t>(c));
-    info.name(spec.name);
-    info.joint(spec.joint == physics::JointKind::kRevolute ? cockpit::REVOLUTE : cockpit::PRISMATIC);
-    std::string names;
-    for (const physics::ControlPosition& p : spec.positions) names += p.name + "|";
-    info.position_names(names);
-    info.position_count(static_cast<uint32_t>(spec.positions.size()));
-    infos.write(info);
-    const int position = spec.name == "avionics_master" ? 1 : 0;
-    if (spec.name == "gear") gear = static_cast<int>(c);
-    frame.position().push_back(position);
-    frame.coordinate().push_back(spec.positions[static_cast<std::size_t>(position)].q);
-  }
+  const int gear = publish_control_infos(scene, infos, frame);
   ASSERT_GE(gear, 0);
   auto statuses = participant.make_reader<cockpit::NodeStatus>("state");
   auto systems = std::make_unique<ChildProcess>(start("systems_node", {}, "systems.log"));
