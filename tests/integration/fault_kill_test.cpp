@@ -108,9 +108,9 @@ class FaultKillTest : public ProcessTest {
     return false;
   }
 
-  // The restarted node's first object_state (reliable, transient local: seen however late the
-  // monitor matches it) is of the checkpoint's time, at or before the newest the killed node
-  // published. The killed node's states rise in simulated time, so the restarted node's first is
+  // The restarted node's first object_state the monitor sees (reliable, transient local: the
+  // newest when the monitor matches the new writer) is of the checkpoint's time or a little
+  // after, at or before the newest the killed node published. The killed node's states rise in simulated time, so the restarted node's first is
   // the first after the kill that does not: found that way, the check does not depend on how far
   // the monitor had written when the kill came (a sanitized monitor once lagged 0.1 s behind).
   //
@@ -141,9 +141,20 @@ class FaultKillTest : public ProcessTest {
     const SeenObject new_cup = seen.watched[resumed_at];
     const int64_t sim_before_ns = seen.watched[resumed_at - 1].sim_time_ns;
     const double resume_s = ns_to_seconds(new_cup.received_ns - killed_ns);
-    std::printf("physics node killed at %.3f s simulated: resumed at %.3f s, publishing %.2f s "
-                "after kill -9\n",
-                ns_to_seconds(sim_before_ns), ns_to_seconds(new_cup.sim_time_ns), resume_s);
+    // the checkpoint's time, from the restarted node's "resumed from PATH: T s simulated"
+    const std::string physics_log = read_text(dir_ + "/out/logs/physics_node.log");
+    std::size_t line_at = std::string::npos;
+    for (int r = 0; r < resumes; ++r) {
+      line_at = physics_log.find("resumed from ", line_at == std::string::npos ? 0 : line_at + 1);
+      ASSERT_NE(line_at, std::string::npos) << physics_log;
+    }
+    const std::size_t time_at = physics_log.find(": ", line_at);
+    ASSERT_NE(time_at, std::string::npos) << physics_log;
+    const int64_t checkpoint_ns = seconds_to_ns(std::stod(physics_log.substr(time_at + 2)));
+    std::printf("physics node killed at %.3f s simulated: resumed from %.3f s, first seen at "
+                "%.3f s, publishing %.2f s after kill -9\n",
+                ns_to_seconds(sim_before_ns), ns_to_seconds(checkpoint_ns),
+                ns_to_seconds(new_cup.sim_time_ns), resume_s);
     // the requirement is 2 s (measured here: 0.5-0.8 s); a loaded machine gets 5x the slack
     if (!sanitized()) {
       EXPECT_LT(resume_s, 10.0);
@@ -152,17 +163,25 @@ class FaultKillTest : public ProcessTest {
     // publication's 4 ms) before the newest state the killed node published (with the machine
     // busy the kill once came while the newest checkpoint was still being written: resumed at
     // 1.5 s of 2.119 s)
-    EXPECT_GE(new_cup.sim_time_ns,
-              sim_before_ns - 2 * seconds_to_ns(kCheckpointEveryS) - 5'000'000);
-    EXPECT_GT(new_cup.sim_time_ns, 0);
-    // the cup as the killed node had it at that time (it published every 4 ms of simulated
-    // time: the nearest state before, within what the cup moves in 4 ms)
+    EXPECT_GE(checkpoint_ns, sim_before_ns - 2 * seconds_to_ns(kCheckpointEveryS) - 5'000'000);
+    EXPECT_GT(checkpoint_ns, 0);
+    EXPECT_GE(new_cup.sim_time_ns, checkpoint_ns - 1'000'000);  // (the log rounds to 1 ms)
+    // The cup as the killed node had it at the checkpoint's time (it published every 4 ms of
+    // simulated time: the nearest state before, within what the cup moves in 4 ms). The
+    // restarted node takes up its glove from its first step, and the glove played on while it
+    // was away; the monitor (a late joiner: it gets the newest state when it matches the new
+    // writer) may first see it tens of steps on, a sanitized one a hundred (CI: from 3.000 s,
+    // first seen at 3.096 s, the cup 24 mm higher as the wrist caught up with the lifting
+    // glove). So the bound grows with the proxy wrist's catch-up speed over those steps.
     const SeenObject* old_cup = nullptr;
     for (std::size_t i = 0; i < resumed_at; ++i)
-      if (seen.watched[i].sim_time_ns <= new_cup.sim_time_ns) old_cup = &seen.watched[i];
+      if (seen.watched[i].sim_time_ns <= checkpoint_ns + 500'000) old_cup = &seen.watched[i];
     ASSERT_NE(old_cup, nullptr);
-    EXPECT_LT((new_cup.position - old_cup->position).norm(), 0.01)
-        << "cup at " << new_cup.position.transpose() << ", the killed node had it at "
+    const double caught_up_m = load_scene(config("cockpit.yaml")).proxy.max_speed_mps *
+                               ns_to_seconds(std::max<int64_t>(new_cup.sim_time_ns - checkpoint_ns, 0));
+    EXPECT_LT((new_cup.position - old_cup->position).norm(), 0.01 + caught_up_m)
+        << "cup at " << new_cup.position.transpose() << " at "
+        << ns_to_seconds(new_cup.sim_time_ns) << " s, the killed node had it at "
         << old_cup->position.transpose() << " at " << ns_to_seconds(old_cup->sim_time_ns) << " s";
   }
 
