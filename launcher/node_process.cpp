@@ -59,6 +59,7 @@ void NodeProcess::start(const std::map<std::string, std::string>& env) {
   if (fd_ >= 0) close(fd_);
   fd_ = pipe_fds[0];
   fcntl(fd_, F_SETFL, O_NONBLOCK);
+  started_at_ns_ = monotonic_now_ns();
   if (starts_++ > 0) ++restarts_;
   std::fprintf(log_, "---- started pid %d:", static_cast<int>(pid_));
   for (const auto& a : argv) std::fprintf(log_, " %s", a.c_str());

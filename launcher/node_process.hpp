@@ -37,6 +37,7 @@ class NodeProcess {
   pid_t pid() const { return pid_; }
   int fd() const { return fd_; }
   int exit_status() const { return exit_status_; }  // exit code, or 128 + signal
+  int64_t started_at_ns() const { return started_at_ns_; }
   int64_t ended_at_ns() const { return ended_at_ns_; }
   int restarts() const { return restarts_; }
 
@@ -50,6 +51,7 @@ class NodeProcess {
   pid_t pid_ = -1;
   int fd_ = -1;
   int exit_status_ = 0;
+  int64_t started_at_ns_ = 0;
   int64_t ended_at_ns_ = 0;
   int starts_ = 0;
   int restarts_ = 0;

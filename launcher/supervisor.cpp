@@ -111,10 +111,23 @@ void Supervisor::supervise(RigMonitor& monitor, bool status_line) {
         // a busy machine's physics node may still be stepping through queued samples: the run
         // ends when it has taken them all (bounded), then the others have a moment to show it
         catch_up_until_ns = now_ns + kCatchUpLimit_ns;
-      } else if (spec.restart_delay_s) {
+      } else if (spec.restart_delay_s &&
+                 restart_guards_[node.get()].allows_restart(node->started_at_ns(),
+                                                            node->ended_at_ns(), status)) {
         spdlog::warn("{} ended with status {}: restarting in {} s", spec.name, status,
                      *spec.restart_delay_s);
         restart_at_ns_[node.get()] = now_ns + seconds_to_ns(*spec.restart_delay_s);
+      } else if (spec.restart_delay_s) {
+        spdlog::error("{} ended with status {} within {:.0f} s of its start {} times in a row: "
+                      "not restarted again (why: {}/logs/{}.log){}",
+                      spec.name, status, ns_to_seconds(RestartGuard::kSoon_ns),
+                      RestartGuard::kInARow, out_dir_, spec.name,
+                      spec.required ? "; stopping the rig" : "");
+        if (spec.required) {
+          end_reason_ = spec.name + " cannot start";
+          failed_ = true;
+          drain_until_ns = now_ns;
+        }
       } else if (spec.required) {
         spdlog::error("{} (required) ended with status {}: stopping the rig", spec.name, status);
         end_reason_ = spec.name + " died";

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "launcher/node_process.hpp"
+#include "launcher/restart_guard.hpp"
 #include "launcher/rig_config.hpp"
 
 namespace vcockpit::rig {
@@ -49,6 +50,7 @@ class Supervisor {
   std::map<std::string, std::string> env_;
   std::vector<std::unique_ptr<NodeProcess>> nodes_;
   std::map<NodeProcess*, int64_t> restart_at_ns_;
+  std::map<NodeProcess*, RestartGuard> restart_guards_;
   std::FILE* combined_ = nullptr;  // OUT/logs/rig.log
   bool failed_ = false;
   std::string end_reason_ = "stopped";
