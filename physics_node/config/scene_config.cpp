@@ -257,8 +257,8 @@ void reject_dynamics(const ConfigNode& node) {
 }
 
 ObjectSpec parse_object(const ConfigNode& node, const std::string& base_dir) {
-  node.expect_keys({"name", "kind", "shape", "pose", "mass", "density", "inertia", "velocity",
-                    "material", "color"});
+  node.expect_keys({"name", "kind", "shape", "look", "pose", "mass", "density", "inertia",
+                    "velocity", "material", "color"});
   ObjectSpec spec;
   spec.name = parse_name(node["name"]);
   spec.dynamic = parse_kind_is_dynamic(node["kind"]);
@@ -271,8 +271,13 @@ ObjectSpec parse_object(const ConfigNode& node, const std::string& base_dir) {
   } else {
     reject_dynamics(node);
   }
+  if (auto look = node.find("look")) {
+    // drawn in the box's place, so it cannot ride a centroid the box gives (a moving part)
+    if (spec.dynamic) look->fail("a look is for a static object (a dynamic one is drawn as its shape)");
+    spec.look = parse_mesh_shape(*look, {base_dir, false});
+  }
   if (auto m = node.find("material")) spec.material = parse_material(*m, Material{});
-  spec.color_rgba = default_color(spec.shape);
+  spec.color_rgba = default_color(spec.look ? *spec.look : spec.shape);
   read_optional(node, "color", spec.color_rgba, parse_color);
   return spec;
 }

@@ -128,21 +128,23 @@ void StatePublisher::publish_object_info(const physics::World& world) {
     info.object_id(static_cast<uint32_t>(i));
     info.name(o.name.substr(0, 64));
     info.kind(o.dynamic ? cockpit::DYNAMIC_OBJECT : cockpit::STATIC_OBJECT);
-    info.shape(shape_to_idl(o.shape.kind));
-    if (o.shape.kind == physics::ShapeKind::kBox) {
-      info.dimensions_m({o.shape.box_size_m.x(), o.shape.box_size_m.y(), o.shape.box_size_m.z()});
-    } else if (o.shape.kind == physics::ShapeKind::kMesh) {
-      const Eigen::Vector3d size_m = o.shape.mesh_bounds.max_m - o.shape.mesh_bounds.min_m;
+    // what it looks like: its look when it has one (it collides as its shape all the same)
+    const physics::Shape& drawn = o.look ? *o.look : o.shape;
+    info.shape(shape_to_idl(drawn.kind));
+    if (drawn.kind == physics::ShapeKind::kBox) {
+      info.dimensions_m({drawn.box_size_m.x(), drawn.box_size_m.y(), drawn.box_size_m.z()});
+    } else if (drawn.kind == physics::ShapeKind::kMesh) {
+      const Eigen::Vector3d size_m = drawn.mesh_bounds.max_m - drawn.mesh_bounds.min_m;
       info.dimensions_m({size_m.x(), size_m.y(), size_m.z()});
-      const physics::Shape::MeshSource& m = o.shape.mesh_source;
+      const physics::Shape::MeshSource& m = drawn.mesh_source;
       info.mesh_file(m.file.substr(0, 255));
       info.mesh_node(m.node.substr(0, 64));
       info.mesh_scale(m.scale);
       info.mesh_z_up(m.z_up);
       info.mesh_origin_m(to_idl(m.origin_m));
-      info.mesh_center_m(to_idl(0.5 * (o.shape.mesh_bounds.min_m + o.shape.mesh_bounds.max_m)));
+      info.mesh_center_m(to_idl(0.5 * (drawn.mesh_bounds.min_m + drawn.mesh_bounds.max_m)));
     } else {
-      info.dimensions_m({o.shape.radius_m, o.shape.length_m, 0.0});
+      info.dimensions_m({drawn.radius_m, drawn.length_m, 0.0});
     }
     info.color_rgba({o.color_rgba[0], o.color_rgba[1], o.color_rgba[2], o.color_rgba[3]});
     info.mass_kg(o.mass_kg);

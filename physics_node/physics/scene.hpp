@@ -94,6 +94,10 @@ struct ObjectSpec {
   Eigen::Vector3d w_G = Eigen::Vector3d::Zero();            // initial angular velocity (rad/s)
   Material material;
   std::array<float, 4> color_rgba{0.6f, 0.6f, 0.6f, 1.0f};
+  // A static object's look, when it is not its shape: a model's part drawn in its place, placed
+  // as the shape is (the node's origin at the object's frame); the object still collides as
+  // `shape` (the renderer's model, the physics' box: docs/models.md, "A look")
+  std::optional<Shape> look;
   int control = -1;  // >= 0: the moving part of Scene::controls[control], which owns its motion
 };
 

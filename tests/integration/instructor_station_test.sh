@@ -26,7 +26,7 @@ unset VCOCKPIT_PARTICIPANT VCOCKPIT_PKI_DIR VCOCKPIT_IDENTITY
 
 port=$($py -c "import socket; s=socket.socket(); s.bind(('127.0.0.1', 0)); print(s.getsockname()[1])")
 url=http://127.0.0.1:$port
-for f in qos.xml cockpit.yaml hmd.yaml hand.yaml aircraft.yaml instruments.yaml glove_logs; do ln -s "$src/config/$f" "$tmp/rigcfg/$f"; done
+for f in qos.xml cockpit.yaml models hmd.yaml hand.yaml aircraft.yaml instruments.yaml glove_logs; do ln -s "$src/config/$f" "$tmp/rigcfg/$f"; done
 # The gloves loop their logs: the browser's unfreeze check needs the world stepping, and a
 # replay held at its end sends nothing for the lockstep world to step to (Chromium starting
 # beside the scenario tests once took longer than the 13 s log). Under the sanitizers the

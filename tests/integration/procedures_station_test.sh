@@ -24,7 +24,7 @@ unset VCOCKPIT_PARTICIPANT VCOCKPIT_PKI_DIR VCOCKPIT_IDENTITY
 
 port=$($py -c "import socket; s=socket.socket(); s.bind(('127.0.0.1', 0)); print(s.getsockname()[1])")
 url=http://127.0.0.1:$port
-for f in qos.xml cockpit.yaml hmd.yaml hand.yaml aircraft.yaml instruments.yaml glove_logs lessons procedures; do
+for f in qos.xml cockpit.yaml models hmd.yaml hand.yaml aircraft.yaml instruments.yaml glove_logs lessons procedures; do
   ln -s "$src/config/$f" "$tmp/rigcfg/$f"
 done
 sed -e "s/^domain: .*/domain: $domain/" -e 's/--rate, "1"/--rate, "2"/' \

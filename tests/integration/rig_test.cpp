@@ -504,6 +504,41 @@ TEST_F(RigTest, KillingOneGloveDriverLosesOnlyThatHand) {
   EXPECT_GE(hands[1].value("glove_lost", 0), 1);
 }
 
+// A physics node that cannot start (its scene names a model file that is not there) dies at once
+// on every restart: the launcher gives up after five such deaths in a row, says why, and ends the
+// run as failed, instead of restarting it every 0.2 s for as long as anyone waits.
+TEST_F(RigTest, ANodeThatCannotStartIsNotRestartedForeverAndTheRigSaysWhy) {
+  std::string scene = read_text(config("cockpit.yaml"));
+  const auto look = scene.find("mesh: models/cockpit/floor.glb");
+  ASSERT_NE(look, std::string::npos);
+  scene.replace(look, 30, "mesh: no_such_model.glb");
+  std::ofstream(dir_ + "/bad_cockpit.yaml") << scene;
+  std::ofstream(dir_ + "/hand.yaml") << read_text(config("hand.yaml"));
+  std::string text = "domain: " + domain_ + "\nqos: " + config("qos.xml") +
+                     "\nparticipant: loopback\nlog: " +
+                     config("glove_logs/reach_grasp_lift_release.csv") + "\nnodes:\n";
+  text += "  - {name: physics_node, command: [physics_node, --lockstep, --scene, " + dir_ +
+          "/bad_cockpit.yaml], required: true, restart_delay_s: 0.2}\n" + kLockstepGlove;
+  ChildProcess rig = launch(text);
+  const int code = rig.wait(60 * kSecond);
+  if (code == -1) rig.stop();
+  EXPECT_EQ(code, 1) << launcher_log();
+  const std::string log = launcher_log();
+  EXPECT_NE(log.find("physics_node ended with status 1 within 2 s of its start 5 times in a row: "
+                     "not restarted again"),
+            std::string::npos)
+      << log;
+  int restarts = 0;
+  for (auto at = log.find("restarted physics_node"); at != std::string::npos;
+       at = log.find("restarted physics_node", at + 1))
+    ++restarts;
+  EXPECT_EQ(restarts, 4) << log;
+  EXPECT_NE(read_text(dir_ + "/out/logs/physics_node.log").find("no_such_model.glb: no such file"),
+            std::string::npos);
+  const Json summary = Json::parse(read_text(dir_ + "/out/summary.json"));
+  EXPECT_EQ(summary["nodes"]["physics_node"]["restarts"], 4);
+}
+
 TEST_F(RigTest, CtrlCStopsEveryNodeWithinThreeSecondsAndLeavesNothingBehind) {
   ChildProcess rig = launch(rig_yaml(domain_, true, kLockstepGlove));
   ASSERT_TRUE(wait_for_line(dir_ + "/launcher.log", "started glove_driver", 20 * kSecond));

@@ -43,7 +43,8 @@ intruder=(--participant secure --pki "$tmp/intruder" --identity intruder)
 
 # the default cockpit with the cup renamed: a string to look for in the packets
 marker=vcmarker7q3z
-sed "s/^  - name: cup  /  - name: $marker/" "$src/config/cockpit.yaml" > "$tmp/cockpit.yaml"
+sed -e "s/^  - name: cup  /  - name: $marker/" -e "s#mesh: models/#mesh: $src/config/models/#" \
+  "$src/config/cockpit.yaml" > "$tmp/cockpit.yaml"
 cp "$src/config/hand.yaml" "$tmp/"
 check "grep -q 'name: $marker' '$tmp/cockpit.yaml'" "the marker scene names the cup $marker"
 log=$src/config/glove_logs/reach_grasp_lift_release.csv
@@ -161,7 +162,7 @@ check "[ $status -ne 0 ] && grep -q 'cannot create a writer on cockpit/hand_samp
 
 echo "== the default rig secured (rig_launcher --participant secure --pki, as scripts/rig --secure)"
 mkdir -p "$tmp/rigcfg"
-for f in qos.xml cockpit.yaml hmd.yaml hand.yaml aircraft.yaml instruments.yaml glove_logs; do ln -s "$src/config/$f" "$tmp/rigcfg/$f"; done
+for f in qos.xml cockpit.yaml models hmd.yaml hand.yaml aircraft.yaml instruments.yaml glove_logs; do ln -s "$src/config/$f" "$tmp/rigcfg/$f"; done
 sed -e "s/^domain: .*/domain: $domain/" -e "s/--rate, \"1\"/--rate, \"$rate\"/" \
   "$src/config/rig.yaml" > "$tmp/rigcfg/rig.yaml"
 check "grep -q -- '--rate, \"$rate\"' '$tmp/rigcfg/rig.yaml'" "the rig replays at rate $rate"

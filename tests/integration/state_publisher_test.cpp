@@ -74,6 +74,38 @@ TEST(StatePublisher, PublishesNoNonFiniteValue) {
   EXPECT_EQ(publisher.non_finite_refused(), 2u);
 }
 
+// An object with a look (config/cockpit.yaml's shell) is described to the renderers as its look,
+// the model's part, while the physics collides with its box; one without is described as its
+// shape.
+TEST(StatePublisher, DescribesAnObjectWithALookAsItsLook) {
+  dds_test_env();
+  physics::World world(load_scene(source_dir() + "/config/cockpit.yaml"));
+  const int panel = world.scene().find_object("instrument_panel");
+  const int cup = world.scene().find_object("cup");
+  ASSERT_GE(panel, 0);
+  ASSERT_GE(cup, 0);
+  DdsParticipant participant(resolve_dds_options(DdsFlags{}), "state_publisher_test");
+  auto infos = participant.make_reader<cockpit::ObjectInfo>("state");
+  physics_node::StatePublisher publisher(participant, world);
+  ASSERT_TRUE(infos.wait_for_matched(1, kWait_ns));
+  publisher.publish_object_info(world);
+  std::map<uint32_t, cockpit::ObjectInfo> got;
+  for (int tries = 0; tries < 50 && got.size() < world.scene().objects.size(); ++tries) {
+    infos.wait_for_data(100'000'000);
+    cockpit::ObjectInfo info;
+    while (infos.take(info)) got[info.object_id()] = info;
+  }
+  ASSERT_EQ(got.count(static_cast<uint32_t>(panel)), 1u);
+  const cockpit::ObjectInfo& p = got[static_cast<uint32_t>(panel)];
+  EXPECT_EQ(p.shape(), cockpit::MESH);
+  EXPECT_EQ(p.mesh_node().to_string(), "InstrumentPanel");
+  EXPECT_EQ(p.mesh_file().to_string(),
+            world.scene().objects[static_cast<std::size_t>(panel)].look->mesh_source.file);
+  EXPECT_NEAR(p.dimensions_m()[1], 1.10, 0.002) << "the look's extents: the panel's span";
+  ASSERT_EQ(got.count(static_cast<uint32_t>(cup)), 1u);
+  EXPECT_EQ(got[static_cast<uint32_t>(cup)].shape(), cockpit::CYLINDER);
+}
+
 // Each instance's kept sample, as a late-joining (transient local) reader gets it: its writer's
 // sequence number by instance.
 template <class T, class Id>

@@ -187,6 +187,36 @@ TEST_F(ShippedCockpit, ConsoleAndFloorGeometry) {
   EXPECT_EQ(object("floor").material.stiffness_Npm, 5.0e4);
 }
 
+// The shell is drawn as config/models/cockpit.glb's parts (looks) and collides as its boxes, so
+// each look must keep to its box where hands and loose objects touch it: a console's top (what
+// rests there would float or sink), the panel's face (a finger pressing a switch). And the model
+// is the detailed cockpit the renderer is measured on.
+TEST_F(ShippedCockpit, TheShellIsDrawnAsModelPartsThatKeepToTheTouchedFaces) {
+  std::size_t triangles = 0;
+  for (const char* name : {"floor", "instrument_panel", "glareshield", "centre_console",
+                           "left_pedestal", "left_wall", "right_wall", "canopy"}) {
+    const ObjectSpec& o = object(name);
+    ASSERT_TRUE(o.look.has_value()) << name;
+    EXPECT_EQ(o.look->kind, ShapeKind::kMesh) << name;
+    EXPECT_EQ(o.shape.kind, ShapeKind::kBox) << name << " collides as its box";
+    EXPECT_EQ(o.color_rgba, (std::array<float, 4>{1, 1, 1, 1})) << name << ": the model's colours";
+    triangles += o.look->mesh->triangles.size();
+  }
+  EXPECT_GE(triangles, 100'000u);
+  for (const char* name : {"centre_console", "left_pedestal"}) {
+    const ObjectSpec& o = object(name);
+    const Eigen::Vector3d half = 0.5 * o.shape.box_size_m;
+    const model::Bounds& b = o.look->mesh_bounds;  // in the object's frame
+    EXPECT_GE(b.max_m.z(), half.z()) << name;  // the top is there
+    EXPECT_LE(b.max_m.z(), half.z() + 0.0025) << name << ": a top plate and screw heads at most";
+    EXPECT_LE(b.max_m.head<2>().maxCoeff(), half.head<2>().maxCoeff() + 0.004) << name;
+  }
+  const ObjectSpec& panel = object("instrument_panel");  // its face is at x = -0.015
+  EXPECT_GE(panel.look->mesh_bounds.min_m.x(), -0.015 - 0.005) << "a rim and screws at most";
+  EXPECT_LE(panel.look->mesh_bounds.max_m.y(), 0.55 + 1e-6);
+  EXPECT_LE(panel.look->mesh_bounds.max_m.z(), 0.175 + 1e-6);
+}
+
 TEST_F(ShippedCockpit, CupPose) {
   const ObjectSpec& cup = object("cup");
   EXPECT_TRUE(cup.dynamic);
@@ -470,6 +500,14 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
        "objects[2].shape.units", "unknown key 'units'"},
       {"mesh_bad_scale", "shape: {sphere: 0.01}", "shape: {mesh: no_such.glb, scale: 0}", "shape: {mesh",
        "objects[2].shape.scale", "scale"},
+      {"look_missing", "    color: [0.4, 0.4, 0.4]\n",
+       "    color: [0.4, 0.4, 0.4]\n    look: {mesh: no_such.glb, node: Panel}\n", "look: {mesh",
+       "objects[0].look.mesh", "no_such.glb: no such file"},
+      {"look_unknown_key", "    color: [0.4, 0.4, 0.4]\n",
+       "    color: [0.4, 0.4, 0.4]\n    look: {mesh: no_such.glb, units: mm}\n", "look: {mesh",
+       "objects[0].look.units", "unknown key 'units'"},
+      {"look_on_dynamic", "    mass: 0.3\n", "    mass: 0.3\n    look: {mesh: no_such.glb}\n",
+       "look: {mesh", "objects[1].look", "a look is for a static object"},
       {"shape_not_a_map", "shape: {sphere: 0.01}", "shape: sphere", "shape: sphere",
        "objects[2].shape", "expected a map"},
       {"unknown_kind", "kind: static", "kind: fixed", "kind: fixed", "objects[0].kind",
