@@ -1,6 +1,7 @@
 // The proxy hand (proxy_hand.hpp) against what a cockpit user sees:
-//   - a tracked hand pressed 4 cm into a console leaves the drawn hand resting on it, no link
-//     more than 1 mm inside, and sliding along it with the tracked hand;
+//   - a tracked hand pressed 4 cm into a console (a box, or a static mesh of 2 or 800 triangles
+//     on top) leaves the drawn hand resting on it, no link more than 1 mm inside, and sliding
+//     along it with the tracked hand;
 //   - a hand swept through a ball at 2 m/s pushes it at about the pushing speed, not 2 m/s (the
 //     same sweep with the proxy off throws it faster: the test tells the two apart);
 //   - a cup squeezed by the palm against the console is neither crushed into it nor set
@@ -22,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 
 #include "common/pose.hpp"
@@ -40,15 +42,46 @@ using test::source_dir;
 
 constexpr double kConsoleTop_m = 0.70;
 
+// A closed box mesh of `size_m` centred on its origin, its top face an n x n grid of squares (each
+// two triangles), every other face two triangles: a console as a model file would give it.
+std::shared_ptr<model::TriangleMesh> box_mesh(const Eigen::Vector3d& size_m, int n) {
+  auto mesh = std::make_shared<model::TriangleMesh>();
+  const Eigen::Vector3d h = 0.5 * size_m;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+      mesh->vertices_m.emplace_back(-h.x() + size_m.x() * i / n, -h.y() + size_m.y() * j / n, h.z());
+  const auto top = [n](int i, int j) { return static_cast<uint32_t>(i * (n + 1) + j); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      mesh->triangles.push_back({top(i, j), top(i + 1, j), top(i + 1, j + 1)});
+      mesh->triangles.push_back({top(i, j), top(i + 1, j + 1), top(i, j + 1)});
+    }
+  const uint32_t b = static_cast<uint32_t>(mesh->vertices_m.size());  // bottom corners
+  for (int k = 0; k < 4; ++k)
+    mesh->vertices_m.emplace_back((k == 1 || k == 2) ? h.x() : -h.x(), k >= 2 ? h.y() : -h.y(), -h.z());
+  const std::array<uint32_t, 4> t = {top(0, 0), top(n, 0), top(n, n), top(0, n)};
+  for (uint32_t k = 0; k < 4; ++k) {  // sides, counter-clockwise from outside
+    const uint32_t k1 = (k + 1) % 4;
+    mesh->triangles.push_back({b + k, b + k1, t[k1]});
+    mesh->triangles.push_back({b + k, t[k1], t[k]});
+  }
+  mesh->triangles.push_back({b + 0, b + 2, b + 1});
+  mesh->triangles.push_back({b + 0, b + 3, b + 2});
+  return mesh;
+}
+
 // A console (top at z = 0.70, x 0.1..0.7, y -0.3..0.3) on a floor, the default hand, and the
-// given objects.
-Scene console_scene(bool proxy) {
+// given objects. `mesh_grid` > 0: the console is a static mesh whose top has that many squares a
+// side (0: a box).
+Scene console_scene(bool proxy, int mesh_grid = 0) {
   Scene scene;
   scene.hands = {load_hand_model(source_dir() + "/config/hand.yaml")};
   scene.hand_material = test::material(2.0e4, 1.0, 0.8);
   scene.objects.push_back(test::floor_box(test::material(5.0e4, 0.7, 0.6, 0.9)));
   scene.objects.push_back(test::static_box("console", {0.6, 0.6, 0.7}, at(0.4, 0.0, 0.35),
                                            test::material(5.0e4, 0.6, 0.5, 0.9)));
+  if (mesh_grid > 0)
+    scene.objects.back().shape = Shape::triangle_mesh(box_mesh({0.6, 0.6, 0.7}, mesh_grid), nullptr);
   scene.proxy.enabled = proxy;
   return scene;
 }
@@ -86,8 +119,13 @@ HandInput hand_at(const HandModel& hand, const Eigen::Vector3d& p_G) {
 
 double lerp(double a, double b, double s) { return a + std::clamp(s, 0.0, 1.0) * (b - a); }
 
-TEST(ProxyHand, PressedIntoTheConsoleTheHandRestsOnItAndSlides) {
-  World world(console_scene(true));
+// The console as a box, as a static mesh with a top of two triangles, and as one of 800 (a
+// finger then touches several at once, each its own contact point): the proxy's "never more than
+// 1 mm inside a static object" holds against all three.
+class PressedIntoTheConsole : public ::testing::TestWithParam<int> {};
+
+TEST_P(PressedIntoTheConsole, TheHandRestsOnItAndSlides) {
+  World world(console_scene(true, GetParam()));
   const HandModel& hand = world.scene().hands[0];
   double deepest_m = 0.0;
   double lowest_at_rest_m = 1.0;
@@ -113,6 +151,13 @@ TEST(ProxyHand, PressedIntoTheConsoleTheHandRestsOnItAndSlides) {
   EXPECT_NEAR(world.X_GH().translation().x(), 0.30, 2e-3);
   EXPECT_NEAR(world.X_GH().translation().y(), 0.0, 2e-3);
 }
+
+INSTANTIATE_TEST_SUITE_P(ProxyHand, PressedIntoTheConsole, ::testing::Values(0, 1, 20),
+                         [](const ::testing::TestParamInfo<int>& info) {
+                           return info.param == 0 ? std::string("Box")
+                                                  : "Mesh" + std::to_string(info.param) + "x" +
+                                                        std::to_string(info.param);
+                         });
 
 // A 6 cm, 60 g ball on the console, swept by the fingers of a hand moving at 2 m/s.
 double ball_speed_after_sweep(bool proxy) {
