@@ -16,6 +16,7 @@ project's axes, then turned to glTF's +y up: (x, y, z) -> (x, z, -y).
 """
 import json
 import math
+import os
 import struct
 import sys
 from array import array
@@ -33,12 +34,13 @@ def rounded_box(half, r, band=8, spacing=0.08):
     r = min(r, hx, hy, hz)
 
     def ticks(h):
+        """Rising from -h to h: the rounded strip, the flat middle, the other strip."""
         inner = h - r
         if inner < 1e-6:  # rounded right across: the two strips meet in the middle
-            return ([-h + h * (1.0 - math.sin(math.pi / 2 * k / band)) for k in range(band)] +
+            return ([-h * math.sin(math.pi / 2 * (band - k) / band) for k in range(band)] +
                     [h * math.sin(math.pi / 2 * k / band) for k in range(band + 1)])
         flat = max(1, math.ceil(2.0 * inner / spacing))
-        out = [-h + r * (1.0 - math.sin(math.pi / 2 * k / band)) for k in range(band)]
+        out = [-inner - r * math.sin(math.pi / 2 * (band - k) / band) for k in range(band)]
         out += [-inner + 2.0 * inner * k / flat for k in range(flat + 1)]
         out += [inner + r * math.sin(math.pi / 2 * k / band) for k in range(1, band + 1)]
         return out
@@ -186,16 +188,17 @@ def glareshield():
 
 
 def console(name, half, colour, plate):
-    """A console: a box with rounded upright edges (its top stays flat for what rests on it), a
-    darker inset plate on top held by four screws, and a kick strip at the floor."""
+    """A console: a box with edges rounded 12 mm (its top flat inside that, where things rest),
+    a darker plate set into the top (0.2 mm proud, so what rests on the box's top is drawn on
+    it) with four flush screw heads, and a kick strip at the floor."""
     p = Part(name)
     p.add(rounded_box(half, 0.012, band=8), colour)
     hx, hy, hz = half
     p.add(rounded_box((hx - 0.02, hy - 0.02, 0.001), 0.0008, band=3), plate,
-          (0.0, 0.0, hz + 0.0002))
+          (0.0, 0.0, hz - 0.0008))
     for sx in (-1, 1):
         for sy in (-1, 1):
-            screw(p, (sx * (hx - 0.03), sy * (hy - 0.03), hz + 0.0012), (0, 0, 0))
+            p.add(cylinder(0.0035, 0.001, 16), SCREW, (sx * (hx - 0.03), sy * (hy - 0.03), hz - 0.0002))
     p.add(rounded_box((hx + 0.003, hy + 0.003, 0.03), 0.004, band=4), BLACK,
           (0.0, 0.0, -hz + 0.03))
     return p
@@ -339,7 +342,7 @@ def write_glb(parts, path):
     out += struct.pack("<I4s", len(text), b"JSON") + text
     out += struct.pack("<I4s", len(blob), b"BIN\0") + bytes(blob)
     path.parent.mkdir(parents=True, exist_ok=True)
-    temporary = path.with_suffix(".glb.part")  # written whole, then renamed
+    temporary = path.with_suffix(f".glb.{os.getpid()}.part")  # written whole, then renamed
     temporary.write_bytes(out)
     temporary.replace(path)
 

@@ -187,7 +187,7 @@ TEST_F(ShippedCockpit, ConsoleAndFloorGeometry) {
   EXPECT_EQ(object("floor").material.stiffness_Npm, 5.0e4);
 }
 
-// The shell is drawn as config/models/cockpit.glb's parts (looks) and collides as its boxes, so
+// The shell is drawn as config/models/cockpit/'s parts (looks) and collides as its boxes, so
 // each look must keep to its box where hands and loose objects touch it: a console's top (what
 // rests there would float or sink), the panel's face (a finger pressing a switch). And the model
 // is the detailed cockpit the renderer is measured on.
@@ -200,7 +200,19 @@ TEST_F(ShippedCockpit, TheShellIsDrawnAsModelPartsThatKeepToTheTouchedFaces) {
     EXPECT_EQ(o.look->kind, ShapeKind::kMesh) << name;
     EXPECT_EQ(o.shape.kind, ShapeKind::kBox) << name << " collides as its box";
     EXPECT_EQ(o.color_rgba, (std::array<float, 4>{1, 1, 1, 1})) << name << ": the model's colours";
-    triangles += o.look->mesh->triangles.size();
+    const model::TriangleMesh& mesh = *o.look->mesh;
+    triangles += mesh.triangles.size();
+    // wound counter-clockwise seen from outside, as its normals say: a triangle wound the other
+    // way is lit as if it faced inward (the renderer turns a back face's normal round)
+    ASSERT_EQ(mesh.normals.size(), mesh.vertices_m.size()) << name;
+    std::size_t inward = 0;
+    for (const auto& t : mesh.triangles) {
+      const Eigen::Vector3d a = mesh.vertices_m[t[0]], b = mesh.vertices_m[t[1]], c = mesh.vertices_m[t[2]];
+      const Eigen::Vector3d n = (b - a).cross(c - a);
+      const Eigen::Vector3f shading = mesh.normals[t[0]] + mesh.normals[t[1]] + mesh.normals[t[2]];
+      if (n.norm() > 1e-12 && n.dot(shading.cast<double>()) <= 0.0) ++inward;
+    }
+    EXPECT_EQ(inward, 0u) << name << ": of " << mesh.triangles.size() << " triangles";
   }
   EXPECT_GE(triangles, 100'000u);
   for (const char* name : {"centre_console", "left_pedestal"}) {
@@ -208,8 +220,11 @@ TEST_F(ShippedCockpit, TheShellIsDrawnAsModelPartsThatKeepToTheTouchedFaces) {
     const Eigen::Vector3d half = 0.5 * o.shape.box_size_m;
     const model::Bounds& b = o.look->mesh_bounds;  // in the object's frame
     EXPECT_GE(b.max_m.z(), half.z()) << name;  // the top is there
-    EXPECT_LE(b.max_m.z(), half.z() + 0.0025) << name << ": a top plate and screw heads at most";
-    EXPECT_LE(b.max_m.head<2>().maxCoeff(), half.head<2>().maxCoeff() + 0.004) << name;
+    EXPECT_LE(b.max_m.z(), half.z() + 0.0005) << name << ": what rests on the top is drawn on it";
+    for (int axis = 0; axis < 2; ++axis) {  // its sides, and a kick strip 3 mm proud
+      EXPECT_LE(b.max_m[axis], half[axis] + 0.004) << name << " axis " << axis;
+      EXPECT_GE(b.min_m[axis], -half[axis] - 0.004) << name << " axis " << axis;
+    }
   }
   const ObjectSpec& panel = object("instrument_panel");  // its face is at x = -0.015
   EXPECT_GE(panel.look->mesh_bounds.min_m.x(), -0.015 - 0.005) << "a rim and screws at most";
