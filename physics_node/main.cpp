@@ -27,10 +27,13 @@ using namespace vcockpit;
 // Model parts with triangles left out for having no area: said once, at load.
 void report_model_parts(const physics::Scene& scene) {
   for (const physics::ObjectSpec& o : scene.objects) {
-    if (o.shape.kind != physics::ShapeKind::kMesh || o.shape.mesh->degenerate_dropped == 0) continue;
-    spdlog::warn("object '{}': {}: {} triangle(s) with no area left out (the first: triangle {})",
-                 o.name, o.shape.mesh->source, o.shape.mesh->degenerate_dropped,
-                 o.shape.mesh->first_degenerate);
+    for (const physics::Shape* shape : {&o.shape, o.look ? &*o.look : nullptr}) {
+      if (!shape || shape->kind != physics::ShapeKind::kMesh || shape->mesh->degenerate_dropped == 0)
+        continue;
+      spdlog::warn("object '{}': {}: {} triangle(s) with no area left out (the first: triangle {})",
+                   o.name, shape->mesh->source, shape->mesh->degenerate_dropped,
+                   shape->mesh->first_degenerate);
+    }
   }
 }
 

@@ -5,6 +5,10 @@
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
+#include <mutex>
+#include <set>
+#include <string>
+#include <utility>
 
 #include "common/atomic_file.hpp"
 #include "common/pose.hpp"
@@ -15,6 +19,24 @@ namespace vcockpit {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The cockpit must load itself, so a bad section is named in its own file, not in ours. Checked
+// once a process for each version of the file (its path, size and time): grip_fit builds a scene
+// for each candidate placement, and a cockpit's model files take a tenth of a second to read.
+void check_cockpit_loads(const std::string& path) {
+  static std::mutex mutex;
+  static std::set<std::pair<std::string, std::string>> checked;
+  std::error_code error;
+  const auto size = fs::file_size(path, error);
+  const auto time = fs::last_write_time(path, error);
+  const std::string version = error ? std::string()
+                                    : std::to_string(size) + "@" +
+                                          std::to_string(time.time_since_epoch().count());
+  std::lock_guard lock(mutex);
+  if (!version.empty() && checked.count({path, version})) return;
+  load_scene(path);
+  if (!version.empty()) checked.insert({path, version});
+}
 using physics::ShapeKind;
 
 std::string format(const char* pattern, ...) {
@@ -125,8 +147,7 @@ Eigen::Vector3d object_rpy_deg(const physics::Shape& shape, const Eigen::Matrix3
 }
 
 std::string grip_scene_text(const GripSceneSpec& spec, const std::string& out_path) {
-  // the cockpit must load itself, so a bad section is named in its own file, not in ours
-  load_scene(spec.cockpit_path);
+  check_cockpit_loads(spec.cockpit_path);
   const ConfigNode cockpit = ConfigNode::load_file(spec.cockpit_path);
   constexpr const char* kFurniture = "{stiffness: 5.0e4, damping_ratio: 0.9, mu_s: 0.6, mu_d: 0.5}";
   std::string text;
