@@ -26,17 +26,19 @@ namespace fs = std::filesystem;
 void check_cockpit_loads(const std::string& path) {
   static std::mutex mutex;
   static std::set<std::pair<std::string, std::string>> checked;
-  std::error_code error;
-  const auto size = fs::file_size(path, error);
-  const auto time = fs::last_write_time(path, error);
-  const std::string version = error ? std::string()
-                                    : std::to_string(size) + "@" +
-                                          std::to_string(time.time_since_epoch().count());
+  std::error_code size_error, time_error;
+  const auto size = fs::file_size(path, size_error);
+  const auto time = fs::last_write_time(path, time_error);
+  const std::string version = size_error || time_error
+                                  ? std::string()  // not known: checked every time
+                                  : std::to_string(size) + "@" +
+                                        std::to_string(time.time_since_epoch().count());
   std::lock_guard lock(mutex);
   if (!version.empty() && checked.count({path, version})) return;
   load_scene(path);
   if (!version.empty()) checked.insert({path, version});
 }
+
 using physics::ShapeKind;
 
 std::string format(const char* pattern, ...) {

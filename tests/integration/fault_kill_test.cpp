@@ -109,16 +109,6 @@ class FaultKillTest : public ProcessTest {
     return false;
   }
 
-  // The restarted node's first object_state the monitor sees (reliable, transient local: the
-  // newest when the monitor matches the new writer) is of the checkpoint's time or a little
-  // after, at or before the newest the killed node published. The killed node's states rise in simulated time, so the restarted node's first is
-  // the first after the kill that does not: found that way, the check does not depend on how far
-  // the monitor had written when the kill came (a sanitized monitor once lagged 0.1 s behind).
-  //
-  // A monitor slower than a lockstep world (a sanitized one, with the glove driver's samples
-  // queued) keeps only the newest state of the cup: it may never see the restarted node's states
-  // at or before the killed node's newest. So a state received after this test has seen the
-  // restarted node's "resumed from" (its `resumes`-th) is the restarted node's too.
   // The checkpoint the killed node left (read just after the kill, before the restarted node
   // could write another): the world the restarted node must resume.
   physics_io::Checkpoint saved_checkpoint(const physics::World& fresh_world) {
@@ -129,6 +119,17 @@ class FaultKillTest : public ProcessTest {
     return saved.value_or(physics_io::Checkpoint{});
   }
 
+  // The restarted node's first object_state the monitor sees (reliable, transient local: the
+  // newest when the monitor matches the new writer) is of the checkpoint's time or a little
+  // after, at or before the newest the killed node published. The killed node's states rise in
+  // simulated time, so the restarted node's first is the first after the kill that does not:
+  // found that way, the check does not depend on how far the monitor had written when the kill
+  // came (a sanitized monitor once lagged 0.1 s behind).
+  //
+  // A monitor slower than a lockstep world (a sanitized one, with the glove driver's samples
+  // queued) keeps only the newest state of the cup: it may never see the restarted node's states
+  // at or before the killed node's newest. So a state received after this test has seen the
+  // restarted node's "resumed from" (its `resumes`-th) is the restarted node's too.
   void check_physics_resumes(int64_t killed_ns, int cup_id, int resumes,
                              const physics_io::Checkpoint& saved) {
     ASSERT_FALSE(MonitorLog::read(monitor_path()).watched.empty())
@@ -180,7 +181,8 @@ class FaultKillTest : public ProcessTest {
     EXPECT_GE(new_cup.sim_time_ns, checkpoint_ns);
     // The checkpoint holds the cup where the killed node had it at that time (it published every
     // 4 ms of simulated time: the nearest state before, within what the cup moves in 4 ms).
-    const Eigen::Vector3d saved_cup = saved.world.bodies.at(static_cast<std::size_t>(cup_id)).X_GO.translation();
+    const Eigen::Vector3d saved_cup =
+        saved.world.bodies.at(static_cast<std::size_t>(cup_id)).X_GO.translation();
     const SeenObject* old_cup = nullptr;
     for (std::size_t i = 0; i < resumed_at; ++i)
       if (seen.watched[i].sim_time_ns <= checkpoint_ns) old_cup = &seen.watched[i];

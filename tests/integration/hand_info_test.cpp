@@ -227,11 +227,7 @@ TEST_F(HandInfoTest, ImageGeneratorDrawsTheHandThePhysicsNodeSimulates) {
   const auto end = cockpit.find('\n', at + 1);
   std::string wide_scene = cockpit;
   wide_scene.replace(at, end - at, "\nhands: [wide_hand.yaml, {file: wide_hand.yaml, side: left}]");
-  // its model where it is (the looks' paths are relative to config/)
-  for (auto m = wide_scene.find("mesh: models/"); m != std::string::npos;
-       m = wide_scene.find("mesh: models/", m + 1))
-    wide_scene.replace(m, 13, "mesh: " + config_path("models") + "/");
-  std::ofstream(dir_ + "/cockpit.yaml") << wide_scene;
+  std::ofstream(dir_ + "/cockpit.yaml") << cockpit_yaml_models_absolute(wide_scene);
   const std::string shipped_hand = read_text(config_path("hand.yaml"));
   std::ofstream(dir_ + "/wide_hand.yaml") << with_doubled_radii(shipped_hand);
 

@@ -64,6 +64,18 @@ int publish_control_infos(const physics::Scene& scene, Writer<cockpit::ControlIn
   return gear;
 }
 
+// The test in the physics node's place: the cockpit's control infos written, and on the same
+// participant a writer of control frames and a reader of the systems' events.
+struct PhysicsStandIn {
+  physics::Scene scene = load_scene(config_path("cockpit.yaml"));
+  DdsParticipant participant{resolve_dds_options(DdsFlags{}), "systems_node_test"};
+  Writer<cockpit::ControlInfo> infos = participant.make_writer<cockpit::ControlInfo>("state");
+  Writer<cockpit::ControlFrame> frames = participant.make_writer<cockpit::ControlFrame>("control_frames");
+  Reader<cockpit::SystemsEvent> events = participant.make_reader<cockpit::SystemsEvent>("event");
+  cockpit::ControlFrame first_frame;  // as publish_control_infos sets it
+  int gear = publish_control_infos(scene, infos, first_frame);
+};
+
 // One bundled log in a lockstep rig and offline; `failures` for both, `expected` the pinned
 // score (tests/data/procedures/) or "" when none is pinned.
 struct RigCase {
@@ -148,26 +160,22 @@ TEST_F(SystemsNodeTest, LockstepRigWritesTheOfflineSystemsFilesAndScoreByteForBy
 // up at 1 s. The systems node is killed 3 s into the simulated time, during the 6.5-7.5 s
 // transits, and restarted with --resume while frames go on.
 TEST_F(SystemsNodeTest, KilledDuringAGearTransitResumesWhereItWas) {
-  const physics::Scene scene = load_scene(config_path("cockpit.yaml"));
-  DdsParticipant participant(resolve_dds_options(DdsFlags{}), "systems_node_test");
-  auto infos = participant.make_writer<cockpit::ControlInfo>("state");
-  auto frames = participant.make_writer<cockpit::ControlFrame>("control_frames");
-  auto events = participant.make_reader<cockpit::SystemsEvent>("event");
-  cockpit::ControlFrame frame;
-  const int gear = publish_control_infos(scene, infos, frame);
-  ASSERT_GE(gear, 0);
+  PhysicsStandIn stand_in;
+  ASSERT_GE(stand_in.gear, 0);
+  const std::size_t gear = static_cast<std::size_t>(stand_in.gear);
+  cockpit::ControlFrame frame = stand_in.first_frame;
   const std::string checkpoint = dir_ + "/state/systems.ckpt";
   const std::vector<std::string> args = {"--checkpoint", checkpoint, "--checkpoint-every", "0.5"};
   auto systems = std::make_unique<ChildProcess>(start("systems_node", args, "systems1.log"));
-  ASSERT_TRUE(frames.wait_for_matched(1, 30 * kSecond)) << text("systems1.log");
+  ASSERT_TRUE(stand_in.frames.wait_for_matched(1, 30 * kSecond)) << text("systems1.log");
 
   uint64_t seq = 0;
   const auto publish_until = [&](int64_t end_ns) {
     while (frame.sim_time_ns() < end_ns) {
       frame.sim_time_ns(frame.sim_time_ns() + 10'000'000);
       frame.seq(++seq);
-      frame.position()[static_cast<std::size_t>(gear)] = frame.sim_time_ns() >= kSecond ? 1 : 0;  // up
-      frames.write(frame);
+      frame.position()[gear] = frame.sim_time_ns() >= kSecond ? 1 : 0;  // up
+      stand_in.frames.write(frame);
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
   };
@@ -177,14 +185,14 @@ TEST_F(SystemsNodeTest, KilledDuringAGearTransitResumesWhereItWas) {
   bad.sim_time_ns(frame.sim_time_ns() + 10'000'000);
   bad.position().pop_back();
   bad.coordinate().pop_back();
-  frames.write(bad);
+  stand_in.frames.write(bad);
   bad = frame;
   bad.sim_time_ns(frame.sim_time_ns() + 10'000'000);
   bad.coordinate()[0] = std::nan("");
-  frames.write(bad);
+  stand_in.frames.write(bad);
   bad.coordinate()[0] = 0.0;
   bad.position()[0] = 7;
-  frames.write(bad);
+  stand_in.frames.write(bad);
   publish_until(3 * kSecond);
   // the last checkpoint is at most 0.5 s old: wait for one past 2.5 s, then kill
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
@@ -205,7 +213,7 @@ TEST_F(SystemsNodeTest, KilledDuringAGearTransitResumesWhereItWas) {
   std::vector<std::string> resume_args = args;
   resume_args.push_back("--resume");
   systems = std::make_unique<ChildProcess>(start("systems_node", resume_args, "systems2.log"));
-  ASSERT_TRUE(frames.wait_for_matched(1, 30 * kSecond));
+  ASSERT_TRUE(stand_in.frames.wait_for_matched(1, 30 * kSecond));
   publish_until(9 * kSecond);
 
   // each leg's "up" once, at 1 s plus its transit time, to the step
@@ -213,7 +221,7 @@ TEST_F(SystemsNodeTest, KilledDuringAGearTransitResumesWhereItWas) {
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   cockpit::SystemsEvent e;
   while (up_at.size() < 3 && std::chrono::steady_clock::now() < until) {
-    while (events.take(e))
+    while (stand_in.events.take(e))
       if (e.kind() == cockpit::SYSTEM_CHANGED && e.to_text().to_string() == "up")
         up_at[e.name().to_string()].push_back(e.sim_time_ns());
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -231,30 +239,26 @@ TEST_F(SystemsNodeTest, KilledDuringAGearTransitResumesWhereItWas) {
 // other events' (100), the writer dropped frames: the systems stepped over the gaps with later
 // frames' controls, and the gear moved a step early (a CI run lost a 0.85 s switch pulse so).
 TEST_F(SystemsNodeTest, ABurstOfFramesReachesItWholeWithAShortFlickInIt) {
-  const physics::Scene scene = load_scene(config_path("cockpit.yaml"));
-  DdsParticipant participant(resolve_dds_options(DdsFlags{}), "systems_node_test");
-  auto infos = participant.make_writer<cockpit::ControlInfo>("state");
-  auto frames = participant.make_writer<cockpit::ControlFrame>("control_frames");
-  auto events = participant.make_reader<cockpit::SystemsEvent>("event");
-  cockpit::ControlFrame frame;
-  const int gear = publish_control_infos(scene, infos, frame);
-  ASSERT_GE(gear, 0);
-  auto statuses = participant.make_reader<cockpit::NodeStatus>("state");
+  PhysicsStandIn stand_in;
+  ASSERT_GE(stand_in.gear, 0);
+  const std::size_t gear = static_cast<std::size_t>(stand_in.gear);
+  cockpit::ControlFrame frame = stand_in.first_frame;
+  auto statuses = stand_in.participant.make_reader<cockpit::NodeStatus>("state");
   auto systems = std::make_unique<ChildProcess>(start("systems_node", {}, "systems.log"));
-  ASSERT_TRUE(frames.wait_for_matched(1, 30 * kSecond)) << text("systems.log");
+  ASSERT_TRUE(stand_in.frames.wait_for_matched(1, 30 * kSecond)) << text("systems.log");
   // the first frame alone, taken (the node bound to the controls); then, while the node is
   // stopped (a stalled reader), 1,499 more of 10 ms; the lever up from 5.00 s to 5.30 s only
   frame.sim_time_ns(10'000'000);
   frame.seq(1);
-  frames.write(frame);
+  stand_in.frames.write(frame);
   ASSERT_TRUE(wait_for_frames_taken(statuses, 1, 30 * kSecond)) << text("systems.log");
   systems->signal(SIGSTOP);
   for (uint64_t seq = 2; seq <= 1500; ++seq) {
     frame.sim_time_ns(static_cast<int64_t>(seq) * 10'000'000);
     frame.seq(seq);
     const bool up = frame.sim_time_ns() >= 5 * kSecond && frame.sim_time_ns() < 5'300'000'000;
-    frame.position()[static_cast<std::size_t>(gear)] = up ? 1 : 0;
-    frames.write(frame);
+    frame.position()[gear] = up ? 1 : 0;
+    stand_in.frames.write(frame);
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   systems->signal(SIGCONT);
@@ -263,7 +267,7 @@ TEST_F(SystemsNodeTest, ABurstOfFramesReachesItWholeWithAShortFlickInIt) {
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   cockpit::SystemsEvent e;
   while (extending_at.empty() && std::chrono::steady_clock::now() < until) {
-    while (events.take(e)) {
+    while (stand_in.events.take(e)) {
       if (e.kind() != cockpit::SYSTEM_CHANGED || e.name().to_string() != "gear_nose") continue;
       if (e.to_text().to_string() == "retracting") retracting_at.push_back(e.sim_time_ns());
       if (e.to_text().to_string() == "extending") extending_at.push_back(e.sim_time_ns());

@@ -247,9 +247,8 @@ TEST_P(MeshCap, AFingertipPressesAMeshButtonToItsDetent) {
   const std::string hand = source_dir() + "/config/hand.yaml";
   yaml.replace(yaml.rfind(hands), hands.size(),  // (the header comment has it too)
                "hands: [" + hand + ", {file: " + hand + ", side: left}]");
-  for (auto m = yaml.find("mesh: models/"); m != std::string::npos; m = yaml.find("mesh: models/", m + 1))
-    yaml.replace(m, 13, "mesh: " + source_dir() + "/config/models/");  // the looks' model
-  const physics::Scene scene = load_scene(write_test_file("mesh_cap", "cockpit.yaml", yaml));
+  const physics::Scene scene =
+      load_scene(write_test_file("mesh_cap", "cockpit.yaml", cockpit_yaml_models_absolute(yaml)));
   const physics::ObjectSpec& cap = scene.objects[static_cast<std::size_t>(
       scene.controls[static_cast<std::size_t>(scene.find_control("master_caution"))].body)];
   ASSERT_EQ(cap.shape.kind, physics::ShapeKind::kMesh);

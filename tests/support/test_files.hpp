@@ -26,6 +26,16 @@ inline std::string read_text(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
+// config/cockpit.yaml's text made to load from another directory: its looks' model files
+// (`mesh: models/...`, relative to config/) named by their paths in the source tree.
+inline std::string cockpit_yaml_models_absolute(std::string yaml) {
+  const std::string relative = "mesh: models/";
+  const std::string absolute = "mesh: " + source_dir() + "/config/models/";
+  for (auto at = yaml.find(relative); at != std::string::npos; at = yaml.find(relative, at + absolute.size()))
+    yaml.replace(at, relative.size(), absolute);
+  return yaml;
+}
+
 // Writes `text` to <temp dir of `dir_name` for this test>/<name> and returns the path. The
 // directory is made once per test (make_temp_dir empties it).
 inline std::string write_test_file(const std::string& dir_name, const std::string& name,
