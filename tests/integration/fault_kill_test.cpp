@@ -198,19 +198,22 @@ class FaultKillTest : public ProcessTest {
     // bound grows by as far as the right hand moved from the checkpoint to the restarted node's
     // first hand state after that cup (a cup in the hand moves with it; one that is not, not at
     // all).
-    const SeenHand* hand_after = nullptr;
-    for (const SeenHand& h : seen.hands)
-      if (h.id == 0 && h.received_ns >= new_cup.received_ns) {
-        hand_after = &h;
-        break;
-      }
     double hand_moved_m = 0.0;
     if (new_cup.sim_time_ns > checkpoint_ns) {
-      ASSERT_NE(hand_after, nullptr) << "no right hand from the restarted node";
+      // (the monitor may not have written it yet when the cup was found: waited for)
+      SeenHand hand_after;
+      ASSERT_TRUE(wait_until([&](const MonitorLog& log) {
+        for (const SeenHand& h : log.hands)
+          if (h.id == 0 && h.received_ns >= new_cup.received_ns) {
+            hand_after = h;
+            return true;
+          }
+        return false;
+      })) << "no right hand from the restarted node";
       const Eigen::Vector3d saved_wrist = saved.world.hands.at(0).X_GH.translation();
-      hand_moved_m = (hand_after->position - saved_wrist).norm();
+      hand_moved_m = (hand_after.position - saved_wrist).norm();
       std::printf("  the right hand moved %.1f mm from the checkpoint to %.3f s\n",
-                  hand_moved_m * 1e3, ns_to_seconds(hand_after->sim_time_ns));
+                  hand_moved_m * 1e3, ns_to_seconds(hand_after.sim_time_ns));
     }
     EXPECT_LT((new_cup.position - saved_cup).norm(), 0.01 + hand_moved_m)
         << "cup at " << new_cup.position.transpose() << " at "
