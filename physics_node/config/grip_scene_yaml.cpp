@@ -182,7 +182,7 @@ std::string grip_scene_text(const GripSceneSpec& spec, const std::string& out_pa
           spec.material_of + "\n";
   text += "    color: [0.2, 0.5, 0.9]\n\n";
   text += "# Stable grasp, contact and proxy settings: copied from " + spec.cockpit_path + ".\n";
-  text += copied_sections(cockpit, {"grasp", "contact", "proxy"});
+  text += copied_sections(cockpit, {"grasp", "contact", "proxy", "sleep"});
   return text;
 }
 

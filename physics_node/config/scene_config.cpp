@@ -452,12 +452,22 @@ physics::ProxyParams parse_proxy(const ConfigNode& node) {
   return p;
 }
 
+physics::SleepParams parse_sleep(const ConfigNode& node) {
+  node.expect_keys({"enabled", "speed_mps", "time_s"});
+  physics::SleepParams p;
+  auto pos = [](const ConfigNode& n) { return positive(n); };
+  if (auto e = node.find("enabled")) p.enabled = e->as_bool();
+  read_optional(node, "speed_mps", p.speed_mps, pos);
+  read_optional(node, "time_s", p.time_s, pos);
+  return p;
+}
+
 }  // namespace scene_parts
 
 physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) {
   using namespace scene_parts;
   root.expect_keys({"gravity", "step_s", "hand", "hands", "hand_material", "objects", "controls",
-                    "grasp", "contact", "proxy"});
+                    "grasp", "contact", "proxy", "sleep"});
   Scene scene;
   scene.gravity_mps2 = vector3(root["gravity"].as_doubles<3>());
   scene.step_s = in_open_closed(root["step_s"], 0.0, kMaxStep_s);
@@ -473,6 +483,7 @@ physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) 
   read_optional(root, "grasp", scene.grasp, parse_grasp);
   read_optional(root, "contact", scene.contact, parse_contact);
   read_optional(root, "proxy", scene.proxy, parse_proxy);
+  read_optional(root, "sleep", scene.sleep, parse_sleep);
   return scene;
 }
 

@@ -21,6 +21,11 @@ struct BodyState {
   uint8_t holders = 0;
   int held_by = kNotHeld;
   bool held() const { return holders != 0; }
+  // Sleeping (sleep.hpp): how long it has been still, whether it sleeps, and its island (the
+  // lowest object index of the bodies that fell asleep with it; they wake together).
+  double still_s = 0.0;
+  bool asleep = false;
+  int island = -1;
 };
 
 // A body as the contact model sees it during one substep.

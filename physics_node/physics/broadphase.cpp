@@ -38,11 +38,16 @@ Aabb shape_aabb(const Shape& shape, const Eigen::Isometry3d& X_GS) {
 }
 
 SweepAndPrune::SweepAndPrune(std::vector<BroadphaseBody> kinds)
-    : kinds_(std::move(kinds)), boxes_(kinds_.size()), enabled_(kinds_.size(), 1) {
+    : kinds_(std::move(kinds)),
+      boxes_(kinds_.size()),
+      enabled_(kinds_.size(), 1),
+      asleep_(kinds_.size(), 0) {
   for (std::size_t i = 0; i < kinds_.size(); ++i)
     if (kinds_[i] == BroadphaseBody::kHand) enabled_[i] = 0;  // until its hand is active
   for (std::size_t i = 0; i < kinds_.size(); ++i)
     (kinds_[i] == BroadphaseBody::kStatic ? statics_ : order_).push_back(static_cast<int>(i));
+  awake_.reserve(order_.size());
+  sleeping_.reserve(order_.size());
 }
 
 bool SweepAndPrune::can_act(int a, int b) const {
@@ -51,6 +56,10 @@ bool SweepAndPrune::can_act(int a, int b) const {
   const bool hand = ka == BroadphaseBody::kHand || kb == BroadphaseBody::kHand;
   if (enabled_[static_cast<std::size_t>(a)] == 0 || enabled_[static_cast<std::size_t>(b)] == 0)
     return false;
+  const bool a_asleep = asleep_[static_cast<std::size_t>(a)] != 0;
+  const bool b_asleep = asleep_[static_cast<std::size_t>(b)] != 0;
+  if (a_asleep || b_asleep)  // only something that moves wakes a sleeping body
+    return !(a_asleep && b_asleep) && ka != BroadphaseBody::kStatic && kb != BroadphaseBody::kStatic;
   if (ka == BroadphaseBody::kDynamic || kb == BroadphaseBody::kDynamic) return true;
   // a control acts with the hand only (and with free objects, above): its joint holds it in its
   // panel, and a cockpit's controls are laid out not to touch one another
@@ -58,6 +67,27 @@ bool SweepAndPrune::can_act(int a, int b) const {
     return ka == BroadphaseBody::kHand || kb == BroadphaseBody::kHand;
   // neither is dynamic: static-static and hand-hand never act; hand-static when asked for
   return report_hand_static_ && hand && (ka == BroadphaseBody::kStatic || kb == BroadphaseBody::kStatic);
+}
+
+void SweepAndPrune::sweep_across(const std::vector<int>& firsts, const std::vector<int>& seconds,
+                                 bool after_ties, std::vector<BodyPair>& out) const {
+  const int axis = axis_;
+  std::size_t start = 0;  // the first of `seconds` starting at or after (after_ties: after) a
+  for (const int a : firsts) {
+    const Aabb& box_a = boxes_[static_cast<std::size_t>(a)];
+    const auto before_a = [&](int b) {
+      const double lo = boxes_[static_cast<std::size_t>(b)].lo[axis];
+      return after_ties ? lo <= box_a.lo[axis] : lo < box_a.lo[axis];
+    };
+    while (start < seconds.size() && before_a(seconds[start])) ++start;
+    for (std::size_t j = start; j < seconds.size(); ++j) {
+      const int b = seconds[j];
+      const Aabb& box_b = boxes_[static_cast<std::size_t>(b)];
+      if (box_b.lo[axis] > box_a.hi[axis]) break;
+      if (!can_act(a, b) || !box_a.overlaps(box_b)) continue;
+      out.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
 }
 
 void SweepAndPrune::find_pairs(std::vector<BodyPair>& out) {
@@ -88,22 +118,33 @@ void SweepAndPrune::find_pairs(std::vector<BodyPair>& out) {
     }
     order_[j] = body;
   }
-  for (std::size_t i = 0; i < order_.size(); ++i) {
-    const int a = order_[i];
+  // the moving bodies split, each list still sorted: a sleeping body pairs only with awake ones,
+  // so two sleepers are never even looked at (a heap of sleepers costs what its size does, not
+  // what its crowding does)
+  awake_.clear();
+  sleeping_.clear();
+  for (const int body : order_) (asleep_[static_cast<std::size_t>(body)] != 0 ? sleeping_ : awake_).push_back(body);
+  for (std::size_t i = 0; i < awake_.size(); ++i) {
+    const int a = awake_[i];
     if (enabled_[static_cast<std::size_t>(a)] == 0) continue;
     const Aabb& box_a = boxes_[static_cast<std::size_t>(a)];
-    for (std::size_t j = i + 1; j < order_.size(); ++j) {
-      const int b = order_[j];
+    for (std::size_t j = i + 1; j < awake_.size(); ++j) {
+      const int b = awake_[j];
       const Aabb& box_b = boxes_[static_cast<std::size_t>(b)];
       if (box_b.lo[axis] > box_a.hi[axis]) break;  // no later box reaches back to a
       if (!can_act(a, b) || !box_a.overlaps(box_b)) continue;
       out.push_back({std::min(a, b), std::max(a, b)});
     }
   }
-  // the static bodies never move and never pair with each other: each moving body that can act
+  if (!sleeping_.empty()) {
+    // each awake-sleeping pair once, from the box that starts first (ties: the awake one's)
+    sweep_across(awake_, sleeping_, /*after_ties=*/false, out);
+    sweep_across(sleeping_, awake_, /*after_ties=*/true, out);
+  }
+  // the static bodies never move and never pair with each other: each awake body that can act
   // with them against each of them (the floor and the walls span the sweep axis, so in the sweep
   // they met every body)
-  for (const int a : order_) {
+  for (const int a : awake_) {
     const BroadphaseBody ka = kinds_[static_cast<std::size_t>(a)];
     const bool acts = ka == BroadphaseBody::kDynamic ||
                       (ka == BroadphaseBody::kHand && enabled_[static_cast<std::size_t>(a)] != 0 &&

@@ -6,7 +6,8 @@
 // substep to substep, so re-sorting after a small motion is an insertion sort of a nearly
 // sorted list: O(n) plus the few swaps.
 //
-// Pairs that cannot act are never reported: static-static, hand-hand (a hand's own links, and
+// Pairs that cannot act are never reported: static-static, asleep-static, asleep-asleep (a
+// sleeping body moves for nothing but a moving one), hand-hand (a hand's own links, and
 // two hands' links), a hand while it is disabled, and hand-static unless asked for (the proxy hand needs them to stay out of panels;
 // no force acts on such a pair). The output is sorted by (lo, hi), whatever the sweep order.
 
@@ -58,6 +59,8 @@ class SweepAndPrune {
   // every other body enabled.
   void set_enabled(int body, bool enabled) { enabled_[static_cast<std::size_t>(body)] = enabled ? 1 : 0; }
   void set_report_hand_static(bool report) { report_hand_static_ = report; }
+  // A sleeping dynamic body (sleep.hpp) pairs only with bodies that move; every body starts awake.
+  void set_asleep(int body, bool asleep) { asleep_[static_cast<std::size_t>(body)] = asleep ? 1 : 0; }
 
   // The overlapping pairs that can act, into `out` (cleared first). No allocation once `out`
   // has grown to the largest pair count.
@@ -65,12 +68,20 @@ class SweepAndPrune {
 
  private:
   bool can_act(int a, int b) const;
+  // The pairs of a body of `firsts` and one of `seconds` (each sorted by the lower end of its box)
+  // whose second starts within the first's span on the sweep axis, at or after its start
+  // (after_ties: strictly after).
+  void sweep_across(const std::vector<int>& firsts, const std::vector<int>& seconds, bool after_ties,
+                    std::vector<BodyPair>& out) const;
 
   std::vector<BroadphaseBody> kinds_;
   std::vector<Aabb> boxes_;
   std::vector<int> order_;    // the moving bodies by the lower end of their box on the sweep axis
   std::vector<int> statics_;  // the static bodies, in body order
+  std::vector<int> awake_;     // order_'s awake bodies, then its sleeping ones (find_pairs)
+  std::vector<int> sleeping_;
   std::vector<uint8_t> enabled_;  // per body
+  std::vector<uint8_t> asleep_;   // per body
   int axis_ = -1;           // chosen on the first sweep: where the boxes are spread the most
   bool report_hand_static_ = false;
 };

@@ -673,6 +673,11 @@ void CollisionWorld::compute_hand_static_contacts(
   }
 }
 
+void CollisionWorld::set_object_asleep(int object, bool asleep) {
+  VCOCKPIT_ASSERT(0 <= object && object < object_count_, "an object of this world");
+  impl_->broadphase->set_asleep(object, asleep);
+}
+
 void CollisionWorld::skip_hand_pairs_with(const std::vector<uint8_t>* objects) {
   impl_->skip_hand = objects;
 }

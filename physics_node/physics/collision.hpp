@@ -70,6 +70,8 @@ class CollisionWorld {
   // substep of a step: both bodies move with the hand, so their contacts change nothing but the
   // grasp test, which reads the last substep's.
   void skip_hand_pairs_with(const std::vector<uint8_t>* objects);
+  // A sleeping object (sleep.hpp) pairs only with bodies that move; every object starts awake.
+  void set_object_asleep(int object, bool asleep);
 
   // The box around a hand link's collision shape with the link frame at X_GL (a capsule on
   // [0, length] along x_L, the palm box on its frame).

@@ -170,6 +170,17 @@ struct ContactParams {
   int max_points_per_pair = 4;
 };
 
+// Sleeping (sleep.hpp; Box2D's and Jolt's): a free object that has stayed slower than these for
+// time_s, with everything it touches as still (its island), is put to sleep: it costs no
+// collision, force or integration until something that moves touches it.
+struct SleepParams {
+  bool enabled = true;
+  // the fastest point of it: centroid speed plus spin times its farthest reach (Box2D v3's
+  // test; a ball rolling at this speed counts as moving whatever its size)
+  double speed_mps = 0.01;
+  double time_s = 0.5;  // Box2D's time to sleep
+};
+
 // The proxy hand (proxy_hand.hpp): the hand that touches the world follows the tracked hand
 // through bounded coupling, a god-object per link in the spirit of Borst & Indugula (2005) and
 // Jacobs & Froehlich (2011): it goes where the tracked hand goes as far as the world lets it.
@@ -213,6 +224,7 @@ struct Scene {
   GraspParams grasp;
   ContactParams contact;
   ProxyParams proxy;
+  SleepParams sleep;
   SanityLimits limits;
 
   // -1 when no object has that name.

@@ -76,6 +76,8 @@ void SubstepChoice::find_reachable_pairs(const std::vector<BodyState>& bodies,
     const ObjectSpec& o = scene_.objects[i];
     if (!o.dynamic) continue;  // static boxes were set once
     const BodyState& body = bodies[i];
+    // a sleeping body counts only where something that moves may reach it (and wake it)
+    reach_.set_asleep(i, body.asleep);
     Aabb box = shape_aabb(o.shape, body.X_GO);
     // the farthest a point of it can go in one step: centroid speed, spin times reach, gravity
     const double reach_m = (body.v_G.norm() + body.w_G.norm() * o.shape.bounding_radius_m()) * step_s +

@@ -92,6 +92,7 @@ World::World(Scene scene)
       forces_(scene_.contact.slip_speed_mps),
       grasp_tracker_(scene_.grasp, scene_.step_s, scene_.gravity_mps2, scene_.hand_material.mu_s),
       body_check_(scene_),
+      sleep_(scene_),
       object_count_(static_cast<int>(scene_.objects.size())),
       step_ns_(std::llround(scene_.step_s * 1e9)),
       controls_(scene_, state_) {
@@ -108,6 +109,7 @@ World::World(Scene scene)
   X_GO_before_.resize(object_count_);
   I_O_inv_.resize(object_count_);
   held_mask_.assign(object_count_, 0);
+  may_sleep_.assign(object_count_, 0);
   start_bodies_.resize(object_count_);
   hands_.resize(hand_count);  // never again: each proxy keeps a pointer to its hand's vectors
   state_.hands.resize(hand_count);
@@ -315,6 +317,7 @@ void World::reset_objects(const WorldState& saved) {
     body.holders = 0;
     body.held_by = kNotHeld;
   }
+  SleepTracker::wake_all(state_.bodies);  // (put back, they rest on nothing computed yet)
   controls_.reset_to(saved.controls, t_ns);
   state_.anchors.clear();
 }
@@ -342,6 +345,7 @@ void World::step() {
   controls_.begin_step();
   body_check_.clear_new_faults();
   std::copy(state_.bodies.begin(), state_.bodies.end(), start_bodies_.begin());
+  tell_sleepers();
   // a held object and the hand move together: their contacts matter to the grasp test only,
   // which reads the last substep's, so the substeps before it leave them out (their friction
   // anchors carry over) -- but for a proxy hand, whose fingers stop at the held object's surface
@@ -392,6 +396,7 @@ void World::step() {
     body_check_.check(state_.bodies, start_bodies_, state_.time_ns);
   }
   grasp_stage();
+  if (scene_.sleep.enabled) update_sleep();
   for (std::size_t h = 0; h < hands_.size(); ++h)
     state_.hands[h].finger_pull_G = finger_pull_G(static_cast<int>(h));
   for (std::size_t h = 0; h < hands_.size(); ++h) {
@@ -420,6 +425,13 @@ void World::substep(double dt_s, double alpha, int remaining, bool skip_held_han
     StageTimer timer(stage_times_, Stage::kNarrowphase);
     collision_.skip_hand_pairs_with(skip_held_hand_pairs ? &held_mask_ : nullptr);
     collision_.compute_contacts(contacts_, has_proxy() ? &hand_static_ : nullptr);
+    // something that moves touched a sleeping island: it wakes, and this substep's collision
+    // is found again with it awake (its contacts with what it rests on)
+    while (wake_touched()) {
+      tell_sleepers();
+      collision_.find_candidate_pairs();
+      collision_.compute_contacts(contacts_, has_proxy() ? &hand_static_ : nullptr);
+    }
   }
   if (has_proxy()) {
     StageTimer timer(stage_times_, Stage::kProxyHand);
@@ -660,6 +672,7 @@ void World::build_contact_bodies() {
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
     const BodyState& s = state_.bodies[i];
+    if (s.asleep) continue;  // in no contact
     ContactBody& c = contact_bodies_[i];
     c.X_GB = s.X_GO;
     c.v_G = s.v_G;
@@ -711,7 +724,7 @@ void World::integrate(double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
     BodyState& body = state_.bodies[i];
-    if (!o.dynamic || body.held() || o.control >= 0) continue;
+    if (!o.dynamic || body.held() || o.control >= 0 || body.asleep) continue;
     const Eigen::Vector3d F = total_force_G(F_G_[i], o.mass_kg, scene_.gravity_mps2);  // eq. 18
     integrate_body(body, F, M_G_[i], o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
   }
@@ -734,7 +747,8 @@ void World::grasp_stage() {
   }
   const auto grasp_object = [&](int object) {
     const ObjectSpec& o = scene_.objects[object];
-    if (!o.dynamic) return;
+    // (a sleeping object has no hand on it, and every hand's hold of it is idle: update_sleep)
+    if (!o.dynamic || state_.bodies[object].asleep) return;
     for (std::size_t h = 0; h < hands_.size(); ++h) {
       HandOnObject& on = on_object_[h];
       GraspHold& hold = state_.hands[h].grasp[static_cast<std::size_t>(object)];
@@ -793,6 +807,34 @@ void World::grasp_stage() {
   }
   name_holders();
   if (!controls_.empty()) controls_.after_grasp(events_);
+}
+
+void World::tell_sleepers() {
+  for (int i = 0; i < object_count_; ++i)
+    if (scene_.objects[i].dynamic) collision_.set_object_asleep(i, state_.bodies[i].asleep);
+}
+
+bool World::wake_touched() {
+  int woken = 0;
+  for (const ContactPoint& c : contacts_) {
+    if (c.body_a < object_count_) woken += SleepTracker::wake_island(c.body_a, state_.bodies);
+    if (c.body_b < object_count_) woken += SleepTracker::wake_island(c.body_b, state_.bodies);
+  }
+  return woken > 0;
+}
+
+void World::update_sleep() {
+  for (int i = 0; i < object_count_; ++i) {
+    const BodyState& body = state_.bodies[i];
+    // a hand that holds it or is still letting go of it (its grasp state moves on each step)
+    bool idle = !body.held();
+    for (const HandState& hs : state_.hands) {
+      const GraspHold& hold = hs.grasp[static_cast<std::size_t>(i)];
+      idle = idle && !hold.hand_clearing && !hold.handed_over;
+    }
+    may_sleep_[i] = idle ? 1 : 0;
+  }
+  sleep_.update(contacts_, may_sleep_, state_.bodies);
 }
 
 void World::name_holders() {

@@ -36,6 +36,7 @@
 #include "physics_node/physics/grasp_tracker.hpp"
 #include "physics_node/physics/proxy_hand.hpp"
 #include "physics_node/physics/scene.hpp"
+#include "physics_node/physics/sleep.hpp"
 #include "physics_node/physics/substep_choice.hpp"
 #include "physics_node/physics/world_state.hpp"
 
@@ -201,6 +202,12 @@ class World {
   void move_held_objects(double dt_s);
   void build_contact_bodies();
   void integrate(double dt_s);
+  // Sleeping (sleep.hpp): the broadphases told which objects sleep; the islands a contact of
+  // this substep reaches woken (true if any woke); after a step, which objects may sleep and
+  // the sleep tracker's update.
+  void tell_sleepers();
+  bool wake_touched();
+  void update_sleep();
   void grasp_stage();
   void name_holders();  // BodyState::held_by from holders
   int holder_of(const BodyState& body) const;  // the first hand holding it, or -1
@@ -213,6 +220,7 @@ class World {
   ContactForceModel forces_;
   GraspTracker grasp_tracker_;
   BodyCheck body_check_;
+  SleepTracker sleep_;
   std::vector<HandSim> hands_;  // per hand; never resized after construction (proxies point in)
   int object_count_;
   int64_t step_ns_;
@@ -225,6 +233,7 @@ class World {
   std::vector<Eigen::Isometry3d> X_GO_;         // collision input, all objects
   std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
   std::vector<uint8_t> held_mask_;              // 1 for the objects any hand held at the start of this step
+  std::vector<uint8_t> may_sleep_;              // per object, at the end of a step (update_sleep)
   std::vector<BodyState> start_bodies_;         // the bodies at the start of this step
   std::vector<SubstepChoice::HandSweep> sweeps_;
   std::vector<HandOnObject> on_object_;         // the grasp stage's, per hand

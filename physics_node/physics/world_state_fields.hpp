@@ -81,6 +81,9 @@ void visit_world_state(V& v, S& s) {
     f::vec3(v, b.w_G);
     v.num(b.holders);
     v.num(b.held_by);
+    v.num(b.still_s);
+    v.num(b.asleep);
+    v.num(b.island);
   }
   v.count(s.hands);
   for (auto& hand : s.hands) {

@@ -61,13 +61,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0xa9dc1ee9f04a41c8") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0x7f5931be69058674") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0x6fb8fe970a42c435") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x35ebd64917130e63") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x24896659bbb3e07d") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0xee4f6842a2e7031a") << "final state";
 }
 
 // A world read between its steps (the physics node publishes the tracked hand there) steps as

@@ -40,6 +40,7 @@ physics::Scene console_with(const physics::Shape& shape, const Eigen::Isometry3d
       static_box("console", {0.6, 0.4, 0.05}, at(0, 0, -0.025), material(kConsoleK_Npm)));
   scene.objects.push_back(dynamic_object("object", shape, kMass_kg, X_GO, material(kObjectK_Npm)));
   scene.objects.back().w_G = w_G;
+  scene.sleep.enabled = false;  // what the contacts do at rest, which sleeping would end
   return scene;
 }
 

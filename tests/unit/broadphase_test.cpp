@@ -3,6 +3,8 @@
 // shape's box holds the shape tightly.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "common/pose.hpp"
@@ -59,6 +61,59 @@ TEST(SweepAndPrune, SamePairsAsBruteForceThroughRandomMotion) {
     total += pairs.size();
   }
   EXPECT_GT(total, 1000u);  // the scene is crowded enough for the comparison to mean something
+}
+
+// Sleeping bodies (sleep.hpp) pair only with awake non-static ones; the sweep takes them apart
+// from the awake ones, so it must find exactly the pairs brute force finds, through sleepers
+// falling asleep and waking, and through boxes that start at the same coordinate (the ties of
+// the two lists' sweeps).
+TEST(SweepAndPrune, WithSleepersSamePairsAsBruteForce) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> pos(-1.0, 1.0), size(0.02, 0.3), step(-0.05, 0.05),
+      unit(0.0, 1.0);
+  std::vector<Kind> kinds;
+  for (int i = 0; i < 150; ++i)
+    kinds.push_back(i < 10 ? Kind::kStatic : i < 130 ? Kind::kDynamic : Kind::kHand);
+  std::vector<Aabb> boxes(kinds.size());
+  std::vector<Eigen::Vector3d> centre(kinds.size()), half(kinds.size());
+  std::vector<uint8_t> asleep(kinds.size(), 0);
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    // a coarse grid of centres and sizes: many boxes start at exactly the same coordinate
+    centre[i] = {0.1 * std::round(10 * pos(rng)), 0.1 * std::round(10 * pos(rng)), 0.0};
+    half[i] = Eigen::Vector3d::Constant(0.05 * std::round(1 + 4 * unit(rng)));
+  }
+  SweepAndPrune sap(kinds);
+  for (std::size_t i = 0; i < kinds.size(); ++i)
+    if (kinds[i] == Kind::kHand) sap.set_enabled(static_cast<int>(i), true);
+  std::vector<BodyPair> pairs;
+  std::size_t total = 0, with_sleeper = 0;
+  for (int round = 0; round < 200; ++round) {
+    for (std::size_t i = 0; i < kinds.size(); ++i) {
+      if (kinds[i] == Kind::kDynamic && unit(rng) < 0.1) asleep[i] = asleep[i] ? 0 : 1;
+      // a sleeper keeps still; the rest move on the grid
+      if (kinds[i] != Kind::kStatic && asleep[i] == 0 && unit(rng) < 0.3)
+        centre[i] += Eigen::Vector3d(0.1 * std::round(step(rng) * 20), 0.0, 0.0);
+      boxes[i] = {centre[i] - half[i], centre[i] + half[i]};
+      sap.set_box(static_cast<int>(i), boxes[i]);
+      sap.set_asleep(static_cast<int>(i), asleep[i] != 0);
+    }
+    sap.find_pairs(pairs);
+    std::vector<BodyPair> expected;
+    for (int a = 0; a < static_cast<int>(boxes.size()); ++a)
+      for (int b = a + 1; b < static_cast<int>(boxes.size()); ++b) {
+        const bool sa = asleep[a] != 0, sb = asleep[b] != 0;
+        bool acts = can_act(kinds[a], kinds[b], true);
+        if (sa || sb) acts = acts && !(sa && sb) && kinds[a] != Kind::kStatic && kinds[b] != Kind::kStatic;
+        if (acts && boxes[a].overlaps(boxes[b])) {
+          expected.push_back({a, b});
+          with_sleeper += sa || sb ? 1 : 0;
+        }
+      }
+    ASSERT_EQ(pairs, expected) << "round " << round;
+    total += pairs.size();
+  }
+  EXPECT_GT(total, 1000u);
+  EXPECT_GT(with_sleeper, 200u);  // awake-sleeping pairs were there to be found
 }
 
 TEST(SweepAndPrune, TouchingBoxesArePairsAndStaticOrHandPairsNever) {

@@ -414,6 +414,16 @@ TEST(SceneConfig, ValidSceneParses) {
   EXPECT_EQ(scene.grasp.exit_scale, physics::GraspParams{}.exit_scale);  // not given: default
   EXPECT_EQ(scene.contact.max_substeps, 16);
   EXPECT_EQ(scene.contact.substep_safety, physics::ContactParams{}.substep_safety);
+  EXPECT_TRUE(scene.sleep.enabled);  // not given: resting objects sleep
+  EXPECT_EQ(scene.sleep.time_s, physics::SleepParams{}.time_s);
+}
+
+TEST(SceneConfig, SleepingIsReadAndCanBeTurnedOff) {
+  const std::string text = std::string(kValidScene) + "sleep: {enabled: false, speed_mps: 0.02, time_s: 1.5}\n";
+  const Scene scene = parse_scene(ConfigNode::load_string(text, "inline.yaml"), "");
+  EXPECT_FALSE(scene.sleep.enabled);
+  EXPECT_EQ(scene.sleep.speed_mps, 0.02);
+  EXPECT_EQ(scene.sleep.time_s, 1.5);
 }
 
 TEST(SceneConfig, ZeroRollingAndSpinningResistanceAreAllowed) {
@@ -633,6 +643,16 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
        "proxy:", "proxy.grip_force_N", "must be positive"},
       {"proxy_unknown_key", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {speed: 1}", "proxy:",
        "proxy.speed", "unknown key 'speed'"},
+      // sleeping
+      {"sleep_speed_zero", "contact: {slip_speed_mps: 0.002, max_substeps: 16}",
+       "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nsleep: {speed_mps: 0}", "sleep:",
+       "sleep.speed_mps", "must be positive"},
+      {"sleep_time_negative", "contact: {slip_speed_mps: 0.002, max_substeps: 16}",
+       "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nsleep: {time_s: -1}", "sleep:",
+       "sleep.time_s", "must be positive"},
+      {"sleep_unknown_key", "contact: {slip_speed_mps: 0.002, max_substeps: 16}",
+       "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nsleep: {linear_mps: 0.01}", "sleep:",
+       "sleep.linear_mps", "unknown key 'linear_mps'"},
       // the hand file
       {"hand_file_missing", "step_s: 0.001\n", "step_s: 0.001\nhand: no_such_hand.yaml\n",
        "hand: no_such", "hand", "cannot open hand file"},

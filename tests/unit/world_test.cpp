@@ -122,7 +122,7 @@ TEST(WorldState, RestoringAWorldReplaysItsOwnFuture) {
   World world(cockpit.scene);
   GloveFeed feed{&cockpit.samples};
   feed.feed(world);
-  feed.run_until(world, 2.5);  // the hand closing on the cup: contacts and stick anchors
+  feed.run_until(world, 2.6);  // the hand closing on the cup: contacts and stick anchors
   const WorldState saved = world.state();
   const GloveFeed saved_feed = feed;
   EXPECT_FALSE(saved.anchors.empty()) << "the fingers touch the cup";
@@ -236,6 +236,9 @@ TEST(WorldState, HashSeesEveryPart) {
   EXPECT_TRUE(changed([&](WorldState& s) { s.bodies[cockpit.cup].w_G.z() = 1e-300; }));
   EXPECT_TRUE(changed([&](WorldState& s) { s.bodies[cockpit.cup].held_by = 0; }));
   EXPECT_TRUE(changed([&](WorldState& s) { s.bodies[cockpit.cup].holders = 1; }));
+  EXPECT_TRUE(changed([&](WorldState& s) { s.bodies[cockpit.cup].asleep = true; }));
+  EXPECT_TRUE(changed([&](WorldState& s) { s.bodies[cockpit.cup].still_s = 0.001; }));
+  EXPECT_TRUE(changed([&](WorldState& s) { s.bodies[cockpit.cup].island = 3; }));
   EXPECT_TRUE(changed([](WorldState& s) { s.hands[0].active = true; }));
   EXPECT_TRUE(changed([](WorldState& s) { s.hands[0].to.q_rad[5] = 0.1; }));
   EXPECT_TRUE(changed([](WorldState& s) { s.hands[0].from.tracking = false; }));
@@ -476,7 +479,7 @@ TEST(WorldCheckpoint, DamagedForeignOrOutOfSceneCheckpointsAreRefusedWithWhy) {
   World world(cockpit.scene);
   GloveFeed feed{&cockpit.samples};
   feed.feed(world);
-  feed.run_until(world, 2.5);  // fingers on the cup: stick anchors
+  feed.run_until(world, 2.6);  // fingers on the cup (awake from 2.57 s): stick anchors
   const World fresh(cockpit.scene);
   const uint64_t fingerprint = physics_io::scene_fingerprint(fresh);
   const std::string good = physics_io::encode_checkpoint({world.state(), false}, fingerprint);
