@@ -29,21 +29,30 @@ struct HeldWorld {
   physics::HandInput hand;
 };
 
-physics::Scene scene_with(int loose_objects) {
-  return loose_objects == 0 ? cockpit_scene() : crowded_cockpit_scene(loose_objects);
+physics::Scene scene_with(int loose_objects, bool sleep) {
+  physics::Scene scene = loose_objects == 0 ? cockpit_scene() : crowded_cockpit_scene(loose_objects);
+  scene.sleep.enabled = sleep;
+  return scene;
 }
 
-// One per scene for the whole run: the lead-in (4 s of the glove log) is paid once.
-HeldWorld& held_world(int loose_objects) {
-  static std::map<int, HeldWorld> worlds;
-  auto it = worlds.find(loose_objects);
+// One per scene (and sleeping or not) for the whole run: the lead-in (4 s of the glove log) is
+// paid once.
+HeldWorld& held_world(int loose_objects, bool sleep = true) {
+  static std::map<std::pair<int, bool>, HeldWorld> worlds;
+  auto it = worlds.find({loose_objects, sleep});
   if (it == worlds.end()) {
     HeldWorld held;
-    held.world = std::make_unique<physics::World>(scene_with(loose_objects));
+    held.world = std::make_unique<physics::World>(scene_with(loose_objects, sleep));
     held.hand = step_to_hold(*held.world);
-    it = worlds.emplace(loose_objects, std::move(held)).first;
+    it = worlds.emplace(std::make_pair(loose_objects, sleep), std::move(held)).first;
   }
   return it->second;
+}
+
+int asleep_count(const physics::World& world) {
+  int n = 0;
+  for (const auto& b : world.bodies()) n += b.asleep ? 1 : 0;
+  return n;
 }
 
 void scene_counters(benchmark::State& state, const physics::World& world) {
@@ -92,9 +101,10 @@ BENCHMARK(BM_Collision)->Arg(0)->Arg(10)->Arg(100)->Arg(500)->Iterations(2000)
     ->Unit(benchmark::kMicrosecond);
 
 // One full world step (all substeps and the grasp test) with the hand holding the cup.
+// range(1): 1 with sleeping (the default), 0 with every object kept awake.
 void BM_WorldStep(benchmark::State& state) {
   const int loose = static_cast<int>(state.range(0));
-  HeldWorld& held = held_world(loose);
+  HeldWorld& held = held_world(loose, state.range(1) != 0);
   physics::World& world = *held.world;
   StepTiming timing(static_cast<std::size_t>(state.max_iterations));
   std::array<int64_t, physics::kStageCount> stage_ns{};
@@ -113,6 +123,7 @@ void BM_WorldStep(benchmark::State& state) {
   }
   scene_counters(state, world);
   state.counters["contacts"] = static_cast<double>(world.contacts().size());
+  state.counters["asleep"] = asleep_count(world);
   const int cup = world.scene().find_object("cup");
   state.counters["cup_held"] = world.bodies()[static_cast<std::size_t>(cup)].held_by ==
                                        physics::kNotHeld ? 0 : 1;
@@ -134,15 +145,45 @@ void BM_MujocoStep(benchmark::State& state) {
   state.counters["contacts"] = mujoco.contact_count();
 }
 
-// Ours and MuJoCo's, scene by scene, so the JSON has them side by side.
+// A pile of range(0) objects settled in its bin: with sleeping, stepped once every object sleeps;
+// without (range(1) == 0), stepped as long after the drop, every object awake at rest.
+void BM_PileStep(benchmark::State& state) {
+  const int objects = static_cast<int>(state.range(0));
+  const bool sleep = state.range(1) != 0;
+  physics::Scene scene = pile_scene(objects);
+  scene.sleep.enabled = sleep;
+  physics::World world(scene);
+  constexpr double kSettle_s = 6.0;  // (the slowest ball stops rolling in 2-3 s)
+  while (world.time_ns() < std::llround(kSettle_s * 1e9)) world.step();
+  StepTiming timing(static_cast<std::size_t>(state.max_iterations));
+  for (auto _ : state) timing.time([&] { world.step(); });
+  timing.report(state);
+  state.counters["dynamic_objects"] = objects;
+  state.counters["asleep"] = asleep_count(world);
+  state.counters["substeps"] = world.substeps();
+  state.counters["contacts"] = static_cast<double>(world.contacts().size());
+  double lowest_m = 1.0;
+  for (std::size_t i = 0; i < world.bodies().size(); ++i)
+    if (world.scene().objects[i].dynamic)
+      lowest_m = std::min(lowest_m, world.bodies()[i].X_GO.translation().z());
+  state.counters["lowest_z_mm"] = lowest_m * 1e3;  // every object still on the floor
+}
+
+// Ours and MuJoCo's, scene by scene, so the JSON has them side by side; ours also with every
+// object kept awake (what sleeping saves); and the pile.
 void register_steps() {
   for (const int loose : {0, 10, 100, 500}) {
     const int64_t iterations = loose >= 500 ? 500 : loose >= 100 ? 1000 : 3000;
     benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
-        ->Arg(loose)->Iterations(iterations)->Unit(benchmark::kMicrosecond);
+        ->Args({loose, 1})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
+        ->Args({loose, 0})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
     benchmark::RegisterBenchmark("BM_MujocoStep", BM_MujocoStep)
         ->Arg(loose)->Iterations(iterations)->Unit(benchmark::kMicrosecond);
   }
+  for (const int sleep : {1, 0})
+    benchmark::RegisterBenchmark("BM_PileStep", BM_PileStep)
+        ->Args({200, sleep})->Iterations(500)->Unit(benchmark::kMicrosecond);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "bench/bench_scenes.hpp"
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -63,16 +64,16 @@ physics::Scene cockpit_scene() { return load_scene(source_path("config/cockpit.y
 
 physics::Scene crowded_cockpit_scene(int loose_objects, uint32_t seed) {
   physics::Scene scene = cockpit_scene();
-  // a cargo floor behind the seat: the cockpit floor (x -1..2) is extended back to x = -2.1, and
-  // the objects stand in an 8 cm grid from x = -0.25 backwards (behind the side walls, which end
-  // at x = -0.2), y -0.92..0.92, apart from each other (the widest reaches 3.9 cm from its centre
-  // in any yaw)
+  // a cargo floor behind the cockpit: the cockpit floor (x -1..2) is extended back to x = -2.2,
+  // and the objects stand in an 8 cm grid from x = -0.30 backwards (behind the back wall, whose
+  // back face is at x = -0.25; an object reaches 3.9 cm from its centre in any yaw), y
+  // -0.92..0.92, apart from each other
   const int floor = scene.find_object("floor");
   if (floor < 0) throw std::runtime_error("crowded_cockpit_scene: the cockpit has no floor");
   physics::ObjectSpec& f = scene.objects[static_cast<std::size_t>(floor)];
-  f.shape.box_size_m.x() = 4.1;
-  f.X_GO.translation().x() = -0.05;
-  constexpr double kFirstRow_m = -0.25;
+  f.shape.box_size_m.x() = 4.2;
+  f.X_GO.translation().x() = -0.1;
+  constexpr double kFirstRow_m = -0.30;
   constexpr double kCell_m = 0.08;
   constexpr int kColumns = 23;  // along y
   const int rows = (loose_objects + kColumns - 1) / kColumns;
@@ -82,6 +83,46 @@ physics::Scene crowded_cockpit_scene(int loose_objects, uint32_t seed) {
     const int row = i / kColumns, column = i % kColumns;
     const Eigen::Vector2d xy(kFirstRow_m - row * kCell_m, -0.92 + (column + 0.5) * kCell_m);
     scene.objects.push_back(loose_object(i, rng, xy));
+  }
+  return scene;
+}
+
+physics::Scene pile_scene(int objects, uint32_t seed) {
+  physics::Scene scene;
+  const physics::Material hard{1.0e5, 0.7, 0.6, 0.4};
+  const auto static_box = [&](const char* name, const Eigen::Vector3d& size_m,
+                              const std::array<double, 3>& p_m) {
+    physics::ObjectSpec o;
+    o.name = name;
+    o.shape = physics::Shape::box(size_m);
+    o.X_GO = pose_from_position_rpy_deg(p_m, {0.0, 0.0, 0.0});
+    o.material = hard;
+    scene.objects.push_back(o);
+  };
+  static_box("floor", {2.0, 2.0, 0.2}, {0.0, 0.0, -0.1});
+  // a bin 45 x 40 cm inside, 60 cm high: a ball knocked off the heap stays in it
+  static_box("wall_x_lo", {0.05, 0.5, 0.6}, {-0.25, 0.0, 0.3});
+  static_box("wall_x_hi", {0.05, 0.5, 0.6}, {0.25, 0.0, 0.3});
+  static_box("wall_y_lo", {0.45, 0.05, 0.6}, {0.0, -0.225, 0.3});
+  static_box("wall_y_hi", {0.45, 0.05, 0.6}, {0.0, 0.225, 0.3});
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.005, 0.005);
+  for (int i = 0; i < objects; ++i) {
+    const int layer = i / 20;
+    physics::ObjectSpec o;
+    o.name = "pile_" + std::to_string(i);
+    o.dynamic = true;
+    o.shape = (i + layer) % 2 == 0 ? physics::Shape::box({0.04, 0.05, 0.03})
+                                   : physics::Shape::sphere(0.02);
+    o.mass_kg = 0.05;
+    o.I_O = o.shape.unit_density_inertia() * (o.mass_kg / o.shape.volume_m3());
+    const double half = 0.035 * (layer % 2);
+    const double x = 0.07 * (i % 5 - 2) + half - 0.0175 + jitter(rng);
+    const double y = 0.07 * ((i / 5) % 4 - 1.5) + half - 0.0175 + jitter(rng);
+    o.X_GO = pose_from_position_rpy_deg({x, y, 0.03 + 0.06 * layer},
+                                        {10.0 * i, 7.0 * i, 13.0 * i});
+    o.material = hard;
+    scene.objects.push_back(o);
   }
   return scene;
 }

@@ -21,10 +21,16 @@ std::string source_path(const std::string& relative);
 physics::Scene cockpit_scene();
 
 // The cockpit plus `loose_objects` dynamic objects (boxes, spheres, capsules and cylinders of
-// 3.5-7 cm, 400-900 kg/m^3) resting apart on a cargo floor behind the seat (the floor extended
-// back to x = -2.1 m; at most 529 objects). Shapes and sizes come from `seed`: the same arguments
+// 3.5-7 cm, 400-900 kg/m^3) resting apart on a cargo floor behind the back wall (the floor extended
+// back to x = -2.2 m; at most 529 objects). Shapes and sizes come from `seed`: the same arguments
 // give the same scene.
 physics::Scene crowded_cockpit_scene(int loose_objects, uint32_t seed = 1);
+
+// A pile: `objects` boxes and balls of 50 g (4 x 5 x 3 cm, 2 cm radius) in layers of a 5 x 4
+// grid 7 cm apart, each layer 2 cm over the one below and off it by half a cell, each object a
+// little off its place and turned (from `seed`), in a bin of four walls on a floor. They fall onto
+// each other and settle into a heap. No hand.
+physics::Scene pile_scene(int objects, uint32_t seed = 1);
 
 // World time at which the bundled log holds the cup (lifted, between GRASP and RELEASE).
 constexpr double kHoldTime_s = 4.0;
