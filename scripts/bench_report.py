@@ -172,7 +172,8 @@ def main():
     pile_share = (pile_asleep["p50_us"] / pile_awake["p50_us"]
                   if pile_asleep and pile_awake else None)
     targets = [
-        {"target": "physics step no slower than MuJoCo on the same scene (p50 and p99)",
+        {"target": "physics step no slower than MuJoCo on the same scene (p50 and p99; ours "
+                   "with its resting objects asleep, MuJoCo 2.2 has no sleeping)",
          "measured": ", ".join(f"{r['dynamic_objects']} dynamic: {r['ratio_p50']:.2f}x / "
                                f"{r['ratio_p99']:.2f}x"
                                for r in rows if r["ratio_p50"] is not None),
@@ -183,7 +184,8 @@ def main():
                       f"{row500['ours_awake']['p50_us']:.0f} us, p99 "
                       f"{row500['ours_awake']['p99_us']:.0f} us")
          if row500 and row500.get("ours_awake") else "not run",
-         "met": bool(row500) and row500["ours"]["p99_us"] < 2000.0},
+         "met": bool(row500) and bool(row500.get("ours_awake")) and
+                row500["ours"]["p99_us"] < 2000.0},
         {"target": "a pile of 200 objects asleep costs under 10 % of its awake step",
          "measured": (f"{pile_asleep['p50_us']:.1f} us asleep ({pile_asleep.get('asleep', 0):.0f} "
                       f"of {pile_asleep['objects']}) vs {pile_awake['p50_us']:.0f} us awake "
@@ -290,7 +292,8 @@ def main():
                   f"{pile_awake['p99_us']:.0f} us. The lowest object's centroid "
                   f"{pile_asleep.get('lowest_z_mm', 0):.1f} mm and "
                   f"{pile_awake.get('lowest_z_mm', 0):.1f} mm above the floor.\n")
-    md.append("Collision detection alone (broadphase + narrowphase, one substep's poses):\n")
+    md.append("Collision detection alone (broadphase + narrowphase, one substep's poses, every "
+              "object awake):\n")
     md.append("| scene | pairs | contacts | p50 (us) | p99 (us) |")
     md.append("|---|---|---|---|---|")
     for r in rows:

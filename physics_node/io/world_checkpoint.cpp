@@ -151,6 +151,12 @@ void check_indices(const physics::WorldState& s, const physics::Scene& scene) {
     if ((b.holders != 0) != (b.held_by != physics::kNotHeld))
       bad(object + " held and not held (its holders and held_by disagree)");
     if (b.holders != 0 && !scene.objects[i].dynamic) bad(object + " is static and held");
+    // only a free object sleeps (sleep.hpp): a sleeping held one would never be let go
+    if (b.asleep && (b.holders != 0 || !scene.objects[i].dynamic || scene.objects[i].control >= 0))
+      bad(object + " asleep but not free (held, static or a control)");
+    if (b.asleep && (b.island < 0 || b.island >= object_count))
+      bad(object + " asleep in island " + std::to_string(b.island));
+    if (!(b.still_s >= 0.0)) bad(object + " still for a negative time");
   }
   for (const physics::HandState& h : s.hands) {
     if (h.blocking_out_G.size() > static_cast<std::size_t>(physics::kMaxBlockingPlanes))

@@ -65,6 +65,7 @@ SubstepChoice::SubstepChoice(const Scene& scene, const CollisionWorld& collision
     }
   }
   reach_pairs_.reserve(64);
+  may_wake_.assign(scene.objects.size(), 0);
 }
 
 // Boxes around each body's sweep over the step (a dynamic body: where it is, grown by how far it
@@ -104,6 +105,25 @@ void SubstepChoice::find_reachable_pairs(const std::vector<BodyState>& bodies,
     }
   }
   reach_.find_pairs(reach_pairs_);
+  // A sleeping island that something moving can reach may wake in this step, and then its resting
+  // contacts need their substeps from the first: it counts as awake (its pairs found again).
+  std::fill(may_wake_.begin(), may_wake_.end(), 0);
+  for (bool woken = true; woken;) {
+    woken = false;
+    for (const BodyPair& pair : reach_pairs_) {
+      for (const int body : {pair.lo, pair.hi}) {
+        if (body >= object_count_ || !bodies[body].asleep || may_wake_[body] != 0) continue;
+        const int island = bodies[body].island;
+        for (int i = 0; i < object_count_; ++i) {
+          if (!bodies[i].asleep || bodies[i].island != island) continue;
+          may_wake_[i] = 1;
+          reach_.set_asleep(i, false);
+        }
+        woken = true;
+      }
+    }
+    if (woken) reach_.find_pairs(reach_pairs_);
+  }
 }
 
 int SubstepChoice::choose(const std::vector<BodyState>& bodies, const std::vector<HandSweep>& hands) {

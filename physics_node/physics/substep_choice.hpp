@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "physics_node/physics/body.hpp"
@@ -52,6 +53,7 @@ class SubstepChoice {
   std::vector<double> contact_mass_;  // worst_contact_mass of the dynamic objects
   SweepAndPrune reach_;
   std::vector<BodyPair> reach_pairs_;
+  std::vector<uint8_t> may_wake_;  // per object: asleep, in an island a moving body can reach
 };
 
 }  // namespace vcockpit::physics

@@ -425,13 +425,17 @@ void World::substep(double dt_s, double alpha, int remaining, bool skip_held_han
     StageTimer timer(stage_times_, Stage::kNarrowphase);
     collision_.skip_hand_pairs_with(skip_held_hand_pairs ? &held_mask_ : nullptr);
     collision_.compute_contacts(contacts_, has_proxy() ? &hand_static_ : nullptr);
-    // something that moves touched a sleeping island: it wakes, and this substep's collision
-    // is found again with it awake (its contacts with what it rests on)
-    while (wake_touched()) {
+  }
+  // something that moves touched a sleeping island: it wakes, and this substep's collision is
+  // found again with it awake (its contacts with what it rests on)
+  while (wake_touched()) {
+    {
+      StageTimer timer(stage_times_, Stage::kBroadphase);
       tell_sleepers();
       collision_.find_candidate_pairs();
-      collision_.compute_contacts(contacts_, has_proxy() ? &hand_static_ : nullptr);
     }
+    StageTimer timer(stage_times_, Stage::kNarrowphase);
+    collision_.compute_contacts(contacts_, has_proxy() ? &hand_static_ : nullptr);
   }
   if (has_proxy()) {
     StageTimer timer(stage_times_, Stage::kProxyHand);

@@ -135,6 +135,28 @@ TEST(WorldState, RestoringAWorldReplaysItsOwnFuture) {
   EXPECT_EQ(hash_world_state(world.state()), first);
 }
 
+// The same from a state with sleeping bodies (at 2.5 s the cup and the loose objects sleep on the
+// console; the fingers wake the cup at 2.57 s): they wake and go on as in the original.
+TEST(WorldState, RestoringAWorldWithSleepersReplaysItsOwnFuture) {
+  const Cockpit cockpit;
+  World world(cockpit.scene);
+  GloveFeed feed{&cockpit.samples};
+  feed.feed(world);
+  feed.run_until(world, 2.5);
+  const WorldState saved = world.state();
+  const GloveFeed saved_feed = feed;
+  ASSERT_TRUE(saved.bodies[cockpit.cup].asleep);
+  feed.run_until(world, 3.0);
+  ASSERT_FALSE(world.bodies()[cockpit.cup].asleep);
+  const uint64_t first = hash_world_state(world.state());
+
+  World other(cockpit.scene);  // another world: nothing of the first's scratch
+  other.restore(saved);
+  feed = saved_feed;
+  feed.run_until(other, 3.0);
+  EXPECT_EQ(hash_world_state(other.state()), first);
+}
+
 // An instructor's reset (World::reset_objects): the objects and controls go back to the saved
 // state while time goes on and the hand stays where its glove is; the held cup is let go with a
 // "scene reset" release, and a control put back reports a commanded change.
@@ -400,6 +422,16 @@ TEST(WorldStep, AllocatesNothingOnceWarm) {
     world.step();
   test::g_count_allocations = false;
   EXPECT_EQ(test::g_allocations.load(), 0);
+  // and asleep (sleep.hpp): both come to rest and sleep, and steps with sleepers allocate nothing
+  for (int i = 0; i < 1500 && !(world.bodies()[1].asleep && world.bodies()[2].asleep); ++i)
+    world.step();
+  ASSERT_TRUE(world.bodies()[1].asleep && world.bodies()[2].asleep);
+  test::g_allocations = 0;
+  test::g_count_allocations = true;
+  for (int i = 0; i < 100; ++i)
+    world.step();
+  test::g_count_allocations = false;
+  EXPECT_EQ(test::g_allocations.load(), 0);
   EXPECT_TRUE(world.body_faults().empty());
 }
 
@@ -512,6 +544,16 @@ TEST(WorldCheckpoint, DamagedForeignOrOutOfSceneCheckpointsAreRefusedWithWhy) {
   EXPECT_NE(refusal(with([](WorldState& s) { s.controls[0].position = 99; }), fresh).find("position"),
             std::string::npos);
   EXPECT_NE(refusal(with([](WorldState& s) { s.bodies[0].holders = 0x80; }), fresh).find("held"),
+            std::string::npos);
+  EXPECT_NE(refusal(with([](WorldState& s) { s.bodies[0].asleep = true; s.bodies[0].island = 0; }), fresh)
+                .find("asleep but not free"),
+            std::string::npos);  // (object 0, the floor, is static)
+  EXPECT_NE(refusal(with([&](WorldState& s) {
+                      s.bodies[cockpit.cup].asleep = true;
+                      s.bodies[cockpit.cup].island = -1;
+                    }),
+                    fresh)
+                .find("island"),
             std::string::npos);
   ASSERT_FALSE(world.state().anchors.empty());
   EXPECT_NE(refusal(with([](WorldState& s) { s.anchors[0].body_b = 100000; }), fresh).find("anchor"),
