@@ -26,6 +26,12 @@ struct BodyState {
   double still_s = 0.0;
   bool asleep = false;
   int island = -1;
+  // Awake and judged afresh: still for no time, in no island.
+  void wake() {
+    asleep = false;
+    still_s = 0.0;
+    island = -1;
+  }
 };
 
 // A body as the contact model sees it during one substep.

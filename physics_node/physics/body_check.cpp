@@ -59,9 +59,7 @@ void BodyCheck::recover(int object, BodyState& body, const BodyState& start) con
   body.v_G.setZero();
   body.w_G.setZero();
   // awake: it broke in a step it moved in, and what it rested on may have moved since
-  body.asleep = false;
-  body.still_s = 0.0;
-  body.island = -1;
+  body.wake();
   // a start already broken (a restored state, a broken initial pose): the scene's initial pose
   if (check_body(body, scene_.limits) != BodyFaultKind::kNone)
     body.X_GO = scene_.objects[static_cast<std::size_t>(object)].X_GO;

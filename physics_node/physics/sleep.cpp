@@ -13,6 +13,7 @@ SleepTracker::SleepTracker(const Scene& scene)
       parent_(scene.objects.size()),
       kept_awake_(scene.objects.size()),
       island_still_s_(scene.objects.size()) {
+  // (once: a mesh's takes a pass over its vertices)
   for (const ObjectSpec& o : scene.objects) reach_m_.push_back(o.shape.bounding_radius_m());
 }
 
@@ -38,7 +39,7 @@ bool SleepTracker::free_object(int i, const std::vector<BodyState>& bodies) cons
   return o.dynamic && o.control < 0 && !bodies[static_cast<std::size_t>(i)].held();
 }
 
-int SleepTracker::update(const std::vector<ContactPoint>& contacts, const std::vector<uint8_t>& may_sleep,
+void SleepTracker::update(const std::vector<ContactPoint>& contacts, const std::vector<uint8_t>& may_sleep,
                          std::vector<BodyState>& bodies) {
   VCOCKPIT_ASSERT(static_cast<int>(bodies.size()) == object_count_ &&
                       static_cast<int>(may_sleep.size()) == object_count_,
@@ -78,7 +79,6 @@ int SleepTracker::update(const std::vector<ContactPoint>& contacts, const std::v
     double& least = island_still_s_[static_cast<std::size_t>(root(i))];
     least = std::min(least, body.still_s);
   }
-  int fell_asleep = 0;
   for (int i = 0; i < object_count_; ++i) {
     BodyState& body = bodies[static_cast<std::size_t>(i)];
     if (body.asleep || !free_object(i, bodies)) continue;
@@ -89,9 +89,7 @@ int SleepTracker::update(const std::vector<ContactPoint>& contacts, const std::v
     body.island = island;
     body.v_G.setZero();
     body.w_G.setZero();
-    ++fell_asleep;
   }
-  return fell_asleep;
 }
 
 int SleepTracker::wake_island(int object, std::vector<BodyState>& bodies) {
@@ -101,20 +99,14 @@ int SleepTracker::wake_island(int object, std::vector<BodyState>& bodies) {
   int woken = 0;
   for (BodyState& b : bodies) {
     if (!b.asleep || b.island != island) continue;
-    b.asleep = false;
-    b.still_s = 0.0;
-    b.island = -1;
+    b.wake();
     ++woken;
   }
   return woken;
 }
 
 void SleepTracker::wake_all(std::vector<BodyState>& bodies) {
-  for (BodyState& b : bodies) {
-    b.asleep = false;
-    b.still_s = 0.0;
-    b.island = -1;
-  }
+  for (BodyState& b : bodies) b.wake();
 }
 
 }  // namespace vcockpit::physics

@@ -9,7 +9,7 @@
 // its bodies stop (velocity zero) and are left out of the broadphase's pairs with static bodies
 // and with each other, so they cost no narrowphase, force or integration. A hand link, a control
 // or a held object touching an object keeps it awake (each moves on its own), and so does the
-// world (World::may_sleep) while a hand still owns it (held, or clearing it after a release).
+// world (World::update_sleep) while a hand still owns it (held, or clearing it after a release).
 //
 // A sleeping body wakes with its island when a contact with a moving body is found (the
 // world's substep, which then runs its collision again: the woken bodies' contacts with the
@@ -35,8 +35,7 @@ class SleepTracker {
 
   // After a step, over the last substep's contacts (objects then hand links, as the collision
   // world numbers bodies). may_sleep[i] == 0: object i stays awake this step whatever its motion.
-  // Returns how many objects fell asleep.
-  int update(const std::vector<ContactPoint>& contacts, const std::vector<uint8_t>& may_sleep,
+  void update(const std::vector<ContactPoint>& contacts, const std::vector<uint8_t>& may_sleep,
              std::vector<BodyState>& bodies);
 
   // Wakes `object`'s island if it sleeps; returns how many bodies woke.

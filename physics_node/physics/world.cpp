@@ -829,9 +829,8 @@ bool World::wake_touched() {
 
 void World::update_sleep() {
   for (int i = 0; i < object_count_; ++i) {
-    const BodyState& body = state_.bodies[i];
-    // a hand that holds it or is still letting go of it (its grasp state moves on each step)
-    bool idle = !body.held();
+    // a hand still letting go of it (its grasp state moves on each step; a held one is not free)
+    bool idle = true;
     for (const HandState& hs : state_.hands) {
       const GraspHold& hold = hs.grasp[static_cast<std::size_t>(i)];
       idle = idle && !hold.hand_clearing && !hold.handed_over;

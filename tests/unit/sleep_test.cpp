@@ -121,9 +121,7 @@ TEST(Sleep, ABallDroppedOnASleepingStackWakesTheWholeIsland) {
   // the ball 5 cm over the top box, awake and falling
   WorldState s = world.state();
   s.bodies[ball].X_GO.translation() = Eigen::Vector3d(0.0, 0.0, 0.5 + 0.02 + 0.05);
-  s.bodies[ball].asleep = false;
-  s.bodies[ball].island = -1;
-  s.bodies[ball].still_s = 0.0;
+  s.bodies[ball].wake();
   world.restore(s);
   int steps = 0;
   while (world.bodies()[10].asleep && steps < 300) {
@@ -162,9 +160,7 @@ TEST(Sleep, ABoxOnALongerSlopeThatFrictionHoldsSleepsAndWakesWithoutSliding) {
   // is with the ramp, so it must touch the box to wake it: dropped onto its top)
   WorldState s = world.state();
   s.bodies[3].X_GO.translation() = slept_at + Eigen::Vector3d(0.0, 0.0, 0.025 + 0.02 + 0.01);
-  s.bodies[3].asleep = false;
-  s.bodies[3].island = -1;
-  s.bodies[3].still_s = 0.0;
+  s.bodies[3].wake();
   world.restore(s);
   for (int i = 0; i < 200 && world.bodies()[2].asleep; ++i) world.step();
   ASSERT_FALSE(world.bodies()[2].asleep);

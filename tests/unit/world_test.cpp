@@ -416,22 +416,20 @@ TEST(WorldStep, AllocatesNothingOnceWarm) {
   test::g_count_allocations = false;
   ::operator delete(sink);
   ASSERT_EQ(test::g_allocations.load(), 1);
-  test::g_allocations = 0;
-  test::g_count_allocations = true;
-  for (int i = 0; i < 100; ++i)
-    world.step();
-  test::g_count_allocations = false;
-  EXPECT_EQ(test::g_allocations.load(), 0);
+  const auto allocations_in_100_steps = [&] {
+    test::g_allocations = 0;
+    test::g_count_allocations = true;
+    for (int i = 0; i < 100; ++i)
+      world.step();
+    test::g_count_allocations = false;
+    return test::g_allocations.load();
+  };
+  EXPECT_EQ(allocations_in_100_steps(), 0);
   // and asleep (sleep.hpp): both come to rest and sleep, and steps with sleepers allocate nothing
   for (int i = 0; i < 1500 && !(world.bodies()[1].asleep && world.bodies()[2].asleep); ++i)
     world.step();
   ASSERT_TRUE(world.bodies()[1].asleep && world.bodies()[2].asleep);
-  test::g_allocations = 0;
-  test::g_count_allocations = true;
-  for (int i = 0; i < 100; ++i)
-    world.step();
-  test::g_count_allocations = false;
-  EXPECT_EQ(test::g_allocations.load(), 0);
+  EXPECT_EQ(allocations_in_100_steps(), 0);
   EXPECT_TRUE(world.body_faults().empty());
 }
 
