@@ -14,6 +14,7 @@
 #include "model/convex_hull.hpp"
 #include "model/import/model_file.hpp"
 #include "model/triangle_mesh.hpp"
+#include "tests/support/process.hpp"
 
 namespace vcockpit::model {
 namespace {
@@ -62,8 +63,9 @@ TEST(ModelFile, TheWholeFileWithoutANode) {
 
 class BadModel : public ::testing::Test {
  protected:
-  std::filesystem::path dir_ = std::filesystem::temp_directory_path() / "vcockpit_model_test";
-  void SetUp() override { std::filesystem::create_directories(dir_); }
+  // one directory per test: ctest runs this fixture's tests in parallel processes
+  std::filesystem::path dir_;
+  void SetUp() override { dir_ = vcockpit::test::make_temp_dir("vcockpit_model"); }
   void TearDown() override { std::filesystem::remove_all(dir_); }
   std::string write(const std::string& name, const std::string& text) {
     std::ofstream(dir_ / name) << text;

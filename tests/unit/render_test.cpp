@@ -23,6 +23,7 @@
 #include "image_generator/render/instance_packing.hpp"
 #include "image_generator/render/meshes.hpp"
 #include "model/import/model_file.hpp"
+#include "tests/support/process.hpp"
 
 // Counts C++ heap allocations on a thread while asked to, to show render() allocates nothing
 // once warmed up. Not under AddressSanitizer, which owns operator new itself.
@@ -1142,13 +1143,8 @@ TEST(StereoRenderer, RejectsABadConfig) {
 // ---------------------------------------------------------------------------------------------
 // frame export
 
-std::filesystem::path test_dir() {
-  const char* tmp = std::getenv("VCOCKPIT_TEST_TMP");
-  const std::filesystem::path dir =
-      std::filesystem::path(tmp ? tmp : std::filesystem::temp_directory_path().string()) / "render";
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+// one directory per test: ctest runs this file's tests in parallel processes
+std::filesystem::path test_dir() { return vcockpit::test::make_temp_dir("render"); }
 
 std::vector<uint8_t> read_png(const std::string& path, int& width, int& height) {
   png_image image{};
