@@ -15,11 +15,26 @@ namespace vcockpit::model {
 
 // An image a mesh's triangles sample: 8-bit RGBA, rows from the top, decoded from its file
 // (model/import/texture_image.hpp). `name` is what the model file calls it.
+// How a texture is sampled (glTF's sampler; OBJ's "-clamp on"): past [0, 1] along u and v, and
+// when magnified and minified. The defaults are glTF's when a file gives none.
+enum class TextureWrap : uint8_t { kRepeat, kClampToEdge, kMirroredRepeat };
+enum class TextureFilter : uint8_t { kLinear, kNearest };
+struct TextureSampler {
+  TextureWrap wrap_u = TextureWrap::kRepeat;
+  TextureWrap wrap_v = TextureWrap::kRepeat;
+  TextureFilter magnify = TextureFilter::kLinear;
+  // minified: between the image's mipmap levels (kLinear: trilinear), or the nearest texel of
+  // the nearest level (kNearest: a pixel-art or lookup-table image stays crisp)
+  TextureFilter minify = TextureFilter::kLinear;
+  bool operator==(const TextureSampler&) const = default;
+};
+
 struct TextureImage {
   std::string name;
   uint32_t width = 0;
   uint32_t height = 0;
   std::vector<uint8_t> rgba;  // width * height * 4
+  TextureSampler sampler;
 };
 
 struct TriangleMesh {

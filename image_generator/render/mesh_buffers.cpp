@@ -51,9 +51,21 @@ void bind_vertex_attributes(GLuint vertex_buffer) {
                         offset(offsetof(Vertex, st)));
 }
 
+GLint gl_wrap(model::TextureWrap wrap) {
+  switch (wrap) {
+    case model::TextureWrap::kClampToEdge:
+      return GL_CLAMP_TO_EDGE;
+    case model::TextureWrap::kMirroredRepeat:
+      return GL_MIRRORED_REPEAT;
+    default:
+      return GL_REPEAT;
+  }
+}
+
 // An image on the GPU, mipmapped (a label read from across the cockpit stays legible, not
-// aliased) and repeated past [0, 1] (glTF's default wrap).
-GLuint make_texture(uint32_t width, uint32_t height, const uint8_t* rgba) {
+// aliased), sampled as its model says (by default glTF's: repeated past [0, 1], trilinear).
+GLuint make_texture(uint32_t width, uint32_t height, const uint8_t* rgba,
+                    const model::TextureSampler& sampler = {}) {
   GLuint texture = 0;
   glGenTextures(1, &texture);
   glBindTexture(GL_TEXTURE_2D, texture);
@@ -61,10 +73,13 @@ GLuint make_texture(uint32_t width, uint32_t height, const uint8_t* rgba) {
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, static_cast<GLsizei>(width),
                static_cast<GLsizei>(height), 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
   glGenerateMipmap(GL_TEXTURE_2D);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  const bool nearest_min = sampler.minify == model::TextureFilter::kNearest;
+  const bool nearest_mag = sampler.magnify == model::TextureFilter::kNearest;
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                  nearest_min ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, nearest_mag ? GL_NEAREST : GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, gl_wrap(sampler.wrap_u));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, gl_wrap(sampler.wrap_v));
   glBindTexture(GL_TEXTURE_2D, 0);
   return texture;
 }
@@ -100,7 +115,7 @@ void MeshBuffers::make_gpu_mesh(const MeshData& data, GpuMesh& mesh) const {
   glBindVertexArray(0);
   mesh.groups = data.groups;
   for (const model::TextureImage& image : data.textures)
-    mesh.textures.push_back(make_texture(image.width, image.height, image.rgba.data()));
+    mesh.textures.push_back(make_texture(image.width, image.height, image.rgba.data(), image.sampler));
 }
 
 void MeshBuffers::delete_gpu_mesh(GpuMesh& mesh) {

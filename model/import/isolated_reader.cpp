@@ -81,7 +81,11 @@ std::string encode(const std::function<TriangleMesh()>& read) {
     put(out, mesh.triangle_texture);
     for (const TextureImage& image : mesh.textures) {
       put(out, image.name);
-      put(out, std::vector<uint32_t>{image.width, image.height});
+      const TextureSampler& k = image.sampler;
+      put(out, std::vector<uint32_t>{image.width, image.height, static_cast<uint32_t>(k.wrap_u),
+                                     static_cast<uint32_t>(k.wrap_v),
+                                     static_cast<uint32_t>(k.magnify),
+                                     static_cast<uint32_t>(k.minify)});
       put(out, image.rgba);
     }
   } catch (const std::exception& e) {
@@ -181,10 +185,13 @@ TriangleMesh decode(const std::string& answer, const std::string& what) {
   mesh.textures.resize(counts[3]);
   for (TextureImage& image : mesh.textures) {
     std::vector<uint32_t> size;
-    if (!body.get(image.name) || !body.get(size) || size.size() != 2 || !body.get(image.rgba))
+    if (!body.get(image.name) || !body.get(size) || size.size() != 6 || !body.get(image.rgba) ||
+        size[2] > 2 || size[3] > 2 || size[4] > 1 || size[5] > 1)
       throw cut_short;
     image.width = size[0];
     image.height = size[1];
+    image.sampler = {static_cast<TextureWrap>(size[2]), static_cast<TextureWrap>(size[3]),
+                     static_cast<TextureFilter>(size[4]), static_cast<TextureFilter>(size[5])};
   }
   if (!body.done()) throw cut_short;
   check_mesh(mesh);  // what the child sent fits together, whatever the file did to it

@@ -1,5 +1,6 @@
 #include "model/import/model_file.hpp"
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -70,18 +71,53 @@ std::array<float, 4> base_color(const aiScene* scene, const aiMesh* mesh) {
   return rgba;
 }
 
-// The part's base colour texture (glTF) or diffuse map (OBJ map_Kd, AC3D texture), or "" when
-// it has none or no texture coordinates to sample it with.
-std::string texture_path(const aiScene* scene, const aiMesh* part) {
-  if (part->mMaterialIndex >= scene->mNumMaterials || !part->HasTextureCoords(0)) return "";
+TextureWrap wrap_of(aiTextureMapMode mode) {
+  switch (mode) {
+    case aiTextureMapMode_Clamp:
+    case aiTextureMapMode_Decal:  // (outside [0, 1] nothing; the edge is the nearest to that)
+      return TextureWrap::kClampToEdge;
+    case aiTextureMapMode_Mirror:
+      return TextureWrap::kMirroredRepeat;
+    default:
+      return TextureWrap::kRepeat;
+  }
+}
+
+// glTF's filter numbers (the OpenGL enums): NEAREST 9728 and NEAREST_MIPMAP_NEAREST 9984 keep a
+// texel's edges; the LINEAR ones, and none given, blend.
+TextureFilter filter_of(int gl_filter) {
+  return gl_filter == 9728 || gl_filter == 9984 ? TextureFilter::kNearest : TextureFilter::kLinear;
+}
+
+// The texture a part samples: its base colour texture (glTF) or diffuse map (OBJ map_Kd, AC3D
+// texture) and how to sample it. path is "" when it has none or no texture coordinates.
+struct PartTexture {
+  std::string path;
+  TextureSampler sampler;
+};
+
+PartTexture texture_of(const aiScene* scene, const aiMesh* part) {
+  if (part->mMaterialIndex >= scene->mNumMaterials || !part->HasTextureCoords(0)) return {};
   const aiMaterial* material = scene->mMaterials[part->mMaterialIndex];
   for (const aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}) {
     aiString path;
-    if (material->GetTextureCount(type) > 0 && material->GetTexture(type, 0, &path) == AI_SUCCESS &&
-        path.length > 0)
-      return path.C_Str();
+    aiTextureMapMode wrap[2] = {aiTextureMapMode_Wrap, aiTextureMapMode_Wrap};
+    if (material->GetTextureCount(type) == 0 ||
+        material->GetTexture(type, 0, &path, nullptr, nullptr, nullptr, nullptr, wrap) !=
+            AI_SUCCESS ||
+        path.length == 0)
+      continue;
+    PartTexture texture{path.C_Str(), {}};
+    texture.sampler.wrap_u = wrap_of(wrap[0]);
+    texture.sampler.wrap_v = wrap_of(wrap[1]);
+    int filter = 0;
+    if (material->Get(AI_MATKEY_GLTF_MAPPINGFILTER_MAG(type, 0), filter) == AI_SUCCESS)
+      texture.sampler.magnify = filter_of(filter);
+    if (material->Get(AI_MATKEY_GLTF_MAPPINGFILTER_MIN(type, 0), filter) == AI_SUCCESS)
+      texture.sampler.minify = filter_of(filter);
+    return texture;
   }
-  return "";
+  return {};
 }
 
 constexpr std::uintmax_t kMaxTextureFileBytes = 64u << 20;
@@ -100,10 +136,12 @@ class TextureTable {
       : scene_(scene), dir_(std::filesystem::path(model_path).parent_path()), read_files_(read_files),
         mesh_(mesh) {}
 
-  int32_t index_of(const std::string& path) {
-    const auto known = known_.find(path);
+  // (one image sampled two ways is two textures: the sampler travels with the image)
+  int32_t index_of(const std::string& path, const TextureSampler& sampler) {
+    const std::string key = path + '\n' + sampler_key(sampler);
+    const auto known = known_.find(key);
     if (known != known_.end()) return known->second;
-    int32_t& index = known_[path];
+    int32_t& index = known_[key];
     index = -1;
     std::optional<TextureImage> image;
     try {
@@ -114,10 +152,12 @@ class TextureTable {
         if (file) {
           std::error_code error;
           const std::filesystem::path canonical = std::filesystem::weakly_canonical(*file, error);
-          const std::string key = (error ? *file : canonical).string();
-          if (const auto same = by_file_.find(key); same != by_file_.end()) return index = same->second;
+          const std::string file_key =
+              (error ? *file : canonical).string() + '\n' + sampler_key(sampler);
+          if (const auto same = by_file_.find(file_key); same != by_file_.end())
+            return index = same->second;
           image = from_file(*file);
-          by_file_[key] = static_cast<int32_t>(mesh_.textures.size());
+          by_file_[file_key] = static_cast<int32_t>(mesh_.textures.size());
         }
       }
       if (!image) throw MeshError("texture '" + path + "' not found");
@@ -126,12 +166,20 @@ class TextureTable {
       return index;
     }
     pixels_left_ -= uint64_t{image->width} * image->height;
+    image->sampler = sampler;
     index = static_cast<int32_t>(mesh_.textures.size());
     mesh_.textures.push_back(std::move(*image));
     return index;
   }
 
  private:
+  static std::string sampler_key(const TextureSampler& k) {
+    return {static_cast<char>('0' + static_cast<int>(k.wrap_u)),
+            static_cast<char>('0' + static_cast<int>(k.wrap_v)),
+            static_cast<char>('0' + static_cast<int>(k.magnify)),
+            static_cast<char>('0' + static_cast<int>(k.minify))};
+  }
+
   std::optional<TextureImage> embedded(const std::string& path) const {
     const aiTexture* texture = scene_->GetEmbeddedTexture(path.c_str());
     if (texture == nullptr) return std::nullopt;
@@ -183,8 +231,8 @@ class TextureTable {
   std::filesystem::path dir_;
   bool read_files_;
   TriangleMesh& mesh_;
-  std::map<std::string, int32_t> known_;    // by the name the file gives
-  std::map<std::string, int32_t> by_file_;  // by the image file's canonical path
+  std::map<std::string, int32_t> known_;    // by the name the file gives, and the sampler
+  std::map<std::string, int32_t> by_file_;  // by the image file's canonical path, and the sampler
   uint64_t pixels_left_ = kMaxModelTexturePixels;
 };
 
@@ -247,8 +295,9 @@ TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request, bool bes
       const aiMesh* part = scene->mMeshes[node->mMeshes[m]];
       if ((part->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) == 0) continue;
       const std::array<float, 4> rgba = base_color(scene, part);
-      const std::string texture_file = request.textures ? texture_path(scene, part) : "";
-      const int32_t texture = texture_file.empty() ? -1 : textures.index_of(texture_file);
+      const PartTexture texture_file = request.textures ? texture_of(scene, part) : PartTexture{};
+      const int32_t texture =
+          texture_file.path.empty() ? -1 : textures.index_of(texture_file.path, texture_file.sampler);
       const auto base = static_cast<uint32_t>(mesh.vertices_m.size());
       for (unsigned v = 0; v < part->mNumVertices; ++v) {
         const aiVector3D p = X * part->mVertices[v];

@@ -128,6 +128,42 @@ TEST_F(TextureFiles, AnImageFoundByNameWhenItsPathIsTheAuthors) {
   EXPECT_EQ(bare.textures_left_out, 0u);
 }
 
+// How an image is sampled comes with it: glTF's sampler (wrap along u and v, the filters) and
+// OBJ's "-clamp on"; a file that says nothing gets glTF's defaults (repeat, linear).
+TEST_F(TextureFiles, EachImageKeepsTheSamplerItsFileGives) {
+  copy("placard.png");
+  const TriangleMesh plain =
+      load_model_mesh({copy("placard.gltf"), "", 1.0, UpAxis::kY, true});
+  ASSERT_EQ(plain.textures.size(), 1u);
+  EXPECT_EQ(plain.textures[0].sampler, TextureSampler{});
+
+  std::string gltf = read_bytes(models_dir() + "/placard.gltf");
+  const std::string texture = "\"source\": 0";
+  const std::size_t at = gltf.find(texture);
+  ASSERT_NE(at, std::string::npos);
+  gltf.replace(at, texture.size(), "\"source\": 0, \"sampler\": 0");
+  gltf.insert(gltf.rfind('}'),
+              ", \"samplers\": [{\"magFilter\": 9728, \"minFilter\": 9984, \"wrapS\": 33071, "
+              "\"wrapT\": 33648}]\n");
+  std::ofstream(dir_ / "sampled.gltf") << gltf;
+  const TriangleMesh sampled_gltf =
+      load_model_mesh({(dir_ / "sampled.gltf").string(), "", 1.0, UpAxis::kY, true});
+  ASSERT_EQ(sampled_gltf.textures.size(), 1u);
+  const TextureSampler& k = sampled_gltf.textures[0].sampler;
+  EXPECT_EQ(k.wrap_u, TextureWrap::kClampToEdge);
+  EXPECT_EQ(k.wrap_v, TextureWrap::kMirroredRepeat);
+  EXPECT_EQ(k.magnify, TextureFilter::kNearest);
+  EXPECT_EQ(k.minify, TextureFilter::kNearest);
+
+  const std::string obj = copy("placard.obj");
+  std::ofstream(dir_ / "placard.mtl") << "newmtl placard\nKd 1 1 1\nmap_Kd -clamp on placard.png\n";
+  const TriangleMesh clamped = load_model_mesh({obj, "", 1.0, UpAxis::kY, true});
+  ASSERT_EQ(clamped.textures.size(), 1u);
+  EXPECT_EQ(clamped.textures[0].sampler.wrap_u, TextureWrap::kClampToEdge);
+  EXPECT_EQ(clamped.textures[0].sampler.wrap_v, TextureWrap::kClampToEdge);
+  EXPECT_EQ(clamped.textures[0].sampler.magnify, TextureFilter::kLinear);
+}
+
 TEST_F(TextureFiles, AnImageThatIsNotOneIsLeftOutNamedWithWhy) {
   copy("placard.mtl");
   const std::string obj = copy("placard.obj");
@@ -252,7 +288,7 @@ TEST(TriangleMesh, DroppingADegenerateTriangleKeepsTheTexturesInStep) {
   mesh.uv.assign(mesh.vertices_m.size(), Eigen::Vector2f::Zero());
   mesh.triangles = {{0, 1, 2}, {0, 1, 3}, {0, 1, 4}};  // the middle one has no area
   mesh.triangle_texture = {-1, 0, 0};
-  mesh.textures.push_back({"white", 1, 1, {255, 255, 255, 255}});
+  mesh.textures.push_back({"white", 1, 1, {255, 255, 255, 255}, {}});
   drop_degenerate_triangles(mesh);
   ASSERT_EQ(mesh.triangles.size(), 2u);
   EXPECT_EQ(mesh.triangle_texture, (std::vector<int32_t>{-1, 0}));

@@ -590,6 +590,45 @@ TEST_F(RenderTest, AModelTextureShowsTheRightWayUpInEachFormat) {
   }
 }
 
+// The placard's coordinates spread to [-1, 2] (u' = 3u - 1), drawn with each wrap along u: two
+// points of its top half tell the three apart. At u = 0.75 (u' = 1.25) repeat reads the image's
+// left (red), clamp and mirror its right (green); at u = 0.9 (u' = 1.7) repeat and clamp read
+// its right (green), mirror its left (red).
+TEST_F(RenderTest, AModelTextureWrapsAsItsSamplerSays) {
+  const std::string dir = std::string(std::getenv("VCOCKPIT_SOURCE_DIR")) + "/tests/data/models/";
+  model::TriangleMesh placard =
+      model::load_model_mesh({dir + "placard.gltf", "placard", 1.0, model::UpAxis::kY, true});
+  ASSERT_EQ(placard.textures.size(), 1u);
+  for (Eigen::Vector2f& uv : placard.uv) uv.x() = 3.0f * uv.x() - 1.0f;
+  const auto red = [](const Rgb& c) { return c.r > 120 && c.g < 40 && c.b < 40; };
+  const auto green = [](const Rgb& c) { return c.g > 100 && c.r < 40 && c.b < 40; };
+  struct Case {
+    model::TextureWrap wrap;
+    const char* name;
+    bool at_075_red, at_090_red;
+  };
+  for (const Case& k : {Case{model::TextureWrap::kRepeat, "repeat", true, false},
+                        Case{model::TextureWrap::kClampToEdge, "clamp", false, false},
+                        Case{model::TextureWrap::kMirroredRepeat, "mirror", false, true}}) {
+    SCOPED_TRACE(k.name);
+    placard.textures[0].sampler.wrap_u = k.wrap;
+    auto data = std::make_shared<const MeshData>(model_mesh_data(placard));
+    Instance instance = make(Primitive::kMesh, at(0.8, 0.0, kHeadHeightM), Eigen::Vector3d::Ones(),
+                             {1.0f, 1.0f, 1.0f, 1.0f});
+    instance.mesh = data;
+    instance.fixed = false;
+    renderer().render({instance}, head_pose());
+    EXPECT_EQ(renderer().gl_error_count(), 0u);
+    // u runs from the plate's left edge (y = +0.1) to its right (y = -0.1); z = +0.01 is v = 0.6
+    for (const Eye eye : {Eye::kLeft, Eye::kRight}) {
+      const Rgb at_075 = pixel_at(renderer(), eye, projected(config(), eye, {0.8, -0.05, kHeadHeightM + 0.01}));
+      const Rgb at_090 = pixel_at(renderer(), eye, projected(config(), eye, {0.8, -0.08, kHeadHeightM + 0.01}));
+      EXPECT_TRUE(k.at_075_red ? red(at_075) : green(at_075)) << "u = 0.75: " << at_075;
+      EXPECT_TRUE(k.at_090_red ? red(at_090) : green(at_090)) << "u = 0.9: " << at_090;
+    }
+  }
+}
+
 // A model with an untextured part before a textured one: two draw groups, the textured one
 // starting past the first's indices. Each shows what it should: the plain plate its white
 // material, the placard its quadrants.
