@@ -36,24 +36,49 @@ std::array<float, 3> colour(const ConfigNode& node) {
   return {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])};
 }
 
-}  // namespace
-
-render::InstrumentsSpec parse_instruments(const ConfigNode& root) {
-  root.expect_keys({"panel", "gauges", "headings", "lamps", "labels"});
-  render::InstrumentsSpec spec;
-  const ConfigNode panel = root["panel"];
-  panel.expect_keys({"origin", "right", "up"});
-  const Eigen::Vector3d right = vec3(panel["right"]);
-  const Eigen::Vector3d up = vec3(panel["up"]);
+// {origin, right, up}: a face's frame (z out of it, right x up); the keys checked by the caller
+render::PanelFace face_of(const ConfigNode& node) {
+  const Eigen::Vector3d right = vec3(node["right"]);
+  const Eigen::Vector3d up = vec3(node["up"]);
   if (std::abs(right.norm() - 1.0) > 1e-3 || std::abs(up.norm() - 1.0) > 1e-3 ||
       std::abs(right.dot(up)) > 1e-3)
-    panel.fail("right and up must be unit vectors at right angles");
+    node.fail("right and up must be unit vectors at right angles");
   Eigen::Matrix3d R;
   R.col(0) = right.normalized();
   R.col(1) = up.normalized();
   R.col(2) = R.col(0).cross(R.col(1));
-  spec.face.X_GF.linear() = R;
-  spec.face.X_GF.translation() = vec3(panel["origin"]);
+  render::PanelFace face;
+  face.X_GF.linear() = R;
+  face.X_GF.translation() = vec3(node["origin"]);
+  return face;
+}
+
+// [{text, at, height, color?}]
+std::vector<render::LabelSpec> labels_of(const ConfigNode& labels) {
+  std::vector<render::LabelSpec> out;
+  for (const ConfigNode& l : labels.elements()) {
+    l.expect_keys({"text", "at", "height", "color"});
+    render::LabelSpec s;
+    s.text = l.get_string("text");
+    if (s.text.empty() || s.text.size() > 24) l["text"].fail("1 to 24 characters");
+    for (char c : s.text)
+      if (c < 32 || c > 126) l["text"].fail("printable ASCII only (the panel font's)");
+    s.at_m = vec2(l["at"]);
+    s.height_m = l.get_double("height", 0.008);
+    if (!(s.height_m >= 0.003 && s.height_m <= 0.05)) l["height"].fail("within 0.003..0.05 m");
+    if (auto c = l.find("color")) s.rgb = colour(*c);
+    out.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace
+
+render::InstrumentsSpec parse_instruments(const ConfigNode& root) {
+  root.expect_keys({"panel", "gauges", "headings", "lamps", "labels", "placards"});
+  render::InstrumentsSpec spec;
+  root["panel"].expect_keys({"origin", "right", "up"});
+  spec.face = face_of(root["panel"]);
   if (auto gauges = root.find("gauges")) {
     for (const ConfigNode& g : gauges->elements()) {
       g.expect_keys({"system", "at", "radius", "range", "sweep_deg", "ticks", "redline"});
@@ -102,19 +127,27 @@ render::InstrumentsSpec parse_instruments(const ConfigNode& root) {
       spec.lamps.push_back(s);
     }
   }
-  if (auto labels = root.find("labels")) {
-    for (const ConfigNode& l : labels->elements()) {
-      l.expect_keys({"text", "at", "height", "color"});
-      render::LabelSpec s;
-      s.text = l.get_string("text");
-      if (s.text.empty() || s.text.size() > 24) l["text"].fail("1 to 24 characters");
-      for (char c : s.text)
-        if (c < 32 || c > 126) l["text"].fail("printable ASCII only (the panel font's)");
-      s.at_m = vec2(l["at"]);
-      s.height_m = l.get_double("height", 0.008);
-      if (!(s.height_m >= 0.003 && s.height_m <= 0.05)) l["height"].fail("within 0.003..0.05 m");
-      if (auto c = l.find("color")) s.rgb = colour(*c);
-      spec.labels.push_back(s);
+  if (auto labels = root.find("labels")) spec.labels = labels_of(*labels);
+  if (auto placards = root.find("placards")) {
+    for (const ConfigNode& p : placards->elements()) {
+      render::Placard placard;
+      p.expect_keys({"name", "origin", "right", "up", "size", "labels"});
+      placard.face = face_of(p);
+      placard.name = p.get_string("name");
+      if (placard.name.empty() || placard.name.size() > 64) p["name"].fail("1 to 64 characters");
+      placard.size_m = vec2(p["size"]);
+      if (!(placard.size_m.x() > 0 && placard.size_m.y() > 0 && placard.size_m.maxCoeff() < 2.0))
+        p["size"].fail("[width, height], each within 0..2 m");
+      placard.labels = labels_of(p["labels"]);
+      // a label past the face's edge would float in the air beside it
+      for (std::size_t i = 0; i < placard.labels.size(); ++i) {
+        const render::LabelSpec& l = placard.labels[i];
+        const double half_w = 0.5 * (static_cast<double>(l.text.size()) * 6 - 1) * l.height_m / 7;
+        const Eigen::Vector2d reach = l.at_m.cwiseAbs() + Eigen::Vector2d(half_w, 0.5 * l.height_m);
+        if ((reach - 0.5 * placard.size_m).maxCoeff() > 1e-9)
+          p["labels"].at(i).fail("the label '" + l.text + "' reaches past the placard's size");
+      }
+      spec.placards.push_back(std::move(placard));
     }
   }
   return spec;

@@ -102,6 +102,8 @@ void append_label(const PanelFace& face, const LabelSpec& label, std::vector<Ins
 
 void append_instrument_faces(const InstrumentsSpec& spec, std::vector<Instance>& out) {
   for (const LabelSpec& l : spec.labels) append_label(spec.face, l, out);
+  for (const Placard& p : spec.placards)
+    for (const LabelSpec& l : p.labels) append_label(p.face, l, out);
   for (const GaugeSpec& g : spec.gauges) {
     const Eigen::Isometry3d X_GD = spec.face.at(g.at_m);
     const double r = g.radius_m;

@@ -59,9 +59,19 @@ struct LabelSpec {
   std::array<float, 3> rgb{0.85f, 0.85f, 0.82f};
 };
 
+// Labels on another face of the cockpit than the panel's (the pedestal's top, by its levers):
+// the face's frame as PanelFace's, its extent centred on the origin, its labels.
+struct Placard {
+  std::string name;
+  PanelFace face;
+  Eigen::Vector2d size_m = Eigen::Vector2d::Zero();
+  std::vector<LabelSpec> labels;
+};
+
 struct InstrumentsSpec {
   PanelFace face;
   std::vector<LabelSpec> labels;
+  std::vector<Placard> placards;
   std::vector<GaugeSpec> gauges;
   std::vector<HeadingSpec> headings;
   std::vector<LampSpec> lamps;
@@ -69,7 +79,7 @@ struct InstrumentsSpec {
   std::vector<std::string> systems() const;
 };
 
-// The static layer's instances (appended), the labels with them.
+// The static layer's instances (appended), the labels and the placards' with them.
 void append_instrument_faces(const InstrumentsSpec& spec, std::vector<Instance>& out);
 // One label's boxes (appended): a box per run of lit pixels in a glyph row.
 void append_label(const PanelFace& face, const LabelSpec& label, std::vector<Instance>& out);

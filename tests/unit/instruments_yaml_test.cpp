@@ -29,6 +29,8 @@ TEST(InstrumentsYaml, TheBundledPanelDrawsTheDefaultAircraftsSystems) {
   EXPECT_EQ(spec.headings.size(), 1u);
   EXPECT_EQ(spec.lamps.size(), 14u);
   EXPECT_EQ(spec.labels.size(), 26u);
+  ASSERT_EQ(spec.placards.size(), 2u);  // the pedestal's top and side
+  EXPECT_EQ(spec.placards[0].labels.size() + spec.placards[1].labels.size(), 8u);
   const systems::SystemsModel aircraft = load_systems_model(source_dir() + "/config/aircraft.yaml");
   std::set<std::string> names;
   for (const systems::Element& e : aircraft.elements) names.insert(e.name);
@@ -59,9 +61,26 @@ TEST(InstrumentsYaml, BadFilesNameTheLineAndKey) {
   EXPECT_EQ(error_of(panel + "lamps:\n  - {system: fire, at: [0, 0], color: [2, 0, 0]}\n"),
             "instruments.yaml:3:39: lamps[0].color: colour components are within 0..1");
   EXPECT_EQ(error_of(panel + "dials: []\n"),
-            "instruments.yaml:2:1: dials: unknown key 'dials' (allowed: panel, gauges, headings, lamps, labels)");
+            "instruments.yaml:2:1: dials: unknown key 'dials' (allowed: panel, gauges, headings, lamps, labels, placards)");
   EXPECT_EQ(error_of(panel + "labels:\n  - {text: \"\\u00e9t\u00e9\", at: [0, 0]}\n"),
             "instruments.yaml:3:12: labels[0].text: printable ASCII only (the panel font's)");
+  // a placard: its own face, size and labels, each label on it
+  const std::string placard =
+      panel + "placards:\n  - {name: quadrant, origin: [0, 0, 0.7], right: [0, -1, 0], up: [1, 0, 0],"
+              " size: [0.1, 0.05], labels: [";
+  EXPECT_EQ(error_of(placard + "{text: FLAPS, at: [0.04, 0], height: 0.01}]}\n"),
+            "instruments.yaml:3:105: placards[0].labels[0]: the label 'FLAPS' reaches past the "
+            "placard's size");
+  EXPECT_EQ(error_of(panel + "placards:\n  - {name: q, origin: [0, 0, 0.7], right: [0, -1, 0], "
+                             "up: [0, 1, 0], size: [0.1, 0.1], labels: []}\n"),
+            "instruments.yaml:3:5: placards[0]: right and up must be unit vectors at right angles");
+  EXPECT_EQ(error_of(placard + "]}\n").find("size"), std::string::npos) << "a placard of no labels";
+  const render::InstrumentsSpec spec = parse_instruments(ConfigNode::load_string(
+      placard + "{text: UP, at: [0.01, 0.01], height: 0.01}]}\n", "instruments.yaml"));
+  ASSERT_EQ(spec.placards.size(), 1u);
+  EXPECT_EQ(spec.placards[0].name, "quadrant");
+  ASSERT_EQ(spec.placards[0].labels.size(), 1u);
+  EXPECT_TRUE(spec.placards[0].face.X_GF.linear().col(2).isApprox(Eigen::Vector3d::UnitZ()));
 }
 
 TEST(InstrumentValues, NamesAreBoundToTheSystemsInfoAndUnknownOnesRest) {
