@@ -63,6 +63,11 @@ constexpr double kMprTolerance_m = 1e-9;  // see above
 constexpr std::size_t kMeshTriangles = 32;
 constexpr double kFaceSlack_m = 1e-6;
 constexpr double kMergeDistance_m = 1e-4;
+// FCL's normal within 10 deg of a mesh triangle's: its depth bounds a round body's points there.
+constexpr double kRoundOnFaceCos = 0.98480775301220806;
+// A hull's face that a contact normal is within 5 deg of is the face it rests on (hull triangles
+// of one face share its plane to rounding: within 1e-9 of the normal and 1e-9 m of the plane).
+constexpr double kHullFaceCos = 0.99619469809174553;
 
 using BodyKind = BroadphaseBody;  // static, dynamic or a hand link
 
@@ -132,6 +137,7 @@ struct CollisionWorld::Impl {
   int max_points = 4;
   std::vector<Eigen::Vector3d> vertices_G;
   std::vector<FaceContact> face_contacts;
+  std::vector<FlatFace> faces;  // a reference body's faces a contact rests on
 
   ManifoldClipper clipper;  // flat contacts' manifolds (fixed work space)
   std::array<ManifoldPoint, kMaxManifold> manifold_points;
@@ -188,7 +194,7 @@ struct CollisionWorld::Impl {
       const Eigen::Vector3d n = c.normal / norm;
       out.push_back({pair.lo, pair.hi, contact_point(pair, c.pos, n, depth_m), n, depth_m});
     }
-    if (hull_and_box(pair) && out.size() == first + 1) hull_on_box_face(pair, first, out);
+    if (polyhedral_with_hull(pair) && out.size() == first + 1) polyhedral_faces(pair, first, out);
     // MPR's normal is not always the direction of least overlap: with a body exactly touching a
     // box face (a short cylinder standing on a floor) libccd can return a direction along the
     // face with the overlap across the whole box (1.7 m), which would throw the body away. The
@@ -213,8 +219,11 @@ struct CollisionWorld::Impl {
   // A body against a static triangle mesh. FCL 0.7's mesh pairs give, in either argument order,
   // the normal from the mesh toward the other body, a sphere's depth negative, and the point on
   // the triangle: one point per triangle touched (tests/unit/collision_test.cpp, "Mesh"). So
-  // the depth is taken as its magnitude, the point moved midway, and a box or a convex hull on
-  // a triangle gets its vertices under the triangle as points (face_vertex_contacts.hpp).
+  // the depth is taken as its magnitude, the point moved midway, and a body with a flat side gets
+  // a manifold on each triangle it touches: a box's or a convex hull's vertices under the
+  // triangle (face_vertex_contacts.hpp), a cylinder's or capsule's feature facing it clipped to
+  // the triangle (manifold_clipper.hpp), so it rests on a mesh as on a box. A sphere keeps its
+  // one point.
   void mesh_narrowphase(const BodyPair& pair, std::vector<ContactPoint>& out) {
     const int mesh = is_static_mesh(pair.lo) ? pair.lo : pair.hi;
     const int other = mesh == pair.lo ? pair.hi : pair.lo;
@@ -225,6 +234,10 @@ struct CollisionWorld::Impl {
     const model::TriangleMesh& triangles = *shapes[static_cast<std::size_t>(mesh)].mesh;
     const Eigen::Isometry3d& X_GM = mesh_object.getTransform();
     const bool polyhedral = incident_vertices(other, vertices_G);
+    // (a hand link keeps FCL's points: the proxy hand stops it at the surface itself, and on a
+    // mesh of two large triangles the manifold unsettled it: ProxyHand/PressedIntoTheConsole)
+    const bool round = is_round(bodies[static_cast<std::size_t>(other)].shape) &&
+                       bodies[static_cast<std::size_t>(other)].kind != BodyKind::kHand;
     face_contacts.clear();
     for (std::size_t i = 0; i < result.numContacts(); ++i) {
       const fcl::Contactd& c = result.getContact(i);
@@ -238,17 +251,34 @@ struct CollisionWorld::Impl {
       const Eigen::Vector3d n = c.normal / norm;  // mesh -> other
       const std::size_t before = face_contacts.size();
       const int t = c.o1 == mesh_object.collisionGeometry().get() ? c.b1 : c.b2;
-      if (polyhedral && t >= 0 && static_cast<std::size_t>(t) < triangles.triangles.size()) {
+      if ((polyhedral || round) && t >= 0 && static_cast<std::size_t>(t) < triangles.triangles.size()) {
         FlatFace face;
         const auto& tri = triangles.triangles[static_cast<std::size_t>(t)];
         for (int k = 0; k < 3; ++k)
           face.corners_G[static_cast<std::size_t>(k)] = X_GM * triangles.vertices_m[tri[static_cast<std::size_t>(k)]];
         face.n_G = (face.corners_G[1] - face.corners_G[0]).cross(face.corners_G[2] - face.corners_G[0]).normalized();
-        if (face.n_G.dot(n) < 0.0) {  // the triangle's back: the other body came from behind
+        // the side the other body is on: FCL's normal's, or for a round body its centre's (FCL's
+        // cylinder-triangle normal can be far off the face's: 76 deg, tests/unit/mesh_collision_test)
+        const Eigen::Vector3d toward = round ? Eigen::Vector3d(objects[static_cast<std::size_t>(other)]->getTranslation() -
+                                                               face.corners_G[0])
+                                             : n;
+        if (face.n_G.dot(toward) < 0.0) {  // the triangle's back: the other body came from behind
           face.n_G = -face.n_G;
           std::swap(face.corners_G[1], face.corners_G[2]);
         }
-        face_vertex_contacts(face, vertices_G, 1.5 * depth_m + kFaceSlack_m, kFaceSlack_m, face_contacts);
+        if (polyhedral) {
+          face_vertex_contacts(face, vertices_G, 1.5 * depth_m + kFaceSlack_m, kFaceSlack_m, face_contacts);
+        } else {
+          // FCL's depth bounds the points when its normal is the face's; else no more than the
+          // body's radius (deeper is past a thin part's far side, not resting on this face)
+          const double max_depth_m = face.n_G.dot(n) >= kRoundOnFaceCos
+                                         ? 1.5 * depth_m + kFaceSlack_m
+                                         : bodies[static_cast<std::size_t>(other)].radius_m;
+          const int kept = clipper.clip_on_face(face, clip_body(other), max_depth_m, manifold_points);
+          for (int k = 0; k < kept; ++k)
+            face_contacts.push_back({manifold_points[static_cast<std::size_t>(k)].p_G, face.n_G,
+                                     manifold_points[static_cast<std::size_t>(k)].depth_m});
+        }
       }
       if (face_contacts.size() == before) face_contacts.push_back({c.pos - (0.5 * depth_m) * n, n, depth_m});
     }
@@ -290,54 +320,109 @@ struct CollisionWorld::Impl {
     return b.shape == ShapeKind::kMesh && b.kind != BodyKind::kStatic;
   }
 
-  bool hull_and_box(const BodyPair& pair) const {
-    const ShapeKind a = bodies[static_cast<std::size_t>(pair.lo)].shape;
-    const ShapeKind b = bodies[static_cast<std::size_t>(pair.hi)].shape;
-    return (is_hull(pair.lo) && b == ShapeKind::kBox) || (is_hull(pair.hi) && a == ShapeKind::kBox);
+  bool is_polyhedral(int body) const {
+    return bodies[static_cast<std::size_t>(body)].shape == ShapeKind::kBox || is_hull(body);
   }
 
-  // A moving mesh's hull on a box (a part on a table): MPR's one point becomes the hull's
-  // vertices under the box's face that faces it, so it rests flat (face_vertex_contacts.hpp).
-  void hull_on_box_face(const BodyPair& pair, std::size_t first, std::vector<ContactPoint>& out) {
-    const ContactPoint single = out[first];
-    const int box = bodies[static_cast<std::size_t>(pair.lo)].shape == ShapeKind::kBox ? pair.lo : pair.hi;
-    const int hull = box == pair.lo ? pair.hi : pair.lo;
-    const Eigen::Vector3d n_box_out = box == pair.lo ? single.n_G : Eigen::Vector3d(-single.n_G);
-    const Body& b = bodies[static_cast<std::size_t>(box)];
-    const Eigen::Isometry3d& X_GB = objects[static_cast<std::size_t>(box)]->getTransform();
-    // the face whose outward normal is nearest the contact's
-    int axis = 0;
-    double best = -1.0;
-    for (int i = 0; i < 3; ++i) {
-      const double along = std::abs(X_GB.linear().col(i).dot(n_box_out));
-      if (along > best) {
-        best = along;
-        axis = i;
+  // A moving mesh's hull and a box. (Two hulls keep MPR's point: with a manifold the chamfered
+  // cap dropped on another rocked from corner to corner and fell off, where MPR's one point near
+  // the middle let it settle; tests/scenario/mesh_ramp_test.cpp.)
+  bool polyhedral_with_hull(const BodyPair& pair) const {
+    return is_polyhedral(pair.lo) && is_polyhedral(pair.hi) && is_hull(pair.lo) != is_hull(pair.hi);
+  }
+
+  // The faces of `body` that a contact with normal n_out (out of it) rests on, into `faces`: a
+  // box's face nearest n_out; a hull's triangles of the face within kHullFaceCos of n_out (none
+  // when it touches by an edge or a corner).
+  void supporting_faces(int body, const Eigen::Vector3d& n_out, std::vector<FlatFace>& faces) const {
+    faces.clear();
+    const Body& b = bodies[static_cast<std::size_t>(body)];
+    const Eigen::Isometry3d& X_GB = objects[static_cast<std::size_t>(body)]->getTransform();
+    if (b.shape == ShapeKind::kBox) {
+      int axis = 0;
+      double best = -1.0;
+      for (int i = 0; i < 3; ++i) {
+        const double along = std::abs(X_GB.linear().col(i).dot(n_out));
+        if (along > best) {
+          best = along;
+          axis = i;
+        }
+      }
+      const double sign = X_GB.linear().col(axis).dot(n_out) >= 0.0 ? 1.0 : -1.0;
+      FlatFace face;
+      face.n_G = sign * X_GB.linear().col(axis);
+      face.corner_count = 4;
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const Eigen::Vector3d h = b.half_size_m;
+      constexpr double kSigns[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+      for (int k = 0; k < 4; ++k) {
+        Eigen::Vector3d p_B = Eigen::Vector3d::Zero();
+        p_B[axis] = sign * h[axis];
+        p_B[u] = kSigns[k][0] * h[u];
+        p_B[v] = kSigns[k][1] * h[v];
+        face.corners_G[static_cast<std::size_t>(k)] = X_GB * p_B;
+      }
+      // counter-clockwise about the face's normal
+      const auto& c = face.corners_G;
+      if ((c[1] - c[0]).cross(c[2] - c[0]).dot(face.n_G) < 0.0) std::swap(face.corners_G[1], face.corners_G[3]);
+      faces.push_back(face);
+      return;
+    }
+    const model::TriangleMesh& hull = *shapes[static_cast<std::size_t>(body)].hull;
+    const Eigen::Vector3d n_B = X_GB.linear().transpose() * n_out;
+    const auto normal_of = [&](const std::array<uint32_t, 3>& t) {
+      const Eigen::Vector3d& a = hull.vertices_m[t[0]];
+      return Eigen::Vector3d((hull.vertices_m[t[1]] - a).cross(hull.vertices_m[t[2]] - a).normalized());
+    };
+    std::size_t best = 0;
+    double best_cos = -2.0;
+    for (std::size_t i = 0; i < hull.triangles.size(); ++i) {
+      const double along = normal_of(hull.triangles[i]).dot(n_B);
+      if (along > best_cos) {
+        best_cos = along;
+        best = i;
       }
     }
-    const double sign = X_GB.linear().col(axis).dot(n_box_out) >= 0.0 ? 1.0 : -1.0;
-    FlatFace face;
-    face.n_G = sign * X_GB.linear().col(axis);
-    face.corner_count = 4;
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    const Eigen::Vector3d h = b.half_size_m;
-    constexpr double kSigns[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-    for (int k = 0; k < 4; ++k) {
-      Eigen::Vector3d p_B = Eigen::Vector3d::Zero();
-      p_B[axis] = sign * h[axis];
-      p_B[u] = kSigns[k][0] * h[u];
-      p_B[v] = kSigns[k][1] * h[v];
-      face.corners_G[static_cast<std::size_t>(k)] = X_GB * p_B;
+    if (!(best_cos >= kHullFaceCos)) return;
+    const Eigen::Vector3d best_n = normal_of(hull.triangles[best]);
+    const double plane_m = best_n.dot(hull.vertices_m[hull.triangles[best][0]]);
+    for (const auto& t : hull.triangles) {
+      const Eigen::Vector3d n = normal_of(t);
+      if (n.dot(best_n) < 1.0 - 1e-9 || std::abs(best_n.dot(hull.vertices_m[t[0]]) - plane_m) > 1e-9)
+        continue;
+      FlatFace face;  // hull triangles run counter-clockwise seen from outside
+      face.n_G = X_GB.linear() * n;
+      face.corner_count = 3;
+      for (int k = 0; k < 3; ++k)
+        face.corners_G[static_cast<std::size_t>(k)] = X_GB * hull.vertices_m[t[static_cast<std::size_t>(k)]];
+      face.corners_G[3] = face.corners_G[2];  // unused: a triangle
+      faces.push_back(face);
     }
-    // counter-clockwise about the face's normal
-    const auto& c = face.corners_G;
-    if ((c[1] - c[0]).cross(c[2] - c[0]).dot(face.n_G) < 0.0) std::swap(face.corners_G[1], face.corners_G[3]);
-    incident_vertices(hull, vertices_G);
+  }
+
+  // A moving mesh's hull and a box (a part on a table, a box on a part): MPR's one point becomes
+  // each body's vertices under the face of the other that the contact rests on, so it rests flat
+  // (face_vertex_contacts.hpp). Both ways round: a small part's corners on a large box's face,
+  // and a large box's corners on a small part's face are both found.
+  void polyhedral_faces(const BodyPair& pair, std::size_t first, std::vector<ContactPoint>& out) {
+    const ContactPoint single = out[first];
     face_contacts.clear();
-    face_vertex_contacts(face, vertices_G, 1.5 * single.depth_m + kFaceSlack_m, kFaceSlack_m, face_contacts);
+    for (const bool lo_reference : {true, false}) {
+      const int reference = lo_reference ? pair.lo : pair.hi;
+      const int incident = lo_reference ? pair.hi : pair.lo;
+      supporting_faces(reference, lo_reference ? single.n_G : Eigen::Vector3d(-single.n_G), faces);
+      if (faces.empty()) continue;
+      incident_vertices(incident, vertices_G);
+      const std::size_t before = face_contacts.size();
+      for (const FlatFace& face : faces)
+        face_vertex_contacts(face, vertices_G, 1.5 * single.depth_m + kFaceSlack_m, kFaceSlack_m,
+                             face_contacts);
+      if (!lo_reference)  // every normal from lo to hi, as emit_face_contacts takes lo's
+        for (std::size_t k = before; k < face_contacts.size(); ++k) face_contacts[k].n_G = -face_contacts[k].n_G;
+    }
     if (face_contacts.empty()) return;  // an edge or a corner: MPR's point stays
     out.resize(first);
-    emit_face_contacts(pair, box, out);
+    emit_face_contacts(pair, pair.lo, out);
   }
 
   bool segment_pair(const BodyPair& pair) const {

@@ -363,3 +363,44 @@ int ManifoldClipper::clip(const ClipBody& a, const ClipBody& b, const Eigen::Vec
 }
 
 }  // namespace vcockpit::physics
+
+namespace vcockpit::physics {
+
+int ManifoldClipper::clip_on_face(const FlatFace& face, const ClipBody& round, double max_depth_m,
+                                  std::array<ManifoldPoint, kMaxManifold>& out) {
+  const Eigen::Vector3d& n = face.n_G;
+  if (round.shape == ShapeKind::kCylinder) {
+    cylinder_incident(round, round.X_GB, -n, incident_);
+  } else if (round.shape == ShapeKind::kCapsule) {
+    capsule_incident(round, round.X_GB, -n, incident_);
+  } else {
+    return 0;
+  }
+  // the face's sides: each edge's outward normal in its plane (corners counter-clockwise about n)
+  reference_.sides = 0;
+  reference_.disk = false;
+  reference_.top_m = n.dot(face.corners_G[0]);
+  for (int k = 0; k < face.corner_count; ++k) {
+    const Eigen::Vector3d& c0 = face.corners_G[static_cast<std::size_t>(k)];
+    const Eigen::Vector3d& c1 = face.corners_G[static_cast<std::size_t>((k + 1) % face.corner_count)];
+    const Eigen::Vector3d m = (c1 - c0).cross(n);
+    const double length = m.norm();
+    if (!(length > 1e-12)) return 0;  // a degenerate face
+    reference_.side_n[static_cast<std::size_t>(reference_.sides)] = m / length;
+    reference_.side_d[static_cast<std::size_t>(reference_.sides++)] = (m / length).dot(c0);
+  }
+  int count = clip_to_reference(reference_, incident_, n, clip_scratch_, candidates_);
+  int kept_deep = 0;  // those no deeper than max_depth_m, in order
+  for (int i = 0; i < count; ++i)
+    if (candidates_[static_cast<std::size_t>(i)].depth_m <= max_depth_m)
+      candidates_[static_cast<std::size_t>(kept_deep++)] = candidates_[static_cast<std::size_t>(i)];
+  count = kept_deep;
+  const int kept = reduce_manifold(candidates_, count, n, max_points_, picked_);
+  for (int i = 0; i < kept; ++i) {
+    const Candidate& c = candidates_[static_cast<std::size_t>(picked_[static_cast<std::size_t>(i)])];
+    out[static_cast<std::size_t>(i)] = {c.q + (0.5 * c.depth_m) * n, c.depth_m};
+  }
+  return kept;
+}
+
+}  // namespace vcockpit::physics

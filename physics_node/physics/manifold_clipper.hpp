@@ -30,6 +30,7 @@
 #include <Eigen/Geometry>
 #include <array>
 
+#include "physics_node/physics/face_vertex_contacts.hpp"
 #include "physics_node/physics/scene.hpp"
 
 namespace vcockpit::physics {
@@ -109,6 +110,15 @@ class ManifoldClipper {
   // first; returns its size, 0 when the contact is not a face contact or nothing survives.
   int clip(const ClipBody& a, const ClipBody& b, const Eigen::Vector3d& n_ab,
            std::array<ManifoldPoint, kMaxManifold>& out);
+
+  // The manifold of a round body (a cylinder or capsule) on a flat convex face of another body
+  // (a static mesh's triangle, which FCL touches at one point): the round body's feature facing
+  // the face clipped to the face's sides, each point's depth below the face's plane along its
+  // normal (face.n_G, out of the face toward the round body), kept when in (0, max_depth_m]
+  // (deeper is past a thin part's far side). Midway points, the deepest first; 0 when nothing
+  // survives or `round` is not a cylinder or capsule.
+  int clip_on_face(const FlatFace& face, const ClipBody& round, double max_depth_m,
+                   std::array<ManifoldPoint, kMaxManifold>& out);
 
  private:
   int max_points_;

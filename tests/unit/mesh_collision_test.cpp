@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -89,6 +90,82 @@ TEST(Collision, AHullOnABoxRestsOnItsBottomCorners) {
     expect_vec_near(p.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal, floor -> cap");
     EXPECT_NEAR(std::abs(p.p_G.x() - 0.1), s, 1e-9) << "under a bottom corner";
     EXPECT_NEAR(std::abs(p.p_G.y() - 0.2), s, 1e-9);
+  }
+}
+
+// A round body on a mesh rests on a manifold, as on a box, not on FCL's one point per triangle: a
+// cylinder standing on the two-triangle floor rests on its rim (4 points, each a radius from its
+// axis, all 1 mm deep), and a cylinder or a capsule lying across the triangles' shared diagonal on
+// the two ends of its lowest line (and the point where that line crosses the diagonal).
+TEST(Collision, ARoundBodyOnAMeshRestsOnItsRimOrItsLine) {
+  const double r = 0.03, half = 0.05;
+  {
+    Scene scene;
+    scene.objects = {mesh_floor(), object("cylinder", true, Shape::cylinder(r, 2 * half),
+                                          pose(0.05, 0.02, half - kDepth_m))};
+    CollisionWorld world(scene);
+    const auto contacts = step(world, initial_poses(scene));
+    ASSERT_EQ(contacts.size(), 4u);
+    for (const ContactPoint& c : contacts) {
+      EXPECT_NEAR(c.depth_m, kDepth_m, 1e-9);
+      expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, "normal, floor -> cylinder");
+      EXPECT_NEAR((c.p_G.head<2>() - Eigen::Vector2d(0.05, 0.02)).norm(), r, 1e-9) << "on the rim";
+      EXPECT_NEAR(c.p_G.z(), -0.5 * kDepth_m, 1e-9);
+    }
+  }
+  // lying along x, across the diagonal y = x of the floor's two triangles
+  const Eigen::Matrix3d along_x = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  for (const bool capsule : {false, true}) {
+    Scene scene;
+    const Shape shape = capsule ? Shape::capsule(r, 2 * half) : Shape::cylinder(r, 2 * half);
+    scene.objects = {mesh_floor(), object("round", true, shape, pose(0.0, 0.0, r - kDepth_m, along_x))};
+    CollisionWorld world(scene);
+    const auto contacts = step(world, initial_poses(scene));
+    const std::string what = capsule ? "capsule" : "cylinder";
+    ASSERT_GE(contacts.size(), 2u) << what;
+    ASSERT_LE(contacts.size(), 3u) << what << ": the line's ends and where it crosses the diagonal";
+    double lo_x = 1.0, hi_x = -1.0;
+    for (const ContactPoint& c : contacts) {
+      EXPECT_NEAR(c.depth_m, kDepth_m, 1e-9) << what;
+      expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, what + ": normal");
+      EXPECT_NEAR(c.p_G.y(), 0.0, 1e-9) << what;
+      lo_x = std::min(lo_x, c.p_G.x());
+      hi_x = std::max(hi_x, c.p_G.x());
+    }
+    EXPECT_NEAR(lo_x, -half, 1e-9) << what;
+    EXPECT_NEAR(hi_x, half, 1e-9) << what;
+  }
+}
+
+// A box on a part: a box resting on a moving mesh's hull (a 4 cm cube) larger than itself rests on
+// its own four bottom corners, found on the hull's top face (MPR gives one point); a hull on a
+// larger box the same, on the hull's corners (the box's face is then the reference).
+TEST(Collision, ABoxOnAHullAndAHullOnABoxRestOnTheSmallerBodysCorners) {
+  const auto hull_cube = [](double half) {
+    auto mesh = std::make_shared<model::TriangleMesh>();
+    for (int k = 0; k < 8; ++k)
+      mesh->vertices_m.emplace_back(k & 1 ? half : -half, k & 2 ? half : -half, k & 4 ? half : -half);
+    auto hull = std::make_shared<model::TriangleMesh>(model::convex_hull(*mesh));
+    return Shape::triangle_mesh(hull, hull);
+  };
+  for (const bool box_on_top : {true, false}) {
+    const double below = 0.04, above = 0.02;
+    Scene scene;
+    const Shape lower = box_on_top ? hull_cube(below) : Shape::box(Eigen::Vector3d::Constant(2 * below));
+    const Shape upper = box_on_top ? Shape::box(Eigen::Vector3d::Constant(2 * above)) : hull_cube(above);
+    scene.objects = {object("below", true, lower, pose(0.0, 0.0, 0.0)),
+                     object("above", true, upper, pose(0.003, 0.002, below + above - kDepth_m))};
+    CollisionWorld world(scene);
+    const auto contacts = step(world, initial_poses(scene));
+    const std::string what = box_on_top ? "box on a hull" : "hull on a box";
+    ASSERT_EQ(contacts.size(), 4u) << what;
+    for (const ContactPoint& c : contacts) {
+      EXPECT_NEAR(c.depth_m, kDepth_m, 1e-9) << what;
+      expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), kNormalTol, what + ": normal, below -> above");
+      EXPECT_NEAR(std::abs(c.p_G.x() - 0.003), above, 1e-9) << what << ": under a corner";
+      EXPECT_NEAR(std::abs(c.p_G.y() - 0.002), above, 1e-9) << what;
+      EXPECT_NEAR(c.p_G.z(), below - 0.5 * kDepth_m, 1e-9) << what;
+    }
   }
 }
 
