@@ -98,9 +98,17 @@ class ImageGenerator {
   }
 
   void drain() {
-    while (info_reader_.take(info_)) {
-      cache_.on_info(info_);
-      if (info_.shape() == cockpit::MESH) log_models();
+    infos_.clear();
+    while (info_reader_.take(info_)) infos_.push_back(info_);
+    if (!infos_.empty()) {
+      // the batch's models read beforehand, each file once (a cockpit's parts are often the
+      // nodes of one file)
+      const model::ModelPrefetch models(cache_.model_requests(infos_));
+      for (const cockpit::ObjectInfo& info : infos_) {
+        info_ = info;
+        cache_.on_info(info_);
+        if (info_.shape() == cockpit::MESH) log_models();
+      }
     }
     while (state_reader_.take(state_)) cache_.on_state(state_);
     while (hand_info_reader_.take(hand_info_)) on_hand_info();
@@ -156,6 +164,7 @@ class ImageGenerator {
   double video_fps_ = 0.0;
   std::unique_ptr<PreviewPublisher> preview_;
   cockpit::ObjectInfo info_;
+  std::vector<cockpit::ObjectInfo> infos_;  // a drain's batch
   cockpit::HandInfo hand_info_;
   cockpit::ObjectState state_;
   cockpit::HandState hand_;

@@ -52,18 +52,39 @@ void SceneCache::on_info(const cockpit::ObjectInfo& info) {
   in.fixed = o.is_static && !o.is_control;
 }
 
+namespace {
+
+model::ModelRequest model_request(const cockpit::ObjectInfo& info) {
+  return {info.mesh_file().to_string(), info.mesh_node().to_string(), info.mesh_scale(),
+          info.mesh_z_up() ? model::UpAxis::kZ : model::UpAxis::kY, true};
+}
+
+std::string model_key(const cockpit::ObjectInfo& info) {
+  const Eigen::Vector3d origin_m = to_eigen(info.mesh_origin_m());
+  return info.mesh_file().to_string() + '\n' + info.mesh_node().to_string() + '\n' +
+         std::to_string(info.mesh_scale()) + (info.mesh_z_up() ? " z" : " y") +
+         std::to_string(origin_m.x()) + ' ' + std::to_string(origin_m.y()) + ' ' +
+         std::to_string(origin_m.z());
+}
+
+}  // namespace
+
+std::vector<model::ModelRequest> SceneCache::model_requests(
+    const std::vector<cockpit::ObjectInfo>& infos) const {
+  std::vector<model::ModelRequest> out;
+  for (const cockpit::ObjectInfo& info : infos)
+    if (info.shape() == cockpit::MESH && models_.count(model_key(info)) == 0)
+      out.push_back(model_request(info));
+  return out;
+}
+
 std::shared_ptr<const render::MeshData> SceneCache::model_mesh(const cockpit::ObjectInfo& info) {
   const Eigen::Vector3d origin_m = to_eigen(info.mesh_origin_m());
-  const std::string key = info.mesh_file().to_string() + '\n' + info.mesh_node().to_string() +
-                          '\n' + std::to_string(info.mesh_scale()) +
-                          (info.mesh_z_up() ? " z" : " y") + std::to_string(origin_m.x()) + ' ' +
-                          std::to_string(origin_m.y()) + ' ' + std::to_string(origin_m.z());
+  const std::string key = model_key(info);
   if (auto it = models_.find(key); it != models_.end()) return it->second;
   std::shared_ptr<const render::MeshData> data;
   try {
-    model::TriangleMesh mesh = model::load_model_mesh(
-        {info.mesh_file().to_string(), info.mesh_node().to_string(), info.mesh_scale(),
-         info.mesh_z_up() ? model::UpAxis::kZ : model::UpAxis::kY, true});
+    model::TriangleMesh mesh = model::load_model_mesh(model_request(info));
     model::translate(mesh, origin_m);  // as the physics node framed it
     model_triangles_ += mesh.triangles.size();
     model_textures_ += mesh.textures.size();

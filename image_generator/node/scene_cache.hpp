@@ -19,6 +19,7 @@
 #include "hand/hand_model.hpp"
 #include "image_generator/node/hand_prediction.hpp"
 #include "image_generator/render/stereo_renderer.hpp"
+#include "model/import/model_file.hpp"
 
 namespace vcockpit::image_generator {
 
@@ -27,6 +28,9 @@ class SceneCache {
   static constexpr int kHandSlots = 2;  // hand_id 0 right, 1 left
 
   void on_info(const cockpit::ObjectInfo& info);
+  // The model parts these infos name that are not drawn yet: for a ModelPrefetch over their
+  // on_info calls, so a cockpit's file of many parts is read once.
+  std::vector<model::ModelRequest> model_requests(const std::vector<cockpit::ObjectInfo>& infos) const;
   void on_state(const cockpit::ObjectState& state);
   // A control with a light (lit_position >= 0): its moving part and its annunciator are drawn
   // glowing while its control_state says lit, and dimmed while not.

@@ -20,9 +20,8 @@ namespace {
 // The most a child may answer (a mesh with its images): past it the read is stopped.
 constexpr std::size_t kMaxAnswerBytes = std::size_t{2} << 30;
 
-// The child's message: a status byte (1 mesh, 0 error), then the error's text or the mesh's
-// source, vertices, triangles, normals, colours, counts, texture coordinates and images, each
-// as a count and its raw bytes.
+// A mesh in the child's message: its source, vertices, triangles, normals, colours, counts,
+// texture coordinates and images, each as a count and its raw bytes.
 template <typename T>
 void put(std::string& out, const std::vector<T>& v) {
   const uint64_t n = v.size();
@@ -50,6 +49,7 @@ class Reader {
     s.assign(chars.begin(), chars.end());
     return true;
   }
+  bool byte(char& c) { return raw(&c, 1); }
   bool done() const { return at_ == bytes_.size(); }
 
  private:
@@ -64,29 +64,44 @@ class Reader {
   std::size_t at_ = 0;
 };
 
-std::string encode(const std::function<TriangleMesh()>& read) {
+void put_mesh(std::string& out, const TriangleMesh& mesh) {
+  put(out, mesh.source);
+  put(out, mesh.vertices_m);
+  put(out, mesh.triangles);
+  put(out, mesh.normals);
+  put(out, mesh.colors_rgba);
+  put(out, std::vector<uint64_t>{mesh.degenerate_dropped, mesh.first_degenerate,
+                                 mesh.textures_left_out, mesh.textures.size()});
+  put(out, mesh.first_texture_left_out);
+  put(out, mesh.uv);
+  put(out, mesh.triangle_texture);
+  for (const TextureImage& image : mesh.textures) {
+    put(out, image.name);
+    const TextureSampler& k = image.sampler;
+    put(out, std::vector<uint32_t>{image.width, image.height, static_cast<uint32_t>(k.wrap_u),
+                                   static_cast<uint32_t>(k.wrap_v),
+                                   static_cast<uint32_t>(k.magnify),
+                                   static_cast<uint32_t>(k.minify)});
+    put(out, image.rgba);
+  }
+}
+
+// The child's message: a status byte, 0 and the error's text when the file could not be read at
+// all, or 1, the number of parts, and each part: a byte, 1 and its mesh or 0 and its error.
+std::string encode(const std::function<std::vector<ModelPart>()>& read) {
   std::string out;
   try {
-    const TriangleMesh mesh = read();
+    const std::vector<ModelPart> parts = read();
     out.push_back(1);
-    put(out, mesh.source);
-    put(out, mesh.vertices_m);
-    put(out, mesh.triangles);
-    put(out, mesh.normals);
-    put(out, mesh.colors_rgba);
-    put(out, std::vector<uint64_t>{mesh.degenerate_dropped, mesh.first_degenerate,
-                                   mesh.textures_left_out, mesh.textures.size()});
-    put(out, mesh.first_texture_left_out);
-    put(out, mesh.uv);
-    put(out, mesh.triangle_texture);
-    for (const TextureImage& image : mesh.textures) {
-      put(out, image.name);
-      const TextureSampler& k = image.sampler;
-      put(out, std::vector<uint32_t>{image.width, image.height, static_cast<uint32_t>(k.wrap_u),
-                                     static_cast<uint32_t>(k.wrap_v),
-                                     static_cast<uint32_t>(k.magnify),
-                                     static_cast<uint32_t>(k.minify)});
-      put(out, image.rgba);
+    put(out, std::vector<uint64_t>{parts.size()});
+    for (const ModelPart& part : parts) {
+      if (part.mesh) {
+        out.push_back(1);
+        put_mesh(out, *part.mesh);
+      } else {
+        out.push_back(0);
+        put(out, part.error);
+      }
     }
   } catch (const std::exception& e) {
     out.assign(1, 0);
@@ -163,16 +178,8 @@ class Child {
   bool reaped_ = false;
 };
 
-TriangleMesh decode(const std::string& answer, const std::string& what) {
-  if (answer[0] == 0) {
-    std::string message;
-    Reader error(std::string_view(answer).substr(1));
-    if (!error.get(message)) throw MeshError(what + ": the model reader's answer was cut short");
-    throw MeshError(message);
-  }
+TriangleMesh get_mesh(Reader& body, const MeshError& cut_short) {
   TriangleMesh mesh;
-  Reader body(std::string_view(answer).substr(1));
-  const MeshError cut_short(what + ": the model reader's answer was cut short");
   std::vector<uint64_t> counts;
   if (!body.get(mesh.source) || !body.get(mesh.vertices_m) || !body.get(mesh.triangles) ||
       !body.get(mesh.normals) || !body.get(mesh.colors_rgba) || !body.get(counts) ||
@@ -193,15 +200,38 @@ TriangleMesh decode(const std::string& answer, const std::string& what) {
     image.sampler = {static_cast<TextureWrap>(size[2]), static_cast<TextureWrap>(size[3]),
                      static_cast<TextureFilter>(size[4]), static_cast<TextureFilter>(size[5])};
   }
-  if (!body.done()) throw cut_short;
   check_mesh(mesh);  // what the child sent fits together, whatever the file did to it
   return mesh;
 }
 
+std::vector<ModelPart> decode(const std::string& answer, const std::string& what) {
+  const MeshError cut_short(what + ": the model reader's answer was cut short");
+  Reader body(std::string_view(answer).substr(1));
+  if (answer[0] == 0) {
+    std::string message;
+    if (!body.get(message)) throw cut_short;
+    throw MeshError(message);
+  }
+  std::vector<uint64_t> count;
+  if (!body.get(count) || count.size() != 1 || count[0] > 1u << 20) throw cut_short;
+  std::vector<ModelPart> parts(count[0]);
+  for (ModelPart& part : parts) {
+    char flag = 0;
+    if (!body.byte(flag)) throw cut_short;
+    if (flag == 1) {
+      part.mesh = get_mesh(body, cut_short);
+    } else if (!body.get(part.error)) {
+      throw cut_short;
+    }
+  }
+  if (!body.done()) throw cut_short;
+  return parts;
+}
+
 }  // namespace
 
-TriangleMesh read_isolated(const std::function<TriangleMesh()>& read, const std::string& what,
-                           int timeout_s) {
+std::vector<ModelPart> read_isolated_parts(const std::function<std::vector<ModelPart>()>& read,
+                                          const std::string& what, int timeout_s) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0)
     throw MeshError(what + ": cannot read it apart (pipe: " + std::strerror(errno) + ")");
@@ -243,6 +273,20 @@ TriangleMesh read_isolated(const std::function<TriangleMesh()>& read, const std:
                     std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
                     "): a malformed file");
   return decode(answer, what);
+}
+
+TriangleMesh read_isolated(const std::function<TriangleMesh()>& read, const std::string& what,
+                           int timeout_s) {
+  std::vector<ModelPart> parts = read_isolated_parts(
+      [&] {
+        std::vector<ModelPart> one(1);
+        one[0].mesh = read();
+        return one;
+      },
+      what, timeout_s);
+  if (parts.size() != 1 || !parts[0].mesh)
+    throw MeshError(what + ": the model reader's answer was cut short");
+  return std::move(*parts[0].mesh);
 }
 
 }  // namespace vcockpit::model

@@ -6,6 +6,11 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdio>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <filesystem>
@@ -239,15 +244,95 @@ class TextureTable {
 // `beside_file`: the model is a file, and textures it names by path may be read beside it.
 TriangleMesh mesh_of(const aiScene* scene, const ModelRequest& request, bool beside_file);
 
+std::atomic<uint64_t> g_file_reads{0};
+
+// The parts each live ModelPrefetch read, by request_key.
+std::mutex g_prefetch_mutex;
+std::vector<const std::map<std::string, ModelPart>*> g_prefetched;
+
+std::string request_key(const ModelRequest& r) {
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%a", r.scale);  // exact
+  return r.path + '\n' + r.node + '\n' + scale + (r.up == UpAxis::kZ ? " z" : " y") +
+         (r.textures ? " t" : " -");
+}
+
 }  // namespace
 
+ModelPrefetch::ModelPrefetch(const std::vector<ModelRequest>& requests) {
+  auto parts = std::make_unique<std::map<std::string, ModelPart>>();
+  std::map<std::string, std::vector<ModelRequest>> by_file;
+  for (const ModelRequest& r : requests) {
+    std::vector<ModelRequest>& same = by_file[r.path];
+    const bool known = std::any_of(same.begin(), same.end(), [&](const ModelRequest& o) {
+      return request_key(o) == request_key(r);
+    });
+    if (!known) same.push_back(r);
+  }
+  for (const auto& [path, file_requests] : by_file) {
+    if (file_requests.size() < 2) continue;  // read alone as it is asked for: no saving
+    try {
+      std::vector<ModelPart> read = load_model_parts(file_requests);
+      for (std::size_t i = 0; i < read.size(); ++i)
+        (*parts)[request_key(file_requests[i])] = std::move(read[i]);
+    } catch (const MeshError&) {
+      // the file itself: each load_model_mesh reads it and reports it, as without a prefetch
+    }
+  }
+  parts_ = std::move(parts);
+  const std::lock_guard<std::mutex> lock(g_prefetch_mutex);
+  g_prefetched.push_back(parts_.get());
+}
+
+ModelPrefetch::~ModelPrefetch() {
+  const std::lock_guard<std::mutex> lock(g_prefetch_mutex);
+  g_prefetched.erase(std::find(g_prefetched.begin(), g_prefetched.end(), parts_.get()));
+}
+
+uint64_t model_file_reads() { return g_file_reads.load(); }
+
 TriangleMesh load_model_mesh(const ModelRequest& request) {
+  {
+    const std::lock_guard<std::mutex> lock(g_prefetch_mutex);
+    for (const auto* parts : g_prefetched) {
+      const auto found = parts->find(request_key(request));
+      if (found != parts->end()) {
+        if (!found->second.mesh) throw MeshError(found->second.error);
+        return *found->second.mesh;  // (a copy: two objects may be the same part)
+      }
+    }
+  }
+  ++g_file_reads;
   return read_isolated(
       [&] {
         Assimp::Importer importer;
         return mesh_of(read_scene(importer, request.path), request, true);
       },
       request.path);
+}
+
+std::vector<ModelPart> load_model_parts(const std::vector<ModelRequest>& requests) {
+  if (requests.empty()) return {};
+  const std::string& path = requests.front().path;
+  for (const ModelRequest& r : requests)
+    if (r.path != path)
+      throw std::invalid_argument("load_model_parts: '" + r.path + "' is not '" + path + "'");
+  ++g_file_reads;
+  return read_isolated_parts(
+      [&] {
+        Assimp::Importer importer;
+        const aiScene* scene = read_scene(importer, path);
+        std::vector<ModelPart> parts(requests.size());
+        for (std::size_t i = 0; i < requests.size(); ++i) {
+          try {
+            parts[i].mesh = mesh_of(scene, requests[i], true);
+          } catch (const MeshError& e) {
+            parts[i].error = e.what();
+          }
+        }
+        return parts;
+      },
+      path);
 }
 
 TriangleMesh load_model_mesh_from_memory(std::string_view bytes, const std::string& extension,

@@ -117,14 +117,15 @@ std::array<float, 4> default_color(const Shape& shape) {
                                         : ObjectSpec{}.color_rgba;
 }
 
-// {mesh: FILE, node: NAME, scale: S, up: y|z}: the file relative to the scene's directory
-Shape parse_mesh_shape(const ConfigNode& node, const ShapeContext& context) {
+// {mesh: FILE, node: NAME, scale: S, up: y|z}: the request it makes, the file relative to the
+// scene's directory
+model::ModelRequest mesh_request(const ConfigNode& node, const std::string& base_dir) {
   node.expect_keys({"mesh", "node", "scale", "up"});
   model::ModelRequest request;
   const std::string file = node["mesh"].as_string();
   if (file.empty()) node["mesh"].fail("the model file name must not be empty");
   fs::path path(file);
-  if (path.is_relative() && !context.base_dir.empty()) path = fs::path(context.base_dir) / path;
+  if (path.is_relative() && !base_dir.empty()) path = fs::path(base_dir) / path;
   // absolute: the image generator reads the same file from wherever it was started
   request.path = fs::absolute(path).lexically_normal().string();
   if (request.path.size() > 255)
@@ -137,6 +138,38 @@ Shape parse_mesh_shape(const ConfigNode& node, const ShapeContext& context) {
     if (axis != "y" && axis != "z") up->fail("up must be y or z, not '" + axis + "'");
     request.up = axis == "z" ? model::UpAxis::kZ : model::UpAxis::kY;
   }
+  return request;
+}
+
+// The model parts a scene's objects and controls name (shapes and looks), for a ModelPrefetch;
+// one the YAML gets wrong is left out (its parse reports it).
+std::vector<model::ModelRequest> mesh_requests(const ConfigNode& root, const std::string& base_dir) {
+  std::vector<model::ModelRequest> out;
+  const auto add = [&](const ConfigNode& parent, const char* key) {
+    try {
+      if (!parent.is_map()) return;
+      const auto shape = parent.find(key);
+      if (shape && shape->is_map() && shape->has("mesh")) out.push_back(mesh_request(*shape, base_dir));
+    } catch (const ConfigError&) {
+    }
+  };
+  for (const char* list : {"objects", "controls"}) {
+    const auto items = root.is_map() ? root.find(list) : std::nullopt;
+    if (!items || !items->is_sequence()) continue;
+    for (const ConfigNode& item : items->elements()) {
+      add(item, "shape");
+      add(item, "look");
+      for (const char* part : {"body", "light"}) {
+        if (!item.is_map()) continue;
+        if (const auto child = item.find(part)) add(*child, "shape");
+      }
+    }
+  }
+  return out;
+}
+
+Shape parse_mesh_shape(const ConfigNode& node, const ShapeContext& context) {
+  const model::ModelRequest request = mesh_request(node, context.base_dir);
   try {
     auto mesh = std::make_shared<model::TriangleMesh>(model::load_model_mesh(request));
     std::shared_ptr<model::TriangleMesh> hull;  // a static mesh collides as its triangles
@@ -478,8 +511,12 @@ physics::Scene parse_scene(const ConfigNode& root, const std::string& base_dir) 
   }
   if (auto m = root.find("hand_material"))
     scene.hand_material = parse_material(*m, scene.hand_material);
-  parse_objects(root["objects"], base_dir, scene);
-  if (auto controls = root.find("controls")) parse_controls(*controls, base_dir, scene);
+  {
+    // every part of one model file read in one go (a cockpit's parts are often one file's nodes)
+    const model::ModelPrefetch models(mesh_requests(root, base_dir));
+    parse_objects(root["objects"], base_dir, scene);
+    if (auto controls = root.find("controls")) parse_controls(*controls, base_dir, scene);
+  }
   read_optional(root, "grasp", scene.grasp, parse_grasp);
   read_optional(root, "contact", scene.contact, parse_contact);
   read_optional(root, "proxy", scene.proxy, parse_proxy);

@@ -9,7 +9,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "model/convex_hull.hpp"
 #include "model/import/model_file.hpp"
@@ -59,6 +61,64 @@ INSTANTIATE_TEST_SUITE_P(Model, EachFormat, ::testing::Values("gltf", "obj", "ac
 TEST(ModelFile, TheWholeFileWithoutANode) {
   const TriangleMesh all = load_model_mesh({models_dir() + "/button.gltf", ""});
   EXPECT_EQ(all.triangles.size(), 20u);  // top and bottom, eight side quads: ten quads
+}
+
+// A cockpit that is one file of many parts (a flight simulator's .ac, a Blender export): its parts
+// read in one go, the file parsed once, each part as it reads alone; a part the file lacks gets
+// its error in its place. A ModelPrefetch hands the parts out to load_model_mesh without another
+// read while it lives.
+TEST(ModelFile, SeveralPartsOfOneFileAreReadInOneGo) {
+  const std::string dir = vcockpit::test::make_temp_dir("vcockpit_model_parts");
+  const std::string obj = dir + "/parts.obj";
+  std::ofstream(obj) << "o lever\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+                        "o knob\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nf 4 5 6\nf 4 6 7\n"
+                        "o panel\nv 0 0 2\nv 2 0 2\nv 0 2 2\nf 8 9 10\n";
+  const std::vector<ModelRequest> requests{{obj, "lever"}, {obj, "knob"}, {obj, "switch"},
+                                           {obj, "panel", 2.0}};
+  const uint64_t reads = model_file_reads();
+  const std::vector<ModelPart> parts = load_model_parts(requests);
+  EXPECT_EQ(model_file_reads(), reads + 1) << "one read of the file";
+  ASSERT_EQ(parts.size(), 4u);
+  for (const std::size_t i : {0u, 1u, 3u}) {
+    ASSERT_TRUE(parts[i].mesh) << requests[i].node << ": " << parts[i].error;
+    const TriangleMesh alone = load_model_mesh(requests[i]);
+    EXPECT_EQ(parts[i].mesh->vertices_m, alone.vertices_m) << requests[i].node;
+    EXPECT_EQ(parts[i].mesh->triangles, alone.triangles) << requests[i].node;
+    EXPECT_EQ(parts[i].mesh->source, alone.source);
+  }
+  EXPECT_EQ(parts[1].mesh->triangles.size(), 2u);
+  EXPECT_FALSE(parts[2].mesh);
+  EXPECT_NE(parts[2].error.find(obj + ": no node 'switch'"), std::string::npos) << parts[2].error;
+  EXPECT_THROW(load_model_parts({{obj, "lever"}, {dir + "/other.obj", "knob"}}), std::invalid_argument);
+
+  {
+    const ModelPrefetch prefetch(requests);
+    const uint64_t before = model_file_reads();
+    EXPECT_EQ(load_model_mesh(requests[1]).triangles, parts[1].mesh->triangles);
+    EXPECT_EQ(load_model_mesh(requests[0]).vertices_m, parts[0].mesh->vertices_m);
+    EXPECT_EQ(load_model_mesh(requests[0]).vertices_m, parts[0].mesh->vertices_m) << "twice";
+    try {
+      load_model_mesh(requests[2]);
+      ADD_FAILURE() << "a part the file lacks";
+    } catch (const MeshError& e) {
+      EXPECT_NE(std::string(e.what()).find("no node 'switch'"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(model_file_reads(), before) << "handed out, not read again";
+    // what was not asked for beforehand is read as ever (the same part at another scale)
+    load_model_mesh({obj, "lever", 3.0});
+    EXPECT_EQ(model_file_reads(), before + 1);
+  }
+  const uint64_t after = model_file_reads();
+  load_model_mesh(requests[0]);
+  EXPECT_EQ(model_file_reads(), after + 1) << "once the prefetch is gone, read again";
+  // a file that cannot be read is reported by load_model_mesh as without a prefetch
+  const ModelPrefetch missing({{dir + "/none.obj", "a"}, {dir + "/none.obj", "b"}});
+  try {
+    load_model_mesh({dir + "/none.obj", "a"});
+    ADD_FAILURE() << "a missing file";
+  } catch (const MeshError& e) {
+    EXPECT_EQ(std::string(e.what()), dir + "/none.obj: no such file");
+  }
 }
 
 class BadModel : public ::testing::Test {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include "common/pose.hpp"
 #include "common/yaml_config.hpp"
 #include "hand/config/hand_yaml.hpp"
+#include "model/import/model_file.hpp"
 #include "physics_node/physics/world.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/test_files.hpp"
@@ -424,6 +426,52 @@ TEST(SceneConfig, SleepingIsReadAndCanBeTurnedOff) {
   EXPECT_FALSE(scene.sleep.enabled);
   EXPECT_EQ(scene.sleep.speed_mps, 0.02);
   EXPECT_EQ(scene.sleep.time_s, 1.5);
+}
+
+// A cockpit whose parts are nodes of one model file (a static panel, a loose knob, a drawn
+// bezel, a lever's moving part) has the file parsed once for the whole scene, not once a part.
+TEST(SceneConfig, ThePartsOfOneModelFileAreReadInOneGo) {
+  const std::string dir = test::make_temp_dir("vcockpit_one_file_cockpit");
+  // a closed tetrahedron per moving part (its hull has a volume), a triangle for the panel
+  const auto tetra = [](const char* name, int base, double x) {
+    std::ostringstream o;
+    o << "o " << name << "\n";
+    for (const auto& v : {std::array<double, 3>{0, 0, 0}, {0.02, 0, 0}, {0, 0.02, 0}, {0, 0, 0.02}})
+      o << "v " << v[0] + x << ' ' << v[1] << ' ' << v[2] << "\n";
+    o << "f " << base << ' ' << base + 2 << ' ' << base + 1 << "\nf " << base << ' ' << base + 1
+      << ' ' << base + 3 << "\nf " << base << ' ' << base + 3 << ' ' << base + 2 << "\nf "
+      << base + 1 << ' ' << base + 2 << ' ' << base + 3 << "\n";
+    return o.str();
+  };
+  std::ofstream(dir + "/cockpit.obj") << "o panel\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n"
+                                      << tetra("knob", 4, 0.0) << tetra("bezel", 8, 0.1)
+                                      << tetra("handle", 12, 0.2);
+  std::ofstream(dir + "/scene.yaml")
+      << "gravity: [0, 0, -9.81]\nstep_s: 0.001\nobjects:\n"
+         "  - {name: panel, kind: static, shape: {mesh: cockpit.obj, node: panel, up: z}, pose: {position: [0, 0, 0]}}\n"
+         "  - {name: knob, kind: dynamic, mass: 0.05, shape: {mesh: cockpit.obj, node: knob, up: z},\n"
+         "     pose: {position: [0, 0, 0.1]}}\n"
+         "  - {name: rim, kind: static, shape: {box: [0.02, 0.02, 0.02]},\n"
+         "     look: {mesh: cockpit.obj, node: bezel, up: z}, pose: {position: [0.3, 0, 0.1]}}\n"
+         "controls:\n"
+         "  - {name: lever, kind: lever, joint: revolute, pose: {position: [0.5, 0, 0.1]},\n"
+         "     body: {shape: {mesh: cockpit.obj, node: handle, up: z}, mass: 0.1}, travel: [-10, 10],\n"
+         "     positions: [{name: back, at: -10, enter: [-10, -8]}, {name: fore, at: 10, enter: [8, 10]}]}\n";
+  const uint64_t reads = model::model_file_reads();
+  const Scene scene = load_scene(dir + "/scene.yaml");
+  EXPECT_EQ(model::model_file_reads(), reads + 1) << "the file parsed once for its four parts";
+  ASSERT_EQ(scene.objects.size(), 4u);
+  EXPECT_EQ(scene.objects[0].shape.mesh->triangles.size(), 1u);
+  EXPECT_EQ(scene.objects[1].shape.hull->triangles.size(), 4u);
+  EXPECT_EQ(scene.objects[2].look->mesh->triangles.size(), 4u);
+  EXPECT_EQ(scene.objects[3].shape.hull->triangles.size(), 4u);
+  // and a scene of one part a file reads it once, as ever
+  std::ofstream(dir + "/one.yaml")
+      << "gravity: [0, 0, -9.81]\nstep_s: 0.001\nobjects:\n"
+         "  - {name: panel, kind: static, shape: {mesh: cockpit.obj, node: panel, up: z}, pose: {position: [0, 0, 0]}}\n";
+  const uint64_t before = model::model_file_reads();
+  load_scene(dir + "/one.yaml");
+  EXPECT_EQ(model::model_file_reads(), before + 1);
 }
 
 TEST(SceneConfig, ZeroRollingAndSpinningResistanceAreAllowed) {
