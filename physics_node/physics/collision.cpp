@@ -63,10 +63,7 @@ constexpr double kMprTolerance_m = 1e-9;  // see above
 constexpr std::size_t kMeshTriangles = 32;
 constexpr double kFaceSlack_m = 1e-6;
 constexpr double kMergeDistance_m = 1e-4;
-// FCL's normal within 10 deg of a mesh triangle's: its depth bounds a round body's points there.
-constexpr double kRoundOnFaceCos = 0.98480775301220806;
-// A hull's face that a contact normal is within 5 deg of is the face it rests on (hull triangles
-// of one face share its plane to rounding: within 1e-9 of the normal and 1e-9 m of the plane).
+// A hull's face that a contact normal is within 5 deg of is the face it rests on.
 constexpr double kHullFaceCos = 0.99619469809174553;
 
 using BodyKind = BroadphaseBody;  // static, dynamic or a hand link
@@ -268,13 +265,14 @@ struct CollisionWorld::Impl {
         }
         if (polyhedral) {
           face_vertex_contacts(face, vertices_G, 1.5 * depth_m + kFaceSlack_m, kFaceSlack_m, face_contacts);
-        } else {
-          // FCL's depth bounds the points when its normal is the face's; else no more than the
-          // body's radius (deeper is past a thin part's far side, not resting on this face)
-          const double max_depth_m = face.n_G.dot(n) >= kRoundOnFaceCos
-                                         ? 1.5 * depth_m + kFaceSlack_m
-                                         : bodies[static_cast<std::size_t>(other)].radius_m;
-          const int kept = clipper.clip_on_face(face, clip_body(other), max_depth_m, manifold_points);
+        } else if (face.n_G.dot(n) > 0.0) {
+          // (a face turned away from FCL's normal is one the body is not resting on: a closed
+          // mesh's side wall that a body overhanging the top's edge dips into keeps FCL's point,
+          // not rim points pushed sideways by the overhang)
+          // FCL's depth bounds the points (deeper is past a thin part's far side, or the overhang
+          // of a body dipping into a side wall)
+          const int kept = clipper.clip_on_face(face, clip_body(other), 1.5 * depth_m + kFaceSlack_m,
+                                                manifold_points);
           for (int k = 0; k < kept; ++k)
             face_contacts.push_back({manifold_points[static_cast<std::size_t>(k)].p_G, face.n_G,
                                      manifold_points[static_cast<std::size_t>(k)].depth_m});
@@ -386,9 +384,13 @@ struct CollisionWorld::Impl {
     if (!(best_cos >= kHullFaceCos)) return;
     const Eigen::Vector3d best_n = normal_of(hull.triangles[best]);
     const double plane_m = best_n.dot(hull.vertices_m[hull.triangles[best][0]]);
+    // one face's triangles: the model's vertices are floats, so a sloped face's corners are off
+    // its plane by ~1e-7 of the part's size (within 1e-6 of it, and 1e-6 of the normal)
+    const double plane_tol_m = 1e-6 * shapes[static_cast<std::size_t>(body)].bounding_radius_m();
     for (const auto& t : hull.triangles) {
       const Eigen::Vector3d n = normal_of(t);
-      if (n.dot(best_n) < 1.0 - 1e-9 || std::abs(best_n.dot(hull.vertices_m[t[0]]) - plane_m) > 1e-9)
+      if (n.dot(best_n) < 1.0 - 1e-6 ||
+          std::abs(best_n.dot(hull.vertices_m[t[0]]) - plane_m) > plane_tol_m)
         continue;
       FlatFace face;  // hull triangles run counter-clockwise seen from outside
       face.n_G = X_GB.linear() * n;

@@ -169,5 +169,63 @@ TEST(Collision, ABoxOnAHullAndAHullOnABoxRestOnTheSmallerBodysCorners) {
   }
 }
 
+// A cylinder standing on a closed mesh block (its top and its side walls triangles) and hanging
+// 1 cm over the top's edge, 1 mm into the top: it rests on the top's rim points alone. The wall it
+// dips into is no face it rests on (FCL's normal there is not the wall's, turned toward the
+// cylinder), so no point pushes it sideways by its overhang.
+TEST(Collision, ARoundBodyOverAMeshEdgeIsNotPushedSidewaysByTheWall) {
+  auto block = std::make_shared<model::TriangleMesh>();
+  const double h = 0.1;  // a 20 cm cube, top at z = 0
+  for (int k = 0; k < 8; ++k)
+    block->vertices_m.emplace_back(k & 1 ? h : -h, k & 2 ? h : -h, k & 4 ? 0.0 : -2 * h);
+  const auto full = model::convex_hull(*block);  // its 12 triangles, facing out
+  block->triangles = full.triangles;
+  block->vertices_m = full.vertices_m;
+  const double r = 0.03;
+  Scene scene;
+  scene.objects = {object("block", false, Shape::triangle_mesh(block, nullptr), pose(0, 0, 0)),
+                   object("cup", true, Shape::cylinder(r, 0.1), pose(h - r + 0.01, 0.0, 0.05 - kDepth_m))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+  ASSERT_GE(contacts.size(), 1u);
+  for (const ContactPoint& c : contacts) {
+    expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), 1e-3, "normal, block -> cup");
+    EXPECT_LT(c.depth_m, 1.5 * kDepth_m) << "at " << c.p_G.transpose();
+    EXPECT_LE(c.p_G.x(), h + 1e-9) << "over the top";
+  }
+}
+
+// A box on a moving part whose hull was made in another orientation (its vertices floats, as a
+// model file gives them, so its sloped faces are flat only to rounding): the part turned so that
+// face is its top, the box rests on its four corners. (The face's triangles are found within
+// 1e-6 of the part's size; here a tolerance of 1e-9 m found them too.)
+TEST(Collision, ABoxRestsOnAHullsFaceThatIsFlatOnlyToRounding) {
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.35, Eigen::Vector3d::UnitX()) *
+                             Eigen::AngleAxisd(0.52, Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()))
+                                .toRotationMatrix();
+  auto mesh = std::make_shared<model::TriangleMesh>();
+  const double below = 0.3, above = 0.02;  // a 60 cm part: its floats are 3e-8 m apart
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d v = R * Eigen::Vector3d(k & 1 ? below : -below, k & 2 ? below : -below,
+                                                  k & 4 ? below : -below);
+    mesh->vertices_m.push_back(v.cast<float>().cast<double>());
+  }
+  auto hull = std::make_shared<model::TriangleMesh>(model::convex_hull(*mesh));
+  Scene scene;
+  scene.objects = {object("part", true, Shape::triangle_mesh(hull, hull), pose(0, 0, 0, R.transpose())),
+                   object("box", true, Shape::box(Eigen::Vector3d::Constant(2 * above)),
+                          pose(0.003, 0.002, below + above - kDepth_m))};
+  CollisionWorld world(scene);
+  const auto contacts = step(world, initial_poses(scene));
+  ASSERT_EQ(contacts.size(), 4u);
+  for (const ContactPoint& c : contacts) {
+    EXPECT_NEAR(c.depth_m, kDepth_m, 1e-6);
+    expect_vec_near(c.n_G, Eigen::Vector3d::UnitZ(), 1e-5, "normal, part -> box");
+    EXPECT_NEAR(std::abs(c.p_G.x() - 0.003), above, 1e-6) << "under a corner";
+    EXPECT_NEAR(std::abs(c.p_G.y() - 0.002), above, 1e-6);
+  }
+}
+
 }  // namespace
 }  // namespace vcockpit::physics
