@@ -213,11 +213,12 @@ std::vector<ModelPart> decode(const std::string& answer, const std::string& what
     throw MeshError(message);
   }
   std::vector<uint64_t> count;
-  if (!body.get(count) || count.size() != 1 || count[0] > 1u << 20) throw cut_short;
+  // (each part takes 9 bytes at least: its flag and a count; more parts than that is garbage)
+  if (!body.get(count) || count.size() != 1 || count[0] > answer.size() / 9) throw cut_short;
   std::vector<ModelPart> parts(count[0]);
   for (ModelPart& part : parts) {
     char flag = 0;
-    if (!body.byte(flag)) throw cut_short;
+    if (!body.byte(flag) || (flag != 0 && flag != 1)) throw cut_short;
     if (flag == 1) {
       part.mesh = get_mesh(body, cut_short);
     } else if (!body.get(part.error)) {

@@ -271,13 +271,16 @@ ModelPrefetch::ModelPrefetch(const std::vector<ModelRequest>& requests) {
   }
   for (const auto& [path, file_requests] : by_file) {
     if (file_requests.size() < 2) continue;  // read alone as it is asked for: no saving
+    std::vector<ModelPart> read;
     try {
-      std::vector<ModelPart> read = load_model_parts(file_requests);
-      for (std::size_t i = 0; i < read.size(); ++i)
-        (*parts)[request_key(file_requests[i])] = std::move(read[i]);
-    } catch (const MeshError&) {
-      // the file itself: each load_model_mesh reads it and reports it, as without a prefetch
+      read = load_model_parts(file_requests);
+    } catch (const MeshError& e) {
+      // the file itself (missing, unreadable, the reader crashed or hung): each part reports
+      // it as reading it alone would, without trying (and waiting on) the file again
+      read.assign(file_requests.size(), ModelPart{std::nullopt, e.what()});
     }
+    for (std::size_t i = 0; i < file_requests.size(); ++i)
+      (*parts)[request_key(file_requests[i])] = std::move(read[i]);
   }
   parts_ = std::move(parts);
   const std::lock_guard<std::mutex> lock(g_prefetch_mutex);
@@ -318,7 +321,7 @@ std::vector<ModelPart> load_model_parts(const std::vector<ModelRequest>& request
     if (r.path != path)
       throw std::invalid_argument("load_model_parts: '" + r.path + "' is not '" + path + "'");
   ++g_file_reads;
-  return read_isolated_parts(
+  std::vector<ModelPart> parts = read_isolated_parts(
       [&] {
         Assimp::Importer importer;
         const aiScene* scene = read_scene(importer, path);
@@ -333,6 +336,9 @@ std::vector<ModelPart> load_model_parts(const std::vector<ModelRequest>& request
         return parts;
       },
       path);
+  if (parts.size() != requests.size())
+    throw MeshError(path + ": the model reader's answer was cut short");
+  return parts;
 }
 
 TriangleMesh load_model_mesh_from_memory(std::string_view bytes, const std::string& extension,

@@ -50,9 +50,9 @@ std::vector<ModelPart> load_model_parts(const std::vector<ModelRequest>& request
 // (load_model_parts), and load_model_mesh hands them out for the same requests (path, node,
 // scale, up axis, textures) without reading the file again. A scene's loader holds one over
 // its objects, the image generator over a batch of objects' infos: a cockpit of many parts in
-// one file is parsed once, not once per part. A file that cannot be read at all is left to
-// load_model_mesh, which reports it as before. Several may live at once (threads loading
-// scenes); thread-safe.
+// one file is parsed once, not once per part. A file that cannot be read at all gives each of
+// its parts the error reading it alone would (not read again). Several may live at once
+// (threads loading scenes); thread-safe.
 class ModelPrefetch {
  public:
   explicit ModelPrefetch(const std::vector<ModelRequest>& requests);
