@@ -18,6 +18,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "model/import/isolated_reader.hpp"
 #include "model/import/texture_image.hpp"
@@ -262,13 +263,9 @@ std::string request_key(const ModelRequest& r) {
 ModelPrefetch::ModelPrefetch(const std::vector<ModelRequest>& requests) {
   auto parts = std::make_unique<std::map<std::string, ModelPart>>();
   std::map<std::string, std::vector<ModelRequest>> by_file;
-  for (const ModelRequest& r : requests) {
-    std::vector<ModelRequest>& same = by_file[r.path];
-    const bool known = std::any_of(same.begin(), same.end(), [&](const ModelRequest& o) {
-      return request_key(o) == request_key(r);
-    });
-    if (!known) same.push_back(r);
-  }
+  std::set<std::string> asked;  // each request once, whoever asks for it twice
+  for (const ModelRequest& r : requests)
+    if (asked.insert(request_key(r)).second) by_file[r.path].push_back(r);
   for (const auto& [path, file_requests] : by_file) {
     if (file_requests.size() < 2) continue;  // read alone as it is asked for: no saving
     std::vector<ModelPart> read;

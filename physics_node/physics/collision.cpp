@@ -118,6 +118,10 @@ struct CollisionWorld::Impl {
   std::vector<Body> bodies;  // never resized after construction: user data points into it
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;  // body order
   std::vector<Shape> shapes;                                      // body order
+  // a moving mesh's hull: each triangle's outward unit normal in the body's frame, and how far
+  // off one face's plane its triangles may be (empty and 0 for any other body)
+  std::vector<std::vector<Eigen::Vector3d>> hull_normals;
+  std::vector<double> hull_plane_tol_m;
   // per hand: link frame -> collision geometry frame
   std::vector<std::array<Eigen::Isometry3d, kLinkCount>> X_LC;
   std::unique_ptr<SweepAndPrune> broadphase;
@@ -144,6 +148,19 @@ struct CollisionWorld::Impl {
     bodies.push_back(make_body(static_cast<int>(bodies.size()), kind, shape));
     objects.push_back(std::make_unique<fcl::CollisionObjectd>(geometry, X_GC));
     shapes.push_back(shape);
+    std::vector<Eigen::Vector3d>& normals = hull_normals.emplace_back();
+    double plane_tol_m = 0.0;
+    if (shape.kind == ShapeKind::kMesh && kind != BodyKind::kStatic && shape.hull) {
+      const model::TriangleMesh& hull = *shape.hull;
+      for (const auto& t : hull.triangles) {
+        const Eigen::Vector3d& a = hull.vertices_m[t[0]];
+        normals.push_back((hull.vertices_m[t[1]] - a).cross(hull.vertices_m[t[2]] - a).normalized());
+      }
+      // the model's vertices are floats, so a sloped face's corners are off its plane by ~1e-7
+      // of the part's size: one face's triangles are those within 1e-6 of it
+      plane_tol_m = 1e-6 * shape.bounding_radius_m();
+    }
+    hull_plane_tol_m.push_back(plane_tol_m);
   }
 
   void place(int body, const Eigen::Isometry3d& X_GC) {
@@ -367,28 +384,24 @@ struct CollisionWorld::Impl {
       return;
     }
     const model::TriangleMesh& hull = *shapes[static_cast<std::size_t>(body)].hull;
+    const std::vector<Eigen::Vector3d>& normals = hull_normals[static_cast<std::size_t>(body)];
     const Eigen::Vector3d n_B = X_GB.linear().transpose() * n_out;
-    const auto normal_of = [&](const std::array<uint32_t, 3>& t) {
-      const Eigen::Vector3d& a = hull.vertices_m[t[0]];
-      return Eigen::Vector3d((hull.vertices_m[t[1]] - a).cross(hull.vertices_m[t[2]] - a).normalized());
-    };
     std::size_t best = 0;
     double best_cos = -2.0;
-    for (std::size_t i = 0; i < hull.triangles.size(); ++i) {
-      const double along = normal_of(hull.triangles[i]).dot(n_B);
+    for (std::size_t i = 0; i < normals.size(); ++i) {
+      const double along = normals[i].dot(n_B);
       if (along > best_cos) {
         best_cos = along;
         best = i;
       }
     }
     if (!(best_cos >= kHullFaceCos)) return;
-    const Eigen::Vector3d best_n = normal_of(hull.triangles[best]);
+    const Eigen::Vector3d& best_n = normals[best];
     const double plane_m = best_n.dot(hull.vertices_m[hull.triangles[best][0]]);
-    // one face's triangles: the model's vertices are floats, so a sloped face's corners are off
-    // its plane by ~1e-7 of the part's size (within 1e-6 of it, and 1e-6 of the normal)
-    const double plane_tol_m = 1e-6 * shapes[static_cast<std::size_t>(body)].bounding_radius_m();
-    for (const auto& t : hull.triangles) {
-      const Eigen::Vector3d n = normal_of(t);
+    const double plane_tol_m = hull_plane_tol_m[static_cast<std::size_t>(body)];
+    for (std::size_t i = 0; i < hull.triangles.size(); ++i) {
+      const auto& t = hull.triangles[i];
+      const Eigen::Vector3d& n = normals[i];
       if (n.dot(best_n) < 1.0 - 1e-6 ||
           std::abs(best_n.dot(hull.vertices_m[t[0]]) - plane_m) > plane_tol_m)
         continue;

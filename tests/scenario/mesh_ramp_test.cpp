@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -105,9 +106,15 @@ TEST_P(EachFormat, ADroppedMeshComesToRestFlatOnTheFloor) {
   EXPECT_LT(cap.v_G.norm(), 1e-3);
 }
 
-TEST_P(EachFormat, ABoxOnTheMeshRampBelowTheFrictionAngleStaysPutOnItsFace) {
-  // 20 deg < atan(0.8): it sticks, resting on its four bottom corners (a single point would
-  // let it rock and creep)
+// A body 6 cm tall (`body_yaml`: its shape and mass) set on the mesh ramp's 20 deg slope, tilted
+// with it, both of friction 0.8 (atan 0.8 = 38.7 deg): how far it moves in the second after
+// 0.2 s of settling, and the cosine between its z axis and the slope's normal then.
+struct RampRest {
+  double moved_m = 0.0;
+  double axis_cos = 0.0;
+};
+RampRest rest_on_ramp(const std::string& format, const std::string& body_yaml,
+                      const std::string& tag) {
   const double half_m = 0.03;
   const Eigen::Vector3d n(std::sin(kTheta), 0.0, std::cos(kTheta));
   const Eigen::Vector3d c =
@@ -116,53 +123,40 @@ TEST_P(EachFormat, ABoxOnTheMeshRampBelowTheFrictionAngleStaysPutOnItsFace) {
       std::string() +
       "gravity: [0, 0, -9.81]\nstep_s: 0.001\nobjects:\n"
       "  - {name: ramp, kind: static, shape: {mesh: " +
-      models_dir() + "/ramp." + GetParam() +
+      models_dir() + "/ramp." + format +
       ", node: ramp}, pose: {position: [0, 0, 0]}, material: {mu_s: 0.8, mu_d: 0.6}}\n"
-      "  - {name: box, kind: dynamic, shape: {box: [0.06, 0.06, 0.06]}, mass: 0.5,\n"
+      "  - {name: body, kind: dynamic, " + body_yaml + ",\n"
       "     pose: {position: [" +
       std::to_string(c.x()) + ", 0, " + std::to_string(c.z()) +
       "], rpy_deg: [0, 20, 0]}, material: {mu_s: 0.8, mu_d: 0.6}}\n";
-  physics::World world(scene_from(yaml, std::string("box_") + GetParam()));
+  physics::World world(scene_from(yaml, tag + "_" + format));
   for (int i = 0; i < 200; ++i)
     world.step();
   const Eigen::Isometry3d X0 = world.bodies()[1].X_GO;
   for (int i = 0; i < 1000; ++i)
     world.step();
   const Eigen::Isometry3d& X1 = world.bodies()[1].X_GO;
-  EXPECT_LT((X1.translation() - X0.translation()).norm(), 1e-3) << "stuck below the friction angle";
-  EXPECT_GT(X1.linear().col(2).dot(n), std::cos(0.5 * M_PI / 180.0)) << "flat on the slope";
+  const RampRest rest{(X1.translation() - X0.translation()).norm(), X1.linear().col(2).dot(n)};
+  std::printf("%s: moved %.3f mm, axis %.3f deg off the slope's normal\n", tag.c_str(),
+              rest.moved_m * 1e3, std::acos(std::min(1.0, rest.axis_cos)) * 180 / M_PI);
+  return rest;
+}
+
+TEST_P(EachFormat, ABoxOnTheMeshRampBelowTheFrictionAngleStaysPutOnItsFace) {
+  // 20 deg < atan(0.8): it sticks, resting on its four bottom corners (a single point would
+  // let it rock and creep)
+  const RampRest rest = rest_on_ramp(GetParam(), "shape: {box: [0.06, 0.06, 0.06]}, mass: 0.5", "box");
+  EXPECT_LT(rest.moved_m, 1e-3) << "stuck below the friction angle";
+  EXPECT_GT(rest.axis_cos, std::cos(0.5 * M_PI / 180.0)) << "flat on the slope";
 }
 
 // A cylinder standing on the mesh ramp below the friction angle stays put, upright on the slope:
 // it rests on its rim clipped to the ramp's triangles. (On FCL's one point per triangle it crept
 // 1.8 mm (glTF) to 5.7 mm (OBJ) down the slope in the same second.)
 TEST_P(EachFormat, ACylinderOnTheMeshRampBelowTheFrictionAngleStaysPutOnItsCap) {
-  const double half_m = 0.03;
-  const Eigen::Vector3d n(std::sin(kTheta), 0.0, std::cos(kTheta));
-  const Eigen::Vector3d c =
-      Eigen::Vector3d(-0.2, 0.0, 0.6 * std::tan(kTheta)) + (half_m - 2e-5) * n;
-  const std::string yaml =
-      std::string() +
-      "gravity: [0, 0, -9.81]\nstep_s: 0.001\nobjects:\n"
-      "  - {name: ramp, kind: static, shape: {mesh: " +
-      models_dir() + "/ramp." + GetParam() +
-      ", node: ramp}, pose: {position: [0, 0, 0]}, material: {mu_s: 0.8, mu_d: 0.6}}\n"
-      "  - {name: can, kind: dynamic, shape: {cylinder: [0.03, 0.06]}, mass: 0.3,\n"
-      "     pose: {position: [" +
-      std::to_string(c.x()) + ", 0, " + std::to_string(c.z()) +
-      "], rpy_deg: [0, 20, 0]}, material: {mu_s: 0.8, mu_d: 0.6}}\n";
-  physics::World world(scene_from(yaml, std::string("can_") + GetParam()));
-  for (int i = 0; i < 200; ++i)
-    world.step();
-  const Eigen::Isometry3d X0 = world.bodies()[1].X_GO;
-  for (int i = 0; i < 1000; ++i)
-    world.step();
-  const Eigen::Isometry3d& X1 = world.bodies()[1].X_GO;
-  std::printf("moved %.3f mm, axis %.3f deg off the slope's normal\n",
-              (X1.translation() - X0.translation()).norm() * 1e3,
-              std::acos(std::min(1.0, X1.linear().col(2).dot(n))) * 180 / M_PI);
-  EXPECT_LT((X1.translation() - X0.translation()).norm(), 1e-3) << "stuck below the friction angle";
-  EXPECT_GT(X1.linear().col(2).dot(n), std::cos(0.5 * M_PI / 180.0)) << "upright on the slope";
+  const RampRest rest = rest_on_ramp(GetParam(), "shape: {cylinder: [0.03, 0.06]}, mass: 0.3", "can");
+  EXPECT_LT(rest.moved_m, 1e-3) << "stuck below the friction angle";
+  EXPECT_GT(rest.axis_cos, std::cos(0.5 * M_PI / 180.0)) << "upright on the slope";
 }
 
 INSTANTIATE_TEST_SUITE_P(Mesh, EachFormat, ::testing::Values("gltf", "obj", "ac"));

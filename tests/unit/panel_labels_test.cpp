@@ -83,8 +83,8 @@ std::vector<FaceBox> things_on_the_face(const render::PanelFace& face,
 }
 
 // Each label's height in the eyes' images with the head at X_GHead: at least 7 px in each image
-// that holds it, and in one image at least. Returns the smallest, printed with its label.
-double check_label_heights(const render::PanelFace& face, const std::vector<render::LabelSpec>& labels,
+// that holds it, and in one image at least. The smallest is printed with its label.
+void check_label_heights(const render::PanelFace& face, const std::vector<render::LabelSpec>& labels,
                            const HmdSetup& hmd, const Eigen::Isometry3d& X_GHead) {
   double smallest_px = 1e9;
   std::string smallest;
@@ -109,7 +109,6 @@ double check_label_heights(const render::PanelFace& face, const std::vector<rend
     EXPECT_GE(seen_by, 1) << l.text << " is in neither eye's image";
   }
   std::printf("smallest label: %s, %.2f px tall\n", smallest.c_str(), smallest_px);
-  return smallest_px;
 }
 
 // The gap between two boxes on a face (0 when they touch or overlap).
