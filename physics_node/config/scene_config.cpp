@@ -24,6 +24,7 @@ using physics::Shape;
 
 constexpr double kMaxStep_s = 0.1;
 constexpr int kMaxSubsteps = 1000;     // beyond this a step could not run in real time anyway
+constexpr int kMaxSolverIterations = 1000;  // a sweep is microseconds; more is a typo
 constexpr int kMaxPointsPerPair = 64;  // FCL reports at most a handful; more is a typo
 
 std::string format_number(double value) {
@@ -441,8 +442,16 @@ GraspParams parse_grasp(const ConfigNode& node) {
   return g;
 }
 
+physics::ContactSolver parse_contact_solver(const ConfigNode& n) {
+  const std::string v = n.as_string();
+  if (v == "penalty") return physics::ContactSolver::kPenalty;
+  if (v == "soft") return physics::ContactSolver::kSoft;
+  n.fail("'" + v + "': expected penalty (explicit springs over substeps) or soft (soft constraints)");
+}
+
 physics::ContactParams parse_contact(const ConfigNode& node) {
-  node.expect_keys({"slip_speed_mps", "substep_safety", "max_substeps", "max_points_per_pair"});
+  node.expect_keys({"slip_speed_mps", "substep_safety", "max_substeps", "max_points_per_pair",
+                    "solver", "iterations", "relax_iterations", "restitution_threshold_mps"});
   physics::ContactParams c;
   read_optional(node, "slip_speed_mps", c.slip_speed_mps,
                 [](const ConfigNode& n) { return positive(n); });
@@ -453,6 +462,12 @@ physics::ContactParams parse_contact(const ConfigNode& node) {
                 [](const ConfigNode& n) { return int_in_range(n, 1, kMaxSubsteps); });
   read_optional(node, "max_points_per_pair", c.max_points_per_pair,
                 [](const ConfigNode& n) { return int_in_range(n, 1, kMaxPointsPerPair); });
+  read_optional(node, "solver", c.solver, parse_contact_solver);
+  read_optional(node, "iterations", c.iterations,
+                [](const ConfigNode& n) { return int_in_range(n, 1, kMaxSolverIterations); });
+  read_optional(node, "relax_iterations", c.relax_iterations,
+                [](const ConfigNode& n) { return int_in_range(n, 0, kMaxSolverIterations); });
+  read_optional(node, "restitution_threshold_mps", c.restitution_threshold_mps, non_negative);
   return c;
 }
 

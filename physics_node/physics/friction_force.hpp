@@ -29,6 +29,10 @@ struct StickAnchor {
   Eigen::Vector3d r_A = Eigen::Vector3d::Zero();  // anchor fixed on A, A's frame
   Eigen::Vector3d r_B = Eigen::Vector3d::Zero();  // anchor fixed on B, B's frame
   bool sticking = true;
+  // the soft-constraint solver's impulses at this point over the last step (contact_solver.hpp),
+  // its next step's warm start: normal (N s) and tangential (N s, A's frame); 0 for the penalty
+  double lambda_n = 0.0;
+  Eigen::Vector3d lambda_t_A = Eigen::Vector3d::Zero();
 };
 
 struct PairFriction {

@@ -59,6 +59,22 @@ void integrate_body(BodyState& body, const Eigen::Vector3d& F_G, const Eigen::Ve
   body.w_G = body.X_GO.linear() * w_end_O;
 }
 
+void integrate_position(BodyState& body, const Eigen::Vector3d& v_pos, const Eigen::Vector3d& w_pos,
+                        const Eigen::Vector3d& v_end, const Eigen::Vector3d& w_end,
+                        const Eigen::Matrix3d& I_O, double dt_s) {
+  const Eigen::Quaterniond q0(body.X_GO.linear());
+  const Eigen::Matrix3d R0 = body.X_GO.linear();
+  const Eigen::Vector3d w_star_O = R0.transpose() * w_pos;
+  const Eigen::Vector3d w_mid_O = gyroscopic_midpoint_O(w_star_O, I_O, dt_s);
+  // the relax pass's change of spin, in the body frame at the step's start
+  const Eigen::Vector3d w_end_O = 2.0 * w_mid_O - w_star_O + R0.transpose() * (w_end - w_pos);
+  body.X_GO.translation() += v_pos * dt_s;
+  const Eigen::Quaterniond q = (rotation_increment(R0 * w_mid_O, dt_s) * q0).normalized();
+  body.X_GO.linear() = q.toRotationMatrix();
+  body.v_G = v_end;
+  body.w_G = body.X_GO.linear() * w_end_O;
+}
+
 void finite_difference_velocity(const Eigen::Isometry3d& before, const Eigen::Isometry3d& now,
                                 double dt_s, Eigen::Vector3d& v_G, Eigen::Vector3d& w_G) {
   v_G = (now.translation() - before.translation()) / dt_s;

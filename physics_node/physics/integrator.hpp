@@ -29,6 +29,14 @@ void integrate_body(BodyState& body, const Eigen::Vector3d& F_G, const Eigen::Ve
                     double mass_kg, const Eigen::Matrix3d& I_O, const Eigen::Matrix3d& I_O_inv,
                     double dt_s);
 
+// The positions over dt of a body whose velocities a contact solver has found (gravity and the
+// contacts' impulses in them): x += v_pos dt, and the turn by the implicit midpoint rule from
+// w_pos, as integrate_body does after its impulses. Its velocities become v_end and w_end (the
+// solver's final ones, after its relax pass), with the gyroscopic change over the step added.
+void integrate_position(BodyState& body, const Eigen::Vector3d& v_pos, const Eigen::Vector3d& w_pos,
+                        const Eigen::Vector3d& v_end, const Eigen::Vector3d& w_end,
+                        const Eigen::Matrix3d& I_O, double dt_s);
+
 // The torque-free rotation over dt in the body frame by the implicit midpoint rule: the midpoint
 // angular velocity w_m with I_O (2 w_m - 2 w0) + dt w_m x I_O w_m = 0, by Newton's method from
 // w_m = w0. The end-of-step velocity is 2 w_m - w0.

@@ -162,12 +162,22 @@ struct GraspParams {
   double release_gap_m = 0.005;
 };
 
+// How the contact springs are stepped: explicit penalty forces over substeps (the paper's), or
+// soft constraints at the full step (contact_solver.hpp: the same springs, backward Euler).
+enum class ContactSolver { kPenalty, kSoft };
+
 // Contact model details beyond the paper's equations.
 struct ContactParams {
   double slip_speed_mps = 1.0e-3;  // eq. 15-17 epsilon: |v_t| at or above it is sliding
   double substep_safety = 0.2;     // dt_sub <= safety * sqrt(m_eff / k_eff)
   int max_substeps = 32;
   int max_points_per_pair = 4;
+  ContactSolver solver = ContactSolver::kPenalty;
+  // soft: Gauss-Seidel sweeps with the springs' bias, then without it (to take out the
+  // push-out speed), and the slowest impact given the dashpot's restitution
+  int iterations = 8;
+  int relax_iterations = 2;
+  double restitution_threshold_mps = 0.1;
 };
 
 // Sleeping (sleep.hpp; Box2D's and Jolt's): a free object that has stayed slower than these for

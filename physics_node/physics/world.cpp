@@ -90,6 +90,8 @@ World::World(Scene scene)
       collision_(scene_),
       substep_choice_(scene_, collision_),
       forces_(scene_.contact.slip_speed_mps),
+      soft_(SoftSolverParams{scene_.contact.iterations, scene_.contact.relax_iterations,
+                             scene_.contact.restitution_threshold_mps, scene_.contact.slip_speed_mps}),
       grasp_tracker_(scene_.grasp, scene_.step_s, scene_.gravity_mps2, scene_.hand_material.mu_s),
       body_check_(scene_),
       sleep_(scene_),
@@ -98,6 +100,10 @@ World::World(Scene scene)
       controls_(scene_, state_) {
   if (scene_.contact.max_substeps < 1 || !(scene_.step_s > 0.0))
     throw std::invalid_argument("World: the step and max_substeps must be positive");
+  if (scene_.contact.solver == ContactSolver::kSoft && !scene_.controls.empty())
+    throw std::invalid_argument(
+        "World: contact.solver soft does not drive controls yet (their joints are not solver "
+        "bodies): use the penalty solver for a scene with controls");
   const std::size_t hand_count = scene_.hands.size();
   if (hand_count > kMaxHands) throw std::invalid_argument("World: more hands than kMaxHands");
   for (std::size_t a = 0; a < hand_count; ++a)
@@ -367,6 +373,8 @@ void World::step() {
   {
     StageTimer timer(stage_times_, Stage::kSubstepChoice);
     state_.substeps = choose_substeps(any_held);
+    // soft constraints are stable at the full step: one collision, one solve
+    if (scene_.contact.solver == ContactSolver::kSoft) state_.substeps = 1;
   }
   VCOCKPIT_ASSERT(state_.substeps >= 1 && state_.substeps <= scene_.contact.max_substeps,
                   "substeps in [1, max_substeps]");
@@ -440,6 +448,16 @@ void World::substep(double dt_s, double alpha, int remaining, bool skip_held_han
   if (has_proxy()) {
     StageTimer timer(stage_times_, Stage::kProxyHand);
     constrain_proxies(dt_s);
+  }
+  if (scene_.contact.solver == ContactSolver::kSoft) {
+    {
+      StageTimer timer(stage_times_, Stage::kForces);
+      build_contact_bodies();
+      soft_.solve(contacts_, contact_bodies_, scene_.gravity_mps2, dt_s, applied_, state_.anchors, touched_);
+    }
+    StageTimer timer(stage_times_, Stage::kIntegrate);
+    integrate_soft(dt_s);
+    return;
   }
   {
     StageTimer timer(stage_times_, Stage::kForces);
@@ -733,6 +751,21 @@ void World::integrate(double dt_s) {
     integrate_body(body, F, M_G_[i], o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
   }
   if (!controls_.empty()) controls_.integrate(F_G_, M_G_, dt_s);
+}
+
+void World::integrate_soft(double dt_s) {
+  for (int i = 0; i < object_count_; ++i) {
+    const ObjectSpec& o = scene_.objects[i];
+    BodyState& body = state_.bodies[i];
+    if (!o.dynamic || body.held() || o.control >= 0 || body.asleep) continue;
+    if (touched_[static_cast<std::size_t>(i)] != 0) {
+      const ContactBody& c = contact_bodies_[i];
+      integrate_position(body, c.v_G, c.w_G, soft_.v_end(i), soft_.w_end(i), o.I_O, dt_s);
+    } else {  // in no contact: the same operations as the penalty path's (free fall, the top)
+      const Eigen::Vector3d F = total_force_G(Eigen::Vector3d::Zero(), o.mass_kg, scene_.gravity_mps2);
+      integrate_body(body, F, Eigen::Vector3d::Zero(), o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
+    }
+  }
 }
 
 bool World::command_control(int control, int position) {

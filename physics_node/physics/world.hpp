@@ -31,6 +31,7 @@
 #include "physics_node/physics/broadphase.hpp"
 #include "physics_node/physics/collision.hpp"
 #include "physics_node/physics/contact_forces.hpp"
+#include "physics_node/physics/contact_solver.hpp"
 #include "physics_node/physics/control_system.hpp"
 #include "physics_node/physics/grasp.hpp"
 #include "physics_node/physics/grasp_tracker.hpp"
@@ -176,6 +177,7 @@ class World {
   const HandState& hand_state(int hand) const { return state_.hands[static_cast<std::size_t>(hand)]; }
   int choose_substeps(bool holding);  // holding: a hand holds an object
   void substep(double dt_s, double alpha, int remaining, bool skip_held_hand_pairs);
+  void integrate_soft(double dt_s);  // contact.solver soft: positions from the solver's velocities
   void move_hand(int hand, double alpha, int remaining);
   void place_hand(int hand, const Eigen::Isometry3d& X_GH, const JointAngles& q_rad);
   // The proxies after the narrowphase: each hand's share of the contacts, constrained, then
@@ -218,6 +220,8 @@ class World {
   CollisionWorld collision_;
   SubstepChoice substep_choice_;
   ContactForceModel forces_;
+  SoftContactSolver soft_;        // contact.solver: soft
+  std::vector<uint8_t> touched_;  // soft: the dynamic bodies the solver moved this step
   GraspTracker grasp_tracker_;
   BodyCheck body_check_;
   SleepTracker sleep_;

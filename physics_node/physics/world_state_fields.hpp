@@ -128,6 +128,8 @@ void visit_world_state(V& v, S& s) {
     f::vec3(v, a.r_A);
     f::vec3(v, a.r_B);
     v.num(a.sticking);
+    v.num(a.lambda_n);
+    f::vec3(v, a.lambda_t_A);
   }
 }
 

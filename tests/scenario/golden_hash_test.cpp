@@ -61,7 +61,7 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0x31d64fbdfbfd57f3") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0x88eb91aed14e15f3") << "state right after the GRASP step";
   EXPECT_EQ(hex(run.final_hash), "0x7cfe86c8ed6ebfda") << "final state";
 }
 

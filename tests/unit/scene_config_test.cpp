@@ -337,6 +337,7 @@ TEST_F(ShippedCockpit, GraspAndContactBlocks) {
   EXPECT_DOUBLE_EQ(scene_->grasp.release_opening_share, 0.2);
   EXPECT_DOUBLE_EQ(scene_->grasp.release_gap_m, 0.005);
   EXPECT_EQ(scene_->contact.max_points_per_pair, 4);
+  EXPECT_EQ(scene_->contact.solver, physics::ContactSolver::kPenalty);  // soft: no controls yet
 }
 
 // ---- a small valid scene, so each case can break one thing ----------------------------------
@@ -691,6 +692,12 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
        "proxy:", "proxy.grip_force_N", "must be positive"},
       {"proxy_unknown_key", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {speed: 1}", "proxy:",
        "proxy.speed", "unknown key 'speed'"},
+      {"contact_solver_unknown", "contact: {slip_speed_mps: 0.002, max_substeps: 16}",
+       "contact: {slip_speed_mps: 0.002, max_substeps: 16, solver: implicit}", "contact:",
+       "contact.solver", "expected penalty"},
+      {"contact_iterations_zero", "contact: {slip_speed_mps: 0.002, max_substeps: 16}",
+       "contact: {slip_speed_mps: 0.002, max_substeps: 16, iterations: 0}", "contact:",
+       "contact.iterations", "1"},
       // sleeping
       {"sleep_speed_zero", "contact: {slip_speed_mps: 0.002, max_substeps: 16}",
        "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nsleep: {speed_mps: 0}", "sleep:",

@@ -1,0 +1,409 @@
+#include "physics_node/physics/contact_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/assert.hpp"
+#include "physics_node/physics/normal_force.hpp"
+#include "physics_node/physics/soft_constraint.hpp"
+
+namespace vcockpit::physics {
+namespace {
+
+bool pair_before(int a0, int b0, int a1, int b1) { return a0 != a1 ? a0 < a1 : b0 < b1; }
+
+// Two unit vectors completing n to a right-handed orthonormal basis.
+void tangent_basis(const Eigen::Vector3d& n, Eigen::Vector3d& t1, Eigen::Vector3d& t2) {
+  t1 = std::abs(n.x()) < 0.57735 ? Eigen::Vector3d::UnitX().cross(n) : Eigen::Vector3d::UnitY().cross(n);
+  t1.normalize();
+  t2 = n.cross(t1);
+}
+
+double along(const Eigen::Matrix3d& inv_I_G, const Eigen::Vector3d& u) { return u.dot(inv_I_G * u); }
+
+}  // namespace
+
+Eigen::Vector3d SoftContactSolver::relative_velocity(const Point& p) const {
+  return (v_[p.b] + w_[p.b].cross(p.r_b)) - (v_[p.a] + w_[p.a].cross(p.r_a));
+}
+
+void SoftContactSolver::apply_impulse(const Point& p, const Eigen::Vector3d& P) {
+  // P on b, -P on a; kinematic bodies have zero inverse mass and inertia
+  v_[p.b] += inv_m_[p.b] * P;
+  w_[p.b] += inv_I_G_[p.b] * p.r_b.cross(P);
+  v_[p.a] -= inv_m_[p.a] * P;
+  w_[p.a] -= inv_I_G_[p.a] * p.r_a.cross(P);
+}
+
+void SoftContactSolver::apply_angular_impulse(int a, int b, const Eigen::Vector3d& L) {
+  w_[b] += inv_I_G_[b] * L;
+  w_[a] -= inv_I_G_[a] * L;
+}
+
+const StickAnchor* SoftContactSolver::match_anchor(const std::vector<StickAnchor>& previous,
+                                                   const ContactPoint& c,
+                                                   const Eigen::Vector3d& p_A) {
+  auto first = std::lower_bound(previous.begin(), previous.end(), c,
+                                [](const StickAnchor& a, const ContactPoint& k) {
+                                  return pair_before(a.body_a, a.body_b, k.body_a, k.body_b);
+                                });
+  const StickAnchor* best = nullptr;
+  std::size_t best_index = 0;
+  double best_d2 = ContactForceModel::kAnchorMatch_m * ContactForceModel::kAnchorMatch_m;
+  for (auto it = first; it != previous.end() && it->body_a == c.body_a && it->body_b == c.body_b; ++it) {
+    const auto index = static_cast<std::size_t>(it - previous.begin());
+    if (anchor_used_[index] != 0) continue;
+    const double d2 = (it->p_A - p_A).squaredNorm();
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best = &*it;
+      best_index = index;
+    }
+  }
+  if (best) anchor_used_[best_index] = 1;
+  return best;
+}
+
+void SoftContactSolver::solve(const std::vector<ContactPoint>& contacts,
+                              std::vector<ContactBody>& bodies, const Eigen::Vector3d& gravity_mps2,
+                              double h_s, std::vector<AppliedContact>& applied,
+                              std::vector<StickAnchor>& anchors, std::vector<uint8_t>& touched) {
+  const std::size_t count = bodies.size();
+  v_.resize(count);
+  w_.resize(count);
+  inv_m_.resize(count);
+  inv_I_G_.resize(count);
+  touched.assign(count, 0);
+  // only the bodies in a contact are read
+  for (const ContactPoint& c : contacts) {
+    for (const int i : {c.body_a, c.body_b}) {
+      const ContactBody& body = bodies[static_cast<std::size_t>(i)];
+      v_[i] = body.v_G;
+      w_[i] = body.w_G;
+      if (body.dynamic) {
+        const Eigen::Matrix3d& R = body.X_GB.linear();
+        inv_m_[i] = body.inv_mass;
+        inv_I_G_[i] = R * body.inv_I_O * R.transpose();
+        v_[i] += gravity_mps2 * h_s;
+      } else {
+        inv_m_[i] = 0.0;
+        inv_I_G_[i].setZero();
+      }
+    }
+  }
+  prepare(contacts, bodies, h_s, anchors);
+  for (const Pair& pair : pairs_) {
+    if (pair.kinematic) continue;
+    for (const int i : {pair.a, pair.b})
+      if (bodies[static_cast<std::size_t>(i)].dynamic) touched[static_cast<std::size_t>(i)] = 1;
+  }
+  warm_start();
+  for (int it = 0; it < params_.iterations; ++it) {
+    for (Pair& pair : pairs_) {
+      if (pair.kinematic) continue;
+      for (std::size_t i = pair.first; i < pair.end; ++i) solve_normal(points_[i], true);
+      solve_friction(pair, true);
+      solve_rolling(pair);
+    }
+  }
+  // the positions move with these velocities (the spring's push-out included)
+  for (std::size_t i = 0; i < count; ++i) {
+    if (touched[i] == 0) continue;
+    bodies[i].v_G = v_[i];
+    bodies[i].w_G = w_[i];
+  }
+  for (int it = 0; it < params_.relax_iterations; ++it) {
+    for (Pair& pair : pairs_) {
+      if (pair.kinematic) continue;
+      for (std::size_t i = pair.first; i < pair.end; ++i) solve_normal(points_[i], false);
+      solve_friction(pair, false);
+      solve_rolling(pair);
+    }
+  }
+  restitution();
+  store(contacts, bodies, h_s, applied);
+  std::swap(anchors, next_anchors_);
+}
+
+void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
+                                const std::vector<ContactBody>& bodies, double h_s,
+                                const std::vector<StickAnchor>& previous) {
+  points_.clear();
+  pairs_.clear();
+  anchor_used_.assign(previous.size(), 0);
+  next_anchors_.clear();
+  std::size_t i = 0;
+  int last_a = -1, last_b = -1;
+  while (i < contacts.size()) {
+    std::size_t end = i + 1;
+    while (end < contacts.size() && contacts[end].body_a == contacts[i].body_a &&
+           contacts[end].body_b == contacts[i].body_b)
+      ++end;
+    Pair pair;
+    pair.first = points_.size();
+    pair.a = contacts[i].body_a;
+    pair.b = contacts[i].body_b;
+    VCOCKPIT_ASSERT(pair_before(last_a, last_b, pair.a, pair.b), "contacts must be sorted by pair");
+    last_a = pair.a;
+    last_b = pair.b;
+    const ContactBody& A = bodies[static_cast<std::size_t>(pair.a)];
+    const ContactBody& B = bodies[static_cast<std::size_t>(pair.b)];
+    const NormalPair k = normal_pair(A, B, static_cast<int>(end - i));
+    pair.mu = pair_friction(A, B);
+    pair.kinematic = !A.dynamic && !B.dynamic;
+    const double restitution = dashpot_restitution(0.5 * (A.material->damping_ratio + B.material->damping_ratio));
+    const SoftSpring spring = soft_from_spring(k.k_pt, k.c_pt, h_s);
+    const Eigen::Isometry3d X_AG = A.X_GB.inverse();
+    const Eigen::Isometry3d X_BG = B.X_GB.inverse();
+    bool was_sliding = false;
+    double load_sum = 0.0, speed_weighted = 0.0;
+    Eigen::Vector3d n_sum = Eigen::Vector3d::Zero();
+    for (std::size_t j = i; j < end; ++j) {
+      const ContactPoint& c = contacts[j];
+      Point p;
+      p.a = pair.a;
+      p.b = pair.b;
+      p.n = c.n_G;
+      tangent_basis(p.n, p.t1, p.t2);
+      p.r_a = c.p_G - A.X_GB.translation();
+      p.r_b = c.p_G - B.X_GB.translation();
+      const auto inverse_mass_along = [&](const Eigen::Vector3d& u) {
+        return inv_m_[p.a] + inv_m_[p.b] + along(inv_I_G_[p.a], p.r_a.cross(u)) +
+               along(inv_I_G_[p.b], p.r_b.cross(u));
+      };
+      p.K_n = inverse_mass_along(p.n);
+      p.K_t1 = inverse_mass_along(p.t1);
+      p.K_t2 = inverse_mass_along(p.t2);
+      p.spring = spring;
+      p.restitution = restitution;
+      // the kinematic bodies are at the step's end already: take their motion out of the gap
+      const Eigen::Vector3d v_kinematic = (B.dynamic ? Eigen::Vector3d::Zero() : B.point_velocity(c.p_G)) -
+                                          (A.dynamic ? Eigen::Vector3d::Zero() : A.point_velocity(c.p_G));
+      p.s0 = -c.depth_m - h_s * v_kinematic.dot(p.n);
+      const Eigen::Vector3d v_rel = relative_velocity(p);
+      p.v_n_before = v_rel.dot(p.n);
+      const Eigen::Vector3d v_t = v_rel - p.v_n_before * p.n;
+      // the penalty force now weighs the pair's speed for eq. 15's test
+      const double N_now = normal_force_N(k, c.depth_m, p.v_n_before);
+      load_sum += N_now;
+      speed_weighted += N_now * v_t.norm();
+      n_sum += c.n_G;
+
+      StickAnchor anchor;
+      anchor.body_a = pair.a;
+      anchor.body_b = pair.b;
+      anchor.p_A = X_AG * c.p_G;
+      if (const StickAnchor* before = match_anchor(previous, c, anchor.p_A)) {
+        anchor.r_A = before->r_A;
+        anchor.r_B = before->r_B;
+        was_sliding = was_sliding || !before->sticking;
+        p.lambda_n = before->lambda_n;
+        const Eigen::Vector3d lambda_t_G = A.X_GB.linear() * before->lambda_t_A;
+        p.lambda_t = {lambda_t_G.dot(p.t1), lambda_t_G.dot(p.t2)};
+      } else {
+        anchor.r_A = anchor.p_A;
+        anchor.r_B = X_BG * c.p_G;
+      }
+      next_anchors_.push_back(anchor);
+      points_.push_back(p);
+    }
+    pair.end = points_.size();
+    pair.n_mean = n_sum.normalized();
+    // eq. 15: a sliding pair sticks again once slower than epsilon (anchors start over); a new
+    // or sticking pair sticks until its springs pull past the cap (inside the iterations)
+    const bool slow = load_sum > 0.0 ? speed_weighted / load_sum < params_.slip_speed_mps : true;
+    pair.sliding = was_sliding && !slow;
+    if (was_sliding) {
+      for (std::size_t j = pair.first; j < pair.end; ++j) {
+        StickAnchor& anchor = next_anchors_[j];
+        anchor.r_A = anchor.p_A;
+        anchor.r_B = X_BG * contacts[i + (j - pair.first)].p_G;
+      }
+    }
+    // the stick springs' stretch, the kinematic motion taken out as for the gap
+    for (std::size_t j = pair.first; j < pair.end; ++j) {
+      Point& p = points_[j];
+      const ContactPoint& c = contacts[i + (j - pair.first)];
+      const StickAnchor& anchor = next_anchors_[j];
+      const Eigen::Vector3d v_kinematic = (B.dynamic ? Eigen::Vector3d::Zero() : B.point_velocity(c.p_G)) -
+                                          (A.dynamic ? Eigen::Vector3d::Zero() : A.point_velocity(c.p_G));
+      const Eigen::Vector3d delta = B.X_GB * anchor.r_B - A.X_GB * anchor.r_A - h_s * v_kinematic;
+      p.delta_t = {delta.dot(p.t1), delta.dot(p.t2)};
+    }
+    if (pair.kinematic) {
+      // nothing moves in response: the penalty force at the step's end, in closed form (what a
+      // held object's grip is judged by)
+      Eigen::Vector3d trial_sum = Eigen::Vector3d::Zero();
+      double N_sum = 0.0;
+      for (std::size_t j = pair.first; j < pair.end; ++j) {
+        Point& p = points_[j];
+        const double N = normal_force_N(k, contacts[i + (j - pair.first)].depth_m, p.v_n_before);
+        p.lambda_n = N * h_s;
+        N_sum += N;
+        const Eigen::Vector3d v_rel = relative_velocity(p);
+        const Eigen::Vector2d v_t(v_rel.dot(p.t1), v_rel.dot(p.t2));
+        const Eigen::Vector2d stretch = p.delta_t + h_s * v_t;
+        p.lambda_t = N > 0.0 ? Eigen::Vector2d(-h_s * (k.k_pt * stretch + k.c_pt * v_t)) : Eigen::Vector2d::Zero();
+        trial_sum += p.lambda_t.x() * p.t1 + p.lambda_t.y() * p.t2;
+      }
+      if (pair.sliding || trial_sum.norm() > pair.mu.mu_s * N_sum * h_s) {
+        pair.sliding = true;
+        for (std::size_t j = pair.first; j < pair.end; ++j) {
+          Point& p = points_[j];
+          const Eigen::Vector3d v_rel = relative_velocity(p);
+          const Eigen::Vector2d v_t(v_rel.dot(p.t1), v_rel.dot(p.t2));
+          const Eigen::Vector2d dir = v_t.norm() > 0.0 ? Eigen::Vector2d(-v_t.normalized())
+                                                       : (p.lambda_t.norm() > 0.0 ? p.lambda_t.normalized() : Eigen::Vector2d::Zero());
+          p.lambda_t = pair.mu.mu_d * p.lambda_n * dir;
+        }
+      }
+    }
+    pairs_.push_back(pair);
+    i = end;
+  }
+}
+
+void SoftContactSolver::warm_start() {
+  for (const Pair& pair : pairs_) {
+    if (pair.kinematic) continue;
+    for (std::size_t i = pair.first; i < pair.end; ++i) {
+      Point& p = points_[i];
+      if (pair.sliding) p.lambda_t.setZero();  // (kinetic friction is found afresh)
+      apply_impulse(p, p.lambda_n * p.n + p.lambda_t.x() * p.t1 + p.lambda_t.y() * p.t2);
+    }
+  }
+}
+
+void SoftContactSolver::solve_normal(Point& p, bool use_bias) {
+  if (!(p.K_n > 0.0)) return;
+  const double v_n = relative_velocity(p).dot(p.n);
+  const double step = use_bias ? -(v_n + p.spring.beta * p.s0 + p.spring.gamma * p.lambda_n) / (p.K_n + p.spring.gamma)
+                               : -v_n / p.K_n;  // relax: rigid, keeps what the spring did
+  const double next = std::max(0.0, p.lambda_n + step);
+  apply_impulse(p, (next - p.lambda_n) * p.n);
+  p.lambda_n = next;
+}
+
+void SoftContactSolver::solve_friction(Pair& pair, bool use_bias) {
+  double load = 0.0;
+  for (std::size_t i = pair.first; i < pair.end; ++i) load += points_[i].lambda_n;
+  for (std::size_t i = pair.first; i < pair.end; ++i) {
+    Point& p = points_[i];
+    Eigen::Vector2d step = Eigen::Vector2d::Zero();
+    if (p.lambda_n <= 0.0) {
+      step = -p.lambda_t;  // an unloaded point holds nothing
+    } else {
+      const Eigen::Vector3d v_rel = relative_velocity(p);
+      const Eigen::Vector2d v_t(v_rel.dot(p.t1), v_rel.dot(p.t2));
+      const double g = p.spring.gamma;
+      if (!pair.sliding && use_bias) {
+        // the stick spring (eq. 16), implicit: same k_pt, c_pt as the normal
+        step.x() = -(v_t.x() + p.spring.beta * p.delta_t.x() + g * p.lambda_t.x()) / (p.K_t1 + g);
+        step.y() = -(v_t.y() + p.spring.beta * p.delta_t.y() + g * p.lambda_t.y()) / (p.K_t2 + g);
+      } else {
+        // sliding (eq. 17 on the end-of-step velocity), or relax: stop the tangential motion
+        step.x() = p.K_t1 > 0.0 ? -v_t.x() / p.K_t1 : 0.0;
+        step.y() = p.K_t2 > 0.0 ? -v_t.y() / p.K_t2 : 0.0;
+      }
+    }
+    apply_impulse(p, step.x() * p.t1 + step.y() * p.t2);
+    p.lambda_t += step;
+  }
+  // the patch's cone (eq. 16 over the pair): past mu_s sum(N) a sticking pair breaks loose and
+  // slides from here on in this step, at mu_d sum(N)
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t i = pair.first; i < pair.end; ++i) {
+    const Point& p = points_[i];
+    sum += p.lambda_t.x() * p.t1 + p.lambda_t.y() * p.t2;
+  }
+  const double size = sum.norm();
+  if (!pair.sliding && size > pair.mu.mu_s * load) pair.sliding = true;
+  const double cap = (pair.sliding ? pair.mu.mu_d : pair.mu.mu_s) * load;
+  if (size <= cap || !(size > 0.0)) return;
+  const double scale = cap / size;
+  for (std::size_t i = pair.first; i < pair.end; ++i) {
+    Point& p = points_[i];
+    const Eigen::Vector2d change = p.lambda_t * (scale - 1.0);
+    apply_impulse(p, change.x() * p.t1 + change.y() * p.t2);
+    p.lambda_t += change;
+  }
+}
+
+void SoftContactSolver::solve_rolling(Pair& pair) {
+  const double mu_roll = pair.mu.mu_roll_m, mu_spin = pair.mu.mu_spin_m;
+  if (!(mu_roll > 0.0) && !(mu_spin > 0.0)) return;
+  double load = 0.0;
+  for (std::size_t i = pair.first; i < pair.end; ++i) load += points_[i].lambda_n;
+  const Eigen::Matrix3d inv_I = inv_I_G_[pair.a] + inv_I_G_[pair.b];
+  const Eigen::Vector3d& n = pair.n_mean;
+  const Eigen::Vector3d w_rel = w_[pair.b] - w_[pair.a];
+  if (mu_roll > 0.0) {
+    Eigen::Vector3d u1, u2;
+    tangent_basis(n, u1, u2);
+    const double K1 = along(inv_I, u1), K2 = along(inv_I, u2);
+    const Eigen::Vector2d before = pair.lambda_roll;
+    Eigen::Vector2d next = before;
+    if (K1 > 0.0) next.x() -= w_rel.dot(u1) / K1;
+    if (K2 > 0.0) next.y() -= w_rel.dot(u2) / K2;
+    const double cap = mu_roll * load;
+    if (next.norm() > cap) next *= cap / next.norm();
+    const Eigen::Vector2d change = next - before;
+    apply_angular_impulse(pair.a, pair.b, change.x() * u1 + change.y() * u2);
+    pair.lambda_roll = next;
+  }
+  if (mu_spin > 0.0) {
+    const double K = along(inv_I, n);
+    if (K > 0.0) {
+      const double w_spin = (w_[pair.b] - w_[pair.a]).dot(n);
+      const double cap = mu_spin * load;
+      const double next = std::clamp(pair.lambda_spin - w_spin / K, -cap, cap);
+      apply_angular_impulse(pair.a, pair.b, (next - pair.lambda_spin) * n);
+      pair.lambda_spin = next;
+    }
+  }
+}
+
+void SoftContactSolver::restitution() {
+  // the relax pass took out the spring's push-out speed; the dashpot's own bounce goes back in
+  // (Box2D's b2ApplyRestitution): the approach speed times the dashpot's e, for an impact
+  const double threshold = params_.restitution_threshold_mps;
+  for (const Pair& pair : pairs_) {
+    if (pair.kinematic) continue;
+    for (std::size_t i = pair.first; i < pair.end; ++i) {
+      Point& p = points_[i];
+      if (!(p.K_n > 0.0) || p.v_n_before > -threshold || p.lambda_n <= 0.0) continue;
+      const double v_n = relative_velocity(p).dot(p.n);
+      const double next = std::max(0.0, p.lambda_n - (v_n + p.restitution * p.v_n_before) / p.K_n);
+      apply_impulse(p, (next - p.lambda_n) * p.n);
+      p.lambda_n = next;
+    }
+  }
+}
+
+void SoftContactSolver::store(const std::vector<ContactPoint>& contacts,
+                              const std::vector<ContactBody>& bodies, double h_s,
+                              std::vector<AppliedContact>& applied) {
+  applied.clear();
+  for (const Pair& pair : pairs_) {
+    const ContactBody& A = bodies[static_cast<std::size_t>(pair.a)];
+    const ContactBody& B = bodies[static_cast<std::size_t>(pair.b)];
+    const Eigen::Isometry3d X_BG = B.X_GB.inverse();
+    for (std::size_t i = pair.first; i < pair.end; ++i) {
+      const Point& p = points_[i];
+      const ContactPoint& c = contacts[i];
+      const Eigen::Vector3d lambda_t = p.lambda_t.x() * p.t1 + p.lambda_t.y() * p.t2;
+      applied.push_back({c, (p.lambda_n * p.n + lambda_t) / h_s, p.lambda_n / h_s, pair.sliding});
+      StickAnchor& anchor = next_anchors_[i];
+      anchor.sticking = !pair.sliding;
+      anchor.lambda_n = p.lambda_n;
+      anchor.lambda_t_A = A.X_GB.linear().transpose() * lambda_t;
+      // a sliding point's anchor follows it; an unloaded one starts over
+      if (pair.sliding || p.lambda_n <= 0.0) {
+        anchor.r_A = anchor.p_A;
+        anchor.r_B = X_BG * c.p_G;
+      }
+    }
+  }
+}
+
+}  // namespace vcockpit::physics
