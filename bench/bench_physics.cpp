@@ -146,12 +146,14 @@ void BM_MujocoStep(benchmark::State& state) {
 }
 
 // A pile of range(0) objects settled in its bin: with sleeping, stepped once every object sleeps;
-// without (range(1) == 0), stepped as long after the drop, every object awake at rest.
+// without (range(1) == 0), stepped as long after the drop, every object awake at rest. range(2):
+// 1 with the soft-constraint contacts (one solve a step), 0 with the penalty's substeps.
 void BM_PileStep(benchmark::State& state) {
   const int objects = static_cast<int>(state.range(0));
   const bool sleep = state.range(1) != 0;
   physics::Scene scene = pile_scene(objects);
   scene.sleep.enabled = sleep;
+  if (state.range(2) != 0) scene.contact.solver = physics::ContactSolver::kSoft;
   physics::World world(scene);
   constexpr double kSettle_s = 6.0;  // (the slowest ball stops rolling in 2-3 s)
   while (world.time_ns() < std::llround(kSettle_s * 1e9)) world.step();
@@ -181,9 +183,10 @@ void register_steps() {
     benchmark::RegisterBenchmark("BM_MujocoStep", BM_MujocoStep)
         ->Arg(loose)->Iterations(iterations)->Unit(benchmark::kMicrosecond);
   }
-  for (const int sleep : {1, 0})
-    benchmark::RegisterBenchmark("BM_PileStep", BM_PileStep)
-        ->Args({200, sleep})->Iterations(500)->Unit(benchmark::kMicrosecond);
+  for (const int soft : {0, 1})
+    for (const int sleep : {1, 0})
+      benchmark::RegisterBenchmark("BM_PileStep", BM_PileStep)
+          ->Args({200, sleep, soft})->Iterations(500)->Unit(benchmark::kMicrosecond);
 }
 
 }  // namespace
