@@ -467,7 +467,9 @@ physics::ContactParams parse_contact(const ConfigNode& node) {
                 [](const ConfigNode& n) { return int_in_range(n, 1, kMaxSolverIterations); });
   read_optional(node, "relax_iterations", c.relax_iterations,
                 [](const ConfigNode& n) { return int_in_range(n, 0, kMaxSolverIterations); });
-  read_optional(node, "restitution_threshold_mps", c.restitution_threshold_mps, non_negative);
+  // (0 would bounce every resting contact: its approach speed each step is g h)
+  read_optional(node, "restitution_threshold_mps", c.restitution_threshold_mps,
+                [](const ConfigNode& n) { return positive(n); });
   return c;
 }
 

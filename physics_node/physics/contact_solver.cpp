@@ -247,13 +247,19 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
         trial_sum += p.lambda_t.x() * p.t1 + p.lambda_t.y() * p.t2;
       }
       if (pair.sliding || trial_sum.norm() > pair.mu.mu_s * N_sum * h_s) {
+        // sliding on: against the motion (eq. 17); just broken loose: along the springs' pull,
+        // as the penalty path does
+        const bool broke_loose = !pair.sliding;
         pair.sliding = true;
         for (std::size_t j = pair.first; j < pair.end; ++j) {
           Point& p = points_[j];
           const Eigen::Vector3d v_rel = relative_velocity(p);
           const Eigen::Vector2d v_t(v_rel.dot(p.t1), v_rel.dot(p.t2));
-          const Eigen::Vector2d dir = v_t.norm() > 0.0 ? Eigen::Vector2d(-v_t.normalized())
-                                                       : (p.lambda_t.norm() > 0.0 ? p.lambda_t.normalized() : Eigen::Vector2d::Zero());
+          Eigen::Vector2d dir = Eigen::Vector2d::Zero();
+          if (broke_loose && p.lambda_t.norm() > 0.0)
+            dir = p.lambda_t.normalized();
+          else if (v_t.norm() > 0.0)
+            dir = -v_t.normalized();
           p.lambda_t = pair.mu.mu_d * p.lambda_n * dir;
         }
       }
@@ -304,20 +310,29 @@ void SoftContactSolver::solve_friction(Pair& pair, bool use_bias) {
         // sliding (eq. 17 on the end-of-step velocity), or relax: stop the tangential motion
         step.x() = p.K_t1 > 0.0 ? -v_t.x() / p.K_t1 : 0.0;
         step.y() = p.K_t2 > 0.0 ? -v_t.y() / p.K_t2 : 0.0;
+        if (pair.sliding) {
+          // eq. 17 point by point: at most mu_d N here (a sliding, spinning patch's points pull
+          // different ways, which a cap on their sum alone would never meet)
+          const Eigen::Vector2d next = p.lambda_t + step;
+          const double limit = pair.mu.mu_d * p.lambda_n;
+          if (next.norm() > limit) step = next * (limit / next.norm()) - p.lambda_t;
+        }
       }
     }
     apply_impulse(p, step.x() * p.t1 + step.y() * p.t2);
     p.lambda_t += step;
   }
+  if (pair.sliding) return;  // (each point capped above)
   // the patch's cone (eq. 16 over the pair): past mu_s sum(N) a sticking pair breaks loose and
-  // slides from here on in this step, at mu_d sum(N)
+  // slides from here on in this step, at mu_d sum(N); in the relax sweeps (rigid rows, which may
+  // ask for more than the springs pulled) it is only held to the cone
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (std::size_t i = pair.first; i < pair.end; ++i) {
     const Point& p = points_[i];
     sum += p.lambda_t.x() * p.t1 + p.lambda_t.y() * p.t2;
   }
   const double size = sum.norm();
-  if (!pair.sliding && size > pair.mu.mu_s * load) pair.sliding = true;
+  if (use_bias && size > pair.mu.mu_s * load) pair.sliding = true;
   const double cap = (pair.sliding ? pair.mu.mu_d : pair.mu.mu_s) * load;
   if (size <= cap || !(size > 0.0)) return;
   const double scale = cap / size;

@@ -157,6 +157,7 @@ World::World(Scene scene)
     X_GO_before_[c.body] = X_GO_[c.body];
   }
   state_.substeps = choose_substeps(false);  // for the initial state: the count the first step will use
+  if (scene_.contact.solver == ContactSolver::kSoft) state_.substeps = 1;
   const int body_count = object_count_ + static_cast<int>(hand_count) * kLinkCount;
   contact_bodies_.resize(body_count);
   F_G_.resize(body_count);

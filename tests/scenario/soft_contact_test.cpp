@@ -5,6 +5,7 @@
 //   - a box rests at m g / k_pair deep (eqs. 11-14), still;
 //   - on an incline below the friction angle a box stays put (the stick spring, eq. 16); above it
 //     it slides at g (sin - mu_d cos) (eq. 17);
+//   - a box spinning flat is braked by mu_d N at each corner (eq. 17 point by point);
 //   - ten boxes stacked come to rest, each at its load's depth, and fall asleep.
 
 #include <gtest/gtest.h>
@@ -120,6 +121,34 @@ TEST(SoftContact, OnAnInclineItStaysBelowTheFrictionAngleAndSlidesAtTheKineticRa
   const double expected = 9.81 * (std::sin(th) - 0.4 * std::cos(th));
   std::printf("40 deg, mu_d 0.4: slides at %.4f m/s^2 (closed form %.4f)\n", a, expected);
   EXPECT_NEAR(a, expected, 0.05 * expected);
+}
+
+// A box spinning flat on the floor: each corner slides at mu_d N / 4 against its motion (eq. 17
+// point by point), a torque of mu_d m g r with r = a / sqrt(2), so its spin falls at
+// mu_d m g r / I_z, I_z = m a^2 / 6, until it stops.
+TEST(SoftContact, ABoxSpinningFlatIsBrakedByKineticFrictionAtEachCorner) {
+  physics::Scene scene = soft_scene();
+  scene.sleep.enabled = false;
+  const double a = 0.1, m = 0.5, mu_d = 0.4;
+  physics::Material mat = material(5.0e4, 0.6, mu_d);
+  mat.mu_spin_m = 0.0;
+  mat.mu_roll_m = 0.0;
+  scene.objects.push_back(floor_box(mat));
+  scene.objects.push_back(dynamic_object("box", physics::Shape::box({a, a, a}), m,
+                                         at(0, 0, a / 2 - m * 9.81 / 2.5e4), mat));
+  physics::World world(scene);
+  for (int i = 0; i < 100; ++i) world.step();  // resting on its four corners
+  // (set spinning: the state's angular velocity about z)
+  physics::WorldState state = world.state();
+  state.bodies[1].w_G = Eigen::Vector3d(0, 0, 20.0);
+  world.restore(state);
+  for (int i = 0; i < 50; ++i) world.step();
+  const double w0 = world.bodies()[1].w_G.z();
+  for (int i = 0; i < 50; ++i) world.step();
+  const double alpha = (w0 - world.bodies()[1].w_G.z()) / 0.05;
+  const double expected = mu_d * 9.81 * (a / std::sqrt(2.0)) / (a * a / 6.0);
+  std::printf("spin falls at %.1f rad/s^2 (closed form %.1f)\n", alpha, expected);
+  EXPECT_NEAR(alpha, expected, 0.05 * expected);
 }
 
 TEST(SoftContact, TenStackedBoxesComeToRestAtTheirLoadsDepthsAndSleep) {
