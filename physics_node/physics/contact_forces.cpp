@@ -4,42 +4,17 @@
 #include <cmath>
 
 #include "common/assert.hpp"
+#include "physics_node/physics/anchor_match.hpp"
 #include "physics_node/physics/contact_sums.hpp"
 #include "physics_node/physics/normal_force.hpp"
 #include "physics_node/physics/rolling_resistance.hpp"
 
 namespace vcockpit::physics {
-namespace {
-
-bool pair_before(int a0, int b0, int a1, int b1) {
-  return a0 != a1 ? a0 < a1 : b0 < b1;
-}
-
-}  // namespace
 
 const StickAnchor* ContactForceModel::match_anchor(const std::vector<StickAnchor>& previous,
                                                    const ContactPoint& c,
                                                    const Eigen::Vector3d& p_A) {
-  auto first = std::lower_bound(previous.begin(), previous.end(), c,
-                                [](const StickAnchor& a, const ContactPoint& k) {
-                                  return pair_before(a.body_a, a.body_b, k.body_a, k.body_b);
-                                });
-  const StickAnchor* best = nullptr;
-  std::size_t best_index = 0;
-  double best_d2 = kAnchorMatch_m * kAnchorMatch_m;
-  for (auto it = first; it != previous.end() && it->body_a == c.body_a && it->body_b == c.body_b;
-       ++it) {
-    const auto index = static_cast<std::size_t>(it - previous.begin());
-    if (anchor_used_[index] != 0) continue;
-    const double d2 = (it->p_A - p_A).squaredNorm();
-    if (d2 < best_d2) {
-      best_d2 = d2;
-      best = &*it;
-      best_index = index;
-    }
-  }
-  if (best) anchor_used_[best_index] = 1;
-  return best;
+  return match_stick_anchor(previous, anchor_used_, c, p_A, ContactForceModel::kAnchorMatch_m);
 }
 
 void ContactForceModel::apply(const std::vector<ContactPoint>& contacts,

@@ -4,13 +4,12 @@
 #include <cmath>
 
 #include "common/assert.hpp"
+#include "physics_node/physics/anchor_match.hpp"
 #include "physics_node/physics/normal_force.hpp"
 #include "physics_node/physics/soft_constraint.hpp"
 
 namespace vcockpit::physics {
 namespace {
-
-bool pair_before(int a0, int b0, int a1, int b1) { return a0 != a1 ? a0 < a1 : b0 < b1; }
 
 // Two unit vectors completing n to a right-handed orthonormal basis.
 void tangent_basis(const Eigen::Vector3d& n, Eigen::Vector3d& t1, Eigen::Vector3d& t2) {
@@ -43,25 +42,7 @@ void SoftContactSolver::apply_angular_impulse(int a, int b, const Eigen::Vector3
 const StickAnchor* SoftContactSolver::match_anchor(const std::vector<StickAnchor>& previous,
                                                    const ContactPoint& c,
                                                    const Eigen::Vector3d& p_A) {
-  auto first = std::lower_bound(previous.begin(), previous.end(), c,
-                                [](const StickAnchor& a, const ContactPoint& k) {
-                                  return pair_before(a.body_a, a.body_b, k.body_a, k.body_b);
-                                });
-  const StickAnchor* best = nullptr;
-  std::size_t best_index = 0;
-  double best_d2 = ContactForceModel::kAnchorMatch_m * ContactForceModel::kAnchorMatch_m;
-  for (auto it = first; it != previous.end() && it->body_a == c.body_a && it->body_b == c.body_b; ++it) {
-    const auto index = static_cast<std::size_t>(it - previous.begin());
-    if (anchor_used_[index] != 0) continue;
-    const double d2 = (it->p_A - p_A).squaredNorm();
-    if (d2 < best_d2) {
-      best_d2 = d2;
-      best = &*it;
-      best_index = index;
-    }
-  }
-  if (best) anchor_used_[best_index] = 1;
-  return best;
+  return match_stick_anchor(previous, anchor_used_, c, p_A, ContactForceModel::kAnchorMatch_m);
 }
 
 void SoftContactSolver::solve(const std::vector<ContactPoint>& contacts,
@@ -98,28 +79,22 @@ void SoftContactSolver::solve(const std::vector<ContactPoint>& contacts,
       if (bodies[static_cast<std::size_t>(i)].dynamic) touched[static_cast<std::size_t>(i)] = 1;
   }
   warm_start();
-  for (int it = 0; it < params_.iterations; ++it) {
+  const auto sweep = [&](bool use_bias) {
     for (Pair& pair : pairs_) {
       if (pair.kinematic) continue;
-      for (std::size_t i = pair.first; i < pair.end; ++i) solve_normal(points_[i], true);
-      solve_friction(pair, true);
+      for (std::size_t i = pair.first; i < pair.end; ++i) solve_normal(points_[i], use_bias);
+      solve_friction(pair, use_bias);
       solve_rolling(pair);
     }
-  }
+  };
+  for (int it = 0; it < params_.iterations; ++it) sweep(true);
   // the positions move with these velocities (the spring's push-out included)
   for (std::size_t i = 0; i < count; ++i) {
     if (touched[i] == 0) continue;
     bodies[i].v_G = v_[i];
     bodies[i].w_G = w_[i];
   }
-  for (int it = 0; it < params_.relax_iterations; ++it) {
-    for (Pair& pair : pairs_) {
-      if (pair.kinematic) continue;
-      for (std::size_t i = pair.first; i < pair.end; ++i) solve_normal(points_[i], false);
-      solve_friction(pair, false);
-      solve_rolling(pair);
-    }
-  }
+  for (int it = 0; it < params_.relax_iterations; ++it) sweep(false);
   restitution();
   store(contacts, bodies, h_s, applied);
   std::swap(anchors, next_anchors_);
@@ -155,6 +130,11 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
     const SoftSpring spring = soft_from_spring(k.k_pt, k.c_pt, h_s);
     const Eigen::Isometry3d X_AG = A.X_GB.inverse();
     const Eigen::Isometry3d X_BG = B.X_GB.inverse();
+    // the kinematic bodies' part of the relative velocity at a point (they are at the step's end)
+    const auto kinematic_velocity = [&](const Eigen::Vector3d& p_G) -> Eigen::Vector3d {
+      return (B.dynamic ? Eigen::Vector3d::Zero() : B.point_velocity(p_G)) -
+             (A.dynamic ? Eigen::Vector3d::Zero() : A.point_velocity(p_G));
+    };
     bool was_sliding = false;
     double load_sum = 0.0, speed_weighted = 0.0;
     Eigen::Vector3d n_sum = Eigen::Vector3d::Zero();
@@ -177,8 +157,7 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
       p.spring = spring;
       p.restitution = restitution;
       // the kinematic bodies are at the step's end already: take their motion out of the gap
-      const Eigen::Vector3d v_kinematic = (B.dynamic ? Eigen::Vector3d::Zero() : B.point_velocity(c.p_G)) -
-                                          (A.dynamic ? Eigen::Vector3d::Zero() : A.point_velocity(c.p_G));
+      const Eigen::Vector3d v_kinematic = kinematic_velocity(c.p_G);
       p.s0 = -c.depth_m - h_s * v_kinematic.dot(p.n);
       const Eigen::Vector3d v_rel = relative_velocity(p);
       p.v_n_before = v_rel.dot(p.n);
@@ -225,8 +204,7 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
       Point& p = points_[j];
       const ContactPoint& c = contacts[i + (j - pair.first)];
       const StickAnchor& anchor = next_anchors_[j];
-      const Eigen::Vector3d v_kinematic = (B.dynamic ? Eigen::Vector3d::Zero() : B.point_velocity(c.p_G)) -
-                                          (A.dynamic ? Eigen::Vector3d::Zero() : A.point_velocity(c.p_G));
+      const Eigen::Vector3d v_kinematic = kinematic_velocity(c.p_G);
       const Eigen::Vector3d delta = B.X_GB * anchor.r_B - A.X_GB * anchor.r_A - h_s * v_kinematic;
       p.delta_t = {delta.dot(p.t1), delta.dot(p.t2)};
     }
