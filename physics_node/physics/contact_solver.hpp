@@ -76,8 +76,6 @@ class SoftContactSolver {
     Eigen::Vector3d n_mean = Eigen::Vector3d::UnitZ();  // the patch's normal (rolling, spinning)
     Eigen::Vector2d lambda_roll = Eigen::Vector2d::Zero();
     double lambda_spin = 0.0;
-    Eigen::Vector3d u1 = Eigen::Vector3d::UnitX(), u2 = Eigen::Vector3d::UnitY();
-    double K_roll1 = 0.0, K_roll2 = 0.0, K_spin = 0.0;
   };
 
   void prepare(const std::vector<ContactPoint>& contacts, const std::vector<ContactBody>& bodies,
