@@ -27,16 +27,51 @@ Eigen::Vector3d SoftContactSolver::relative_velocity(const Point& p) const {
 }
 
 void SoftContactSolver::apply_impulse(const Point& p, const Eigen::Vector3d& P) {
-  // P on b, -P on a; kinematic bodies have zero inverse mass and inertia
+  // P on b, -P on a; kinematic bodies and joint bodies have zero inverse mass and inertia
   v_[p.b] += inv_m_[p.b] * P;
   w_[p.b] += inv_I_G_[p.b] * p.r_b.cross(P);
   v_[p.a] -= inv_m_[p.a] * P;
   w_[p.a] -= inv_I_G_[p.a] * p.r_a.cross(P);
+  if (const int j = joint_of_[p.b]; j >= 0) push_joint(p.b, (*joints_)[j].along(p.p_G, P));
+  if (const int j = joint_of_[p.a]; j >= 0) push_joint(p.a, -(*joints_)[j].along(p.p_G, P));
 }
 
 void SoftContactSolver::apply_angular_impulse(int a, int b, const Eigen::Vector3d& L) {
   w_[b] += inv_I_G_[b] * L;
   w_[a] -= inv_I_G_[a] * L;
+  if (const int j = joint_of_[b]; j >= 0) push_joint(b, (*joints_)[j].along_couple(L));
+  if (const int j = joint_of_[a]; j >= 0) push_joint(a, -(*joints_)[j].along_couple(L));
+}
+
+void SoftContactSolver::push_joint(int body, double impulse) {
+  SolverJoint& joint = (*joints_)[static_cast<std::size_t>(joint_of_[body])];
+  joint.impulse += impulse;
+  joint.velocity(joint.qd(), v_[body], w_[body]);
+}
+
+double SoftContactSolver::inverse_mass_along(const Point& p, const Eigen::Vector3d& u) const {
+  double K = inv_m_[p.a] + inv_m_[p.b] + along(inv_I_G_[p.a], p.r_a.cross(u)) +
+             along(inv_I_G_[p.b], p.r_b.cross(u));
+  for (const int i : {p.a, p.b}) {
+    if (const int j = joint_of_[i]; j >= 0) {
+      const SolverJoint& joint = (*joints_)[static_cast<std::size_t>(j)];
+      const double J = joint.along(p.p_G, u);
+      K += joint.mobility * J * J;
+    }
+  }
+  return K;
+}
+
+double SoftContactSolver::inverse_inertia_along(int a, int b, const Eigen::Vector3d& u) const {
+  double K = along(inv_I_G_[a], u) + along(inv_I_G_[b], u);
+  for (const int i : {a, b}) {
+    if (const int j = joint_of_[i]; j >= 0) {
+      const SolverJoint& joint = (*joints_)[static_cast<std::size_t>(j)];
+      const double J = joint.along_couple(u);
+      K += joint.mobility * J * J;
+    }
+  }
+  return K;
 }
 
 const StickAnchor* SoftContactSolver::match_anchor(const std::vector<StickAnchor>& previous,
@@ -46,14 +81,17 @@ const StickAnchor* SoftContactSolver::match_anchor(const std::vector<StickAnchor
 }
 
 void SoftContactSolver::solve(const std::vector<ContactPoint>& contacts,
-                              std::vector<ContactBody>& bodies, const Eigen::Vector3d& gravity_mps2,
-                              double h_s, std::vector<AppliedContact>& applied,
+                              std::vector<ContactBody>& bodies, std::vector<SolverJoint>& joints,
+                              const Eigen::Vector3d& gravity_mps2, double h_s,
+                              std::vector<AppliedContact>& applied,
                               std::vector<StickAnchor>& anchors, std::vector<uint8_t>& touched) {
   const std::size_t count = bodies.size();
   v_.resize(count);
   w_.resize(count);
   inv_m_.resize(count);
   inv_I_G_.resize(count);
+  joint_of_.assign(count, -1);
+  joints_ = &joints;
   touched.assign(count, 0);
   // only the bodies in a contact are read
   for (const ContactPoint& c : contacts) {
@@ -72,6 +110,18 @@ void SoftContactSolver::solve(const std::vector<ContactPoint>& contacts,
       }
     }
   }
+  // a control's body moves on its joint: its rate without contacts (gravity and its mechanism
+  // are in it), which the contacts' impulses then change
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    SolverJoint& joint = joints[j];
+    const auto i = static_cast<std::size_t>(joint.body);
+    VCOCKPIT_ASSERT(bodies[i].dynamic, "a joint body responds to its contacts");
+    joint_of_[i] = static_cast<int>(j);
+    joint.impulse = 0.0;
+    inv_m_[i] = 0.0;
+    inv_I_G_[i].setZero();
+    joint.velocity(joint.qd(), v_[i], w_[i]);
+  }
   prepare(contacts, bodies, h_s, anchors);
   for (const Pair& pair : pairs_) {
     if (pair.kinematic) continue;
@@ -88,6 +138,7 @@ void SoftContactSolver::solve(const std::vector<ContactPoint>& contacts,
     }
   };
   for (int it = 0; it < params_.iterations; ++it) sweep(true);
+  for (SolverJoint& joint : joints) joint.move_impulse = joint.impulse;
   // the positions move with these velocities (the spring's push-out included)
   for (std::size_t i = 0; i < count; ++i) {
     if (touched[i] == 0) continue;
@@ -145,15 +196,12 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
       p.b = pair.b;
       p.n = c.n_G;
       tangent_basis(p.n, p.t1, p.t2);
+      p.p_G = c.p_G;
       p.r_a = c.p_G - A.X_GB.translation();
       p.r_b = c.p_G - B.X_GB.translation();
-      const auto inverse_mass_along = [&](const Eigen::Vector3d& u) {
-        return inv_m_[p.a] + inv_m_[p.b] + along(inv_I_G_[p.a], p.r_a.cross(u)) +
-               along(inv_I_G_[p.b], p.r_b.cross(u));
-      };
-      p.K_n = inverse_mass_along(p.n);
-      p.K_t1 = inverse_mass_along(p.t1);
-      p.K_t2 = inverse_mass_along(p.t2);
+      p.K_n = inverse_mass_along(p, p.n);
+      p.K_t1 = inverse_mass_along(p, p.t1);
+      p.K_t2 = inverse_mass_along(p, p.t2);
       p.spring = spring;
       p.restitution = restitution;
       // the kinematic bodies are at the step's end already: take their motion out of the gap
@@ -327,13 +375,13 @@ void SoftContactSolver::solve_rolling(Pair& pair) {
   if (!(mu_roll > 0.0) && !(mu_spin > 0.0)) return;
   double load = 0.0;
   for (std::size_t i = pair.first; i < pair.end; ++i) load += points_[i].lambda_n;
-  const Eigen::Matrix3d inv_I = inv_I_G_[pair.a] + inv_I_G_[pair.b];
   const Eigen::Vector3d& n = pair.n_mean;
   const Eigen::Vector3d w_rel = w_[pair.b] - w_[pair.a];
   if (mu_roll > 0.0) {
     Eigen::Vector3d u1, u2;
     tangent_basis(n, u1, u2);
-    const double K1 = along(inv_I, u1), K2 = along(inv_I, u2);
+    const double K1 = inverse_inertia_along(pair.a, pair.b, u1);
+    const double K2 = inverse_inertia_along(pair.a, pair.b, u2);
     const Eigen::Vector2d before = pair.lambda_roll;
     Eigen::Vector2d next = before;
     if (K1 > 0.0) next.x() -= w_rel.dot(u1) / K1;
@@ -345,7 +393,7 @@ void SoftContactSolver::solve_rolling(Pair& pair) {
     pair.lambda_roll = next;
   }
   if (mu_spin > 0.0) {
-    const double K = along(inv_I, n);
+    const double K = inverse_inertia_along(pair.a, pair.b, n);
     if (K > 0.0) {
       const double w_spin = (w_[pair.b] - w_[pair.a]).dot(n);
       const double cap = mu_spin * load;

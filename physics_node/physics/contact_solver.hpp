@@ -10,7 +10,10 @@
 // load-weighted speed is below epsilon. Rolling and spinning resistance are velocity rows capped at
 // mu_roll and mu_spin times the pair's load. docs/design/soft_contacts.md is the design.
 //
-// Bodies with inv_mass 0 (static, held, hand links, controls) are kinematic: their velocity is
+// A control's body moves on its joint (solver_joint.hpp): the solver finds the contacts' impulse
+// on it with its rate's answer to that impulse, and the control system then moves it.
+//
+// Bodies that are not dynamic (static, held, hand links) are kinematic: their velocity is
 // given and their pose is already at the step's end when the narrowphase ran; the separation of
 // a point is shifted back by their motion over the step, so that only the dynamic bodies' motion
 // closes it. A pair of two kinematic bodies is one closed-form update: the penalty force itself.
@@ -23,6 +26,7 @@
 #include "physics_node/physics/contact_forces.hpp"
 #include "physics_node/physics/friction_force.hpp"
 #include "physics_node/physics/soft_constraint.hpp"
+#include "physics_node/physics/solver_joint.hpp"
 
 namespace vcockpit::physics {
 
@@ -43,10 +47,13 @@ class SoftContactSolver {
   // contacts (gravity included: integrate positions with them), `applied` (each point's force
   // over the step, lambda / h, for eqs. 18-19 and the grasp rule) and `anchors` (stick anchors
   // with their impulses, for the next step's warm start; the previous step's in). `touched[b]`
-  // is set for every dynamic body in a contact (the others integrate on their own).
+  // is set for every dynamic body in a contact (the others integrate on their own). `joints`:
+  // the controls' bodies in a contact, which move on their joints (their ContactBody is dynamic;
+  // its mass and inertia are not used); out: each one's generalised impulse (move_impulse).
   void solve(const std::vector<ContactPoint>& contacts, std::vector<ContactBody>& bodies,
-             const Eigen::Vector3d& gravity_mps2, double h_s, std::vector<AppliedContact>& applied,
-             std::vector<StickAnchor>& anchors, std::vector<uint8_t>& touched);
+             std::vector<SolverJoint>& joints, const Eigen::Vector3d& gravity_mps2, double h_s,
+             std::vector<AppliedContact>& applied, std::vector<StickAnchor>& anchors,
+             std::vector<uint8_t>& touched);
   // After solve(): a touched body's v_G, w_G in `bodies` are what its position moves with (the
   // springs' push-out in them); these are its velocities at the step's end.
   const Eigen::Vector3d& v_end(int body) const { return v_[static_cast<std::size_t>(body)]; }
@@ -57,6 +64,7 @@ class SoftContactSolver {
     int a = -1, b = -1;
     Eigen::Vector3d n = Eigen::Vector3d::UnitZ(), t1 = Eigen::Vector3d::UnitX(),
                     t2 = Eigen::Vector3d::UnitY();
+    Eigen::Vector3d p_G = Eigen::Vector3d::Zero();  // where it acts
     Eigen::Vector3d r_a = Eigen::Vector3d::Zero(), r_b = Eigen::Vector3d::Zero();
     double s0 = 0.0;  // separation (m, < 0 overlapping), shifted back by the kinematic motion
     double K_n = 0.0, K_t1 = 0.0, K_t2 = 0.0;  // inverse effective masses
@@ -91,6 +99,11 @@ class SoftContactSolver {
   Eigen::Vector3d relative_velocity(const Point& p) const;
   void apply_impulse(const Point& p, const Eigen::Vector3d& P);
   void apply_angular_impulse(int a, int b, const Eigen::Vector3d& L);
+  // a generalised impulse on joint body `body`'s joint; its velocity follows
+  void push_joint(int body, double impulse);
+  // a point's inverse effective mass along u, and the pair's for a couple about u
+  double inverse_mass_along(const Point& p, const Eigen::Vector3d& u) const;
+  double inverse_inertia_along(int a, int b, const Eigen::Vector3d& u) const;
   const StickAnchor* match_anchor(const std::vector<StickAnchor>& previous, const ContactPoint& c,
                                   const Eigen::Vector3d& p_A);
 
@@ -100,6 +113,8 @@ class SoftContactSolver {
   std::vector<Eigen::Vector3d> v_, w_;
   std::vector<double> inv_m_;
   std::vector<Eigen::Matrix3d> inv_I_G_;
+  std::vector<int> joint_of_;  // per body: its index in joints_, -1
+  std::vector<SolverJoint>* joints_ = nullptr;
   std::vector<Point> points_;
   std::vector<Pair> pairs_;
   std::vector<StickAnchor> next_anchors_;

@@ -167,8 +167,8 @@ SpringDamperState spring_damper_step(double M, double c, double k, double F, dou
   return {x_eq + y, v};
 }
 
-void integrate_control(const ControlSpec& c, double M, double Q_ext, double dt_s,
-                       uint32_t gates_open, ControlState& s) {
+ControlStepFree free_control_step(const ControlSpec& c, double M, double Q_ext, double dt_s,
+                                  const ControlState& s) {
   // the spring and damper exactly (a released button returns as its mass-spring-damper does, at
   // any step), the rest of the generalised force held over the substep
   const double rest = spring_rest(c, s);
@@ -176,7 +176,7 @@ void integrate_control(const ControlSpec& c, double M, double Q_ext, double dt_s
   // Coulomb friction: a control at rest stays while the net force is within it; a moving one
   // feels it against its motion, and stops rather than turn back within the substep
   const double net_at_rest = Q - c.stiffness * (s.q - rest);
-  if (s.qd == 0.0 && std::abs(net_at_rest) <= c.friction) return;
+  if (s.qd == 0.0 && std::abs(net_at_rest) <= c.friction) return {s.q, 0.0, false};
   const double direction = s.qd != 0.0 ? sign(s.qd) : sign(net_at_rest);
   Q -= direction * c.friction;
   // a detent's restoring slope joins the spring, integrated exactly too: held over the substep
@@ -188,11 +188,21 @@ void integrate_control(const ControlSpec& c, double M, double Q_ext, double dt_s
       spring_damper_step(M, c.damping, k, Q - c.stiffness * (s.q - rest), 0.0, s.qd, dt_s);
   double qd = next.v;
   if (c.friction > 0.0 && sign(qd) == -direction) qd = 0.0;
-  const double q_free = s.q + next.x;
-  const double q = reachable_q(c, s.q, q_free, gates_open);
-  if (q != q_free) qd = 0.0;  // a stop or a gate: inelastic
+  return {s.q + next.x, qd, true};
+}
+
+void integrate_control(const ControlSpec& c, double M, double Q_ext, double dt_s,
+                       uint32_t gates_open, ControlState& s) {
+  const ControlStepFree next = free_control_step(c, M, Q_ext, dt_s, s);
+  if (!next.moved) return;
+  const double q = reachable_q(c, s.q, next.q, gates_open);
+  s.qd = q != next.q ? 0.0 : next.qd;  // a stop or a gate: inelastic
   s.q = q;
-  s.qd = qd;
+}
+
+double control_travel_per_force(const ControlSpec& c, double M, const ControlState& s, double dt_s) {
+  const double k = c.stiffness + std::max(0.0, mechanism_stiffness(c, s.q));
+  return spring_damper_step(M, c.damping, k, 1.0, 0.0, 0.0, dt_s).x;
 }
 
 bool update_position(const ControlSpec& c, ControlState& s) {

@@ -165,6 +165,16 @@ struct SpringDamperState {
 SpringDamperState spring_damper_step(double M, double c, double k, double F, double x0, double v0,
                                      double t);
 
+// One substep of the joint's motion law before its stops and gates: where the coordinate goes
+// and its rate then; `moved` false when Coulomb friction holds it at rest (q, 0).
+struct ControlStepFree {
+  double q = 0.0;
+  double qd = 0.0;
+  bool moved = false;
+};
+ControlStepFree free_control_step(const ControlSpec& c, double M, double Q_ext, double dt_s,
+                                  const ControlState& s);
+
 // One substep of the joint's motion law with generalised force Q_ext (contacts and gravity) and
 // joint inertia M: the spring and damper exactly, Coulomb friction (a control at rest stays while
 // the net force is within it; a moving one stops rather than turn back), then the travel limits
@@ -172,6 +182,12 @@ SpringDamperState spring_damper_step(double M, double c, double k, double F, dou
 // the gates a grasping hand has lifted the lever over (bit g).
 void integrate_control(const ControlSpec& c, double M, double Q_ext, double dt_s,
                        uint32_t gates_open, ControlState& s);
+
+// How far the coordinate goes over dt_s per unit generalised force held over it from state s,
+// the spring and damper (and a detent's slope) taken exactly, as integrate_control takes them:
+// dt^2 / (2 M) for a bare joint. Linear in the force; friction, stops and gates left out. The soft
+// contact solver couples a control's body through it (solver_joint.hpp).
+double control_travel_per_force(const ControlSpec& c, double M, const ControlState& s, double dt_s);
 
 // q clamped to the travel, and kept on its side of every closed gate that lies between q_from
 // and it: what a grasped or commanded control can reach from q_from.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include "common/assert.hpp"
 #include "physics_node/physics/contact_sums.hpp"
@@ -25,6 +26,7 @@ ControlSystem::ControlSystem(const Scene& scene, WorldState& state)
   commanded_.assign(count_, -1);
   at_rest_.assign(count_, 0);
   push_Q_.assign(count_, 0.0);
+  contact_Q_.assign(count_, 0.0);
   for (int ci = 0; ci < count_; ++ci) {
     const ControlSpec& c = scene_.controls[ci];
     VCOCKPIT_ASSERT(c.body >= 0 && c.body < object_count_ && scene_.objects[c.body].control == ci &&
@@ -138,41 +140,99 @@ void ControlSystem::integrate(const std::vector<Eigen::Vector3d>& F_G_bodies,
                               const std::vector<Eigen::Vector3d>& M_G_bodies, double dt_s) {
   for (int ci = 0; ci < count_; ++ci) {
     const ControlSpec& c = scene_.controls[ci];
-    BodyState& body = state_.bodies[c.body];
+    const BodyState& body = state_.bodies[c.body];
     if (body.held()) continue;  // moved with the hand (move_held)
-    const ObjectSpec& o = scene_.objects[c.body];
     // a control its last substep left where it was, at rest, with nothing touching it now, stays
     // there exactly (the same inputs give the same step): most of a cockpit's controls, always
     const bool untouched = F_G_bodies[c.body].isZero(0.0) && M_G_bodies[c.body].isZero(0.0);
     if (untouched && at_rest_[ci] != 0) continue;
     // eqs. 18-19 on the body, gravity included, projected onto the joint
+    const ObjectSpec& o = scene_.objects[c.body];
     const Eigen::Vector3d F_G = total_force_G(F_G_bodies[c.body], o.mass_kg, scene_.gravity_mps2);
-    const double Q = generalised_force(c, body.X_GO.translation(), F_G, M_G_bodies[c.body]);
-    ControlState& s = state_.controls[ci];
-    const double q_before = s.q;
-    integrate_control(c, inertia_[ci], Q, dt_s, 0u, s);
-    at_rest_[ci] = untouched && s.q == q_before && s.qd == 0.0 ? 1 : 0;
-    if (s.q != q_before || s.qd != 0.0 || body.v_G.squaredNorm() + body.w_G.squaredNorm() != 0.0)
-      place(ci);
-    // pushed: the hand's force drives the motion (a button that springs back out against a
-    // withdrawing fingertip is returned by its spring), or drove it and the control goes on the
-    // same way (a toggle snapping over once the finger has pushed it past its centre)
-    if (push_link_[ci] >= 0 && push_Q_[ci] * s.qd > 0.0) {
-      s.push_hand = push_hand_[ci];
-      s.push_link = push_link_[ci];
-      s.push_direction = s.qd > 0.0 ? 1 : -1;
-    } else if (s.push_direction * s.qd <= 0.0) {
-      s.push_hand = -1;
-      s.push_link = -1;
-      s.push_direction = 0;
+    advance(ci, generalised_force(c, body.X_GO.translation(), F_G, M_G_bodies[c.body]), untouched,
+            dt_s);
+  }
+}
+
+void ControlSystem::solver_joints(const std::vector<ContactPoint>& contacts, double dt_s,
+                                  std::vector<SolverJoint>& joints) {
+  joints.clear();
+  for (const ContactPoint& contact : contacts) {
+    for (const int object : {contact.body_a, contact.body_b}) {
+      if (object >= object_count_) continue;
+      const int ci = scene_.objects[static_cast<std::size_t>(object)].control;
+      if (ci < 0 || state_.bodies[object].held()) continue;
+      const auto taken = [object](const SolverJoint& j) { return j.body == object; };
+      if (std::any_of(joints.begin(), joints.end(), taken)) continue;  // (a few at a time)
+      const ControlSpec& c = scene_.controls[ci];
+      const ControlState& s = state_.controls[ci];
+      const ObjectSpec& o = scene_.objects[static_cast<std::size_t>(object)];
+      const BodyState& body = state_.bodies[object];
+      SolverJoint joint;
+      joint.body = object;
+      joint.revolute = c.joint == JointKind::kRevolute;
+      joint.axis_G = joint_axis_G(c);
+      joint.origin_G = joint_origin_G(c);
+      joint.centroid_G = body.X_GO.translation();
+      // its mean rate over the step under gravity and its mechanism alone, and how a generalised
+      // impulse changes it (solver_joint.hpp). Its stops are the rate's bounds, not part of the
+      // free rate: a toggle its snap holds against a stop moves only once a push beats the snap.
+      const Eigen::Vector3d weight_G = o.mass_kg * scene_.gravity_mps2;
+      const ControlStepFree free = free_control_step(
+          c, inertia_[ci], generalised_force(c, joint.centroid_G, weight_G, Eigen::Vector3d::Zero()), dt_s, s);
+      joint.qd_free = (free.q - s.q) / dt_s;
+      joint.mobility = control_travel_per_force(c, inertia_[ci], s, dt_s) / (dt_s * dt_s);
+      const double inf = std::numeric_limits<double>::infinity();
+      joint.qd_min = (reachable_q(c, s.q, -inf, 0u) - s.q) / dt_s;
+      joint.qd_max = (reachable_q(c, s.q, inf, 0u) - s.q) / dt_s;
+      joints.push_back(joint);
     }
-    if (s.push_direction != 0) {
-      note_position(ci, ControlCause::kPushed, hand_ids_[static_cast<std::size_t>(s.push_hand)],
-                    s.push_link);
-    } else {
-      note_position(ci, touched_[ci] != 0 ? ControlCause::kObject : ControlCause::kMechanism, -1,
-                    -1);
-    }
+  }
+}
+
+void ControlSystem::integrate_soft(const std::vector<SolverJoint>& joints, double dt_s) {
+  std::fill(contact_Q_.begin(), contact_Q_.end(), 0.0);
+  for (const SolverJoint& joint : joints)
+    contact_Q_[scene_.objects[static_cast<std::size_t>(joint.body)].control] = joint.move_impulse / dt_s;
+  for (int ci = 0; ci < count_; ++ci) {
+    const ControlSpec& c = scene_.controls[ci];
+    const BodyState& body = state_.bodies[c.body];
+    if (body.held()) continue;  // moved with the hand (move_held)
+    const bool untouched = contact_Q_[ci] == 0.0;
+    if (untouched && at_rest_[ci] != 0) continue;
+    const ObjectSpec& o = scene_.objects[c.body];
+    const Eigen::Vector3d weight_G = o.mass_kg * scene_.gravity_mps2;
+    advance(ci, contact_Q_[ci] + generalised_force(c, body.X_GO.translation(), weight_G, Eigen::Vector3d::Zero()),
+            untouched, dt_s);
+  }
+}
+
+void ControlSystem::advance(int ci, double Q, bool untouched, double dt_s) {
+  const ControlSpec& c = scene_.controls[ci];
+  const BodyState& body = state_.bodies[c.body];
+  ControlState& s = state_.controls[ci];
+  const double q_before = s.q;
+  integrate_control(c, inertia_[ci], Q, dt_s, 0u, s);
+  at_rest_[ci] = untouched && s.q == q_before && s.qd == 0.0 ? 1 : 0;
+  if (s.q != q_before || s.qd != 0.0 || body.v_G.squaredNorm() + body.w_G.squaredNorm() != 0.0)
+    place(ci);
+  // pushed: the hand's force drives the motion (a button that springs back out against a
+  // withdrawing fingertip is returned by its spring), or drove it and the control goes on the
+  // same way (a toggle snapping over once the finger has pushed it past its centre)
+  if (push_link_[ci] >= 0 && push_Q_[ci] * s.qd > 0.0) {
+    s.push_hand = push_hand_[ci];
+    s.push_link = push_link_[ci];
+    s.push_direction = s.qd > 0.0 ? 1 : -1;
+  } else if (s.push_direction * s.qd <= 0.0) {
+    s.push_hand = -1;
+    s.push_link = -1;
+    s.push_direction = 0;
+  }
+  if (s.push_direction != 0) {
+    note_position(ci, ControlCause::kPushed, hand_ids_[static_cast<std::size_t>(s.push_hand)],
+                  s.push_link);
+  } else {
+    note_position(ci, touched_[ci] != 0 ? ControlCause::kObject : ControlCause::kMechanism, -1, -1);
   }
 }
 

@@ -9,6 +9,9 @@
 //                 hands' generalised force on it, or another object touching it;
 //   integrate     the free motion of each control no hand holds (eqs. 18-19 projected onto the
 //                 joint, then its mechanism), the body placed from the coordinate;
+//   solver_joints for the soft contact solver: each free control's body in a contact as a body
+//                 on its joint (solver_joint.hpp); integrate_soft then moves them with the
+//                 impulses the solver found;
 //   move_held     a held control follows its hand projected onto the joint (eq. 29 restricted);
 //   after_grasp   a grasp takes the hand's pose and the coordinate as the projection's
 //                 reference; a release leaves the control with the hand's velocity along it.
@@ -25,6 +28,7 @@
 #include "physics_node/physics/grasp.hpp"
 #include "physics_node/physics/grasp_tracker.hpp"
 #include "physics_node/physics/scene.hpp"
+#include "physics_node/physics/solver_joint.hpp"
 #include "physics_node/physics/world_state.hpp"
 
 namespace vcockpit::physics {
@@ -54,6 +58,13 @@ class ControlSystem {
   // `F_G`, `M_G`: the substep's contact forces per body (the objects first).
   void integrate(const std::vector<Eigen::Vector3d>& F_G, const std::vector<Eigen::Vector3d>& M_G,
                  double dt_s);
+  // The controls no hand holds whose bodies are in `contacts`, as the soft solver's joints for a
+  // step of dt_s (`joints` cleared first).
+  void solver_joints(const std::vector<ContactPoint>& contacts, double dt_s,
+                     std::vector<SolverJoint>& joints);
+  // After the soft solver: each free control moved over dt_s by gravity, its mechanism and the
+  // generalised impulse its joint got (none for a control not in `joints`).
+  void integrate_soft(const std::vector<SolverJoint>& joints, double dt_s);
   // Control `control`, held by hand index `hand` whose wrist is at X_GH and holds the control's
   // body at p_held_H (the translation of its X_HO).
   void move_held(int control, int hand, const Eigen::Isometry3d& X_GH,
@@ -77,6 +88,9 @@ class ControlSystem {
 
  private:
   void place(int control);
+  // the free motion of control `control` under generalised force Q (contacts and gravity);
+  // `untouched`: no contact force on it
+  void advance(int control, double Q, bool untouched, double dt_s);
   void note_position(int control, ControlCause cause, int hand_id, int link);
 
   const Scene& scene_;
@@ -96,6 +110,7 @@ class ControlSystem {
   std::vector<uint8_t> touched_;  // ... touched by another object
   std::vector<int> commanded_;    // the position commanded since the last step, -1
   std::vector<uint8_t> at_rest_;  // its last free substep changed nothing
+  std::vector<double> contact_Q_;  // soft solver: the contacts' generalised force of the step
   std::vector<ControlEvent> events_;
 };
 

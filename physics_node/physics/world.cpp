@@ -100,10 +100,6 @@ World::World(Scene scene)
       controls_(scene_, state_) {
   if (scene_.contact.max_substeps < 1 || !(scene_.step_s > 0.0))
     throw std::invalid_argument("World: the step and max_substeps must be positive");
-  if (scene_.contact.solver == ContactSolver::kSoft && !scene_.controls.empty())
-    throw std::invalid_argument(
-        "World: contact.solver soft does not drive controls yet (their joints are not solver "
-        "bodies): use the penalty solver for a scene with controls");
   const std::size_t hand_count = scene_.hands.size();
   if (hand_count > kMaxHands) throw std::invalid_argument("World: more hands than kMaxHands");
   for (std::size_t a = 0; a < hand_count; ++a)
@@ -167,6 +163,7 @@ World::World(Scene scene)
   applied_.reserve(256);
   events_.reserve(16);
   state_.anchors.reserve(256);
+  joints_.reserve(scene_.controls.size());
 }
 
 World::~World() = default;
@@ -454,10 +451,14 @@ void World::substep(double dt_s, double alpha, int remaining, bool skip_held_han
     {
       StageTimer timer(stage_times_, Stage::kForces);
       build_contact_bodies();
-      soft_.solve(contacts_, contact_bodies_, scene_.gravity_mps2, dt_s, applied_, state_.anchors, touched_);
+      if (!controls_.empty()) controls_.solver_joints(contacts_, dt_s, joints_);
+      soft_.solve(contacts_, contact_bodies_, joints_, scene_.gravity_mps2, dt_s, applied_,
+                  state_.anchors, touched_);
+      if (!controls_.empty()) controls_.find_pushers(applied_, collision_);
     }
     StageTimer timer(stage_times_, Stage::kIntegrate);
     integrate_soft(dt_s);
+    if (!controls_.empty()) controls_.integrate_soft(joints_, dt_s);
     return;
   }
   {

@@ -222,6 +222,7 @@ class World {
   ContactForceModel forces_;
   SoftContactSolver soft_;        // contact.solver: soft
   std::vector<uint8_t> touched_;  // soft: the dynamic bodies the solver moved this step
+  std::vector<SolverJoint> joints_;  // soft: the controls in a contact, as the solver's joints
   GraspTracker grasp_tracker_;
   BodyCheck body_check_;
   SleepTracker sleep_;
