@@ -10,8 +10,9 @@
 
 #include <array>
 #include <map>
-#include <string>
 #include <memory>
+#include <string>
+#include <tuple>
 
 #include "bench/bench_scenes.hpp"
 #include "bench/mujoco_scene.hpp"
@@ -29,22 +30,24 @@ struct HeldWorld {
   physics::HandInput hand;
 };
 
-physics::Scene scene_with(int loose_objects, bool sleep) {
+physics::Scene scene_with(int loose_objects, bool sleep, bool soft) {
   physics::Scene scene = loose_objects == 0 ? cockpit_scene() : crowded_cockpit_scene(loose_objects);
   scene.sleep.enabled = sleep;
+  if (soft) scene.contact.solver = physics::ContactSolver::kSoft;
   return scene;
 }
 
 // One per scene (and sleeping or not) for the whole run: the lead-in (4 s of the glove log) is
 // paid once.
-HeldWorld& held_world(int loose_objects, bool sleep = true) {
-  static std::map<std::pair<int, bool>, HeldWorld> worlds;
-  auto it = worlds.find({loose_objects, sleep});
+HeldWorld& held_world(int loose_objects, bool sleep = true, bool soft = false) {
+  static std::map<std::tuple<int, bool, bool>, HeldWorld> worlds;
+  const auto key = std::make_tuple(loose_objects, sleep, soft);
+  auto it = worlds.find(key);
   if (it == worlds.end()) {
     HeldWorld held;
-    held.world = std::make_unique<physics::World>(scene_with(loose_objects, sleep));
+    held.world = std::make_unique<physics::World>(scene_with(loose_objects, sleep, soft));
     held.hand = step_to_hold(*held.world);
-    it = worlds.emplace(std::make_pair(loose_objects, sleep), std::move(held)).first;
+    it = worlds.emplace(key, std::move(held)).first;
   }
   return it->second;
 }
@@ -101,10 +104,12 @@ BENCHMARK(BM_Collision)->Arg(0)->Arg(10)->Arg(100)->Arg(500)->Iterations(2000)
     ->Unit(benchmark::kMicrosecond);
 
 // One full world step (all substeps and the grasp test) with the hand holding the cup.
-// range(1): 1 with sleeping (the default), 0 with every object kept awake.
+// range(1): 1 with sleeping (the default), 0 with every object kept awake. range(2): 1 with the
+// soft-constraint contacts (one solve a step, the controls on their joints in it), 0 with the
+// penalty's substeps.
 void BM_WorldStep(benchmark::State& state) {
   const int loose = static_cast<int>(state.range(0));
-  HeldWorld& held = held_world(loose, state.range(1) != 0);
+  HeldWorld& held = held_world(loose, state.range(1) != 0, state.range(2) != 0);
   physics::World& world = *held.world;
   StepTiming timing(static_cast<std::size_t>(state.max_iterations));
   std::array<int64_t, physics::kStageCount> stage_ns{};
@@ -176,10 +181,12 @@ void BM_PileStep(benchmark::State& state) {
 void register_steps() {
   for (const int loose : {0, 10, 100, 500}) {
     const int64_t iterations = loose >= 500 ? 500 : loose >= 100 ? 1000 : 3000;
-    benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
-        ->Args({loose, 1})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
-    benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
-        ->Args({loose, 0})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
+    for (const int soft : {0, 1}) {
+      benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
+          ->Args({loose, 1, soft})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
+      benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
+          ->Args({loose, 0, soft})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
+    }
     benchmark::RegisterBenchmark("BM_MujocoStep", BM_MujocoStep)
         ->Arg(loose)->Iterations(iterations)->Unit(benchmark::kMicrosecond);
   }

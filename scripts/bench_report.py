@@ -68,9 +68,10 @@ SCENES = {0: "cockpit, right hand holding the cup (5 loose objects, 11 controls,
 
 
 def physics_rows(gbench):
-    """BM_WorldStep/N/1 (sleeping), BM_WorldStep/N/0 (every object awake) and BM_MujocoStep/N side
-    by side, the pile (BM_PileStep/N/S), plus the micro-benchmarks."""
-    ours, awake, mujoco, collision, pile, fk = {}, {}, {}, {}, {}, None
+    """BM_WorldStep/N/1/C (sleeping), BM_WorldStep/N/0/C (every object awake), C 0 for the penalty
+    contacts and 1 for the soft ones, and BM_MujocoStep/N side by side; the pile
+    (BM_PileStep/N/S/C); plus the micro-benchmarks."""
+    ours, awake, soft, soft_awake, mujoco, collision, pile, fk = {}, {}, {}, {}, {}, {}, {}, None
     for b in gbench["benchmarks"]:
         if b.get("run_type", "iteration") != "iteration":
             continue
@@ -78,15 +79,20 @@ def physics_rows(gbench):
         kind = parts[0]
         arg = int(parts[1]) if len(parts) > 1 and parts[1].isdigit() else None
         arg2 = int(parts[2]) if len(parts) > 2 and parts[2].isdigit() else None
+        arg3 = int(parts[3]) if len(parts) > 3 and parts[3].isdigit() else 0
         figures = {k: b[k] for k in ("p50_us", "p99_us", "max_us", "substeps", "contacts",
                                      "dynamic_objects", "pairs", "cup_held", "asleep",
                                      "lowest_z_mm") if k in b}
         mean_us = b["real_time"] * {"ns": 1e-3, "us": 1.0, "ms": 1e3, "s": 1e6}[b["time_unit"]]
         figures["mean_us"] = mean_us
         if kind == "BM_WorldStep":
-            (awake if arg2 == 0 else ours)[arg] = figures
+            if arg3 == 0:
+                (awake if arg2 == 0 else ours)[arg] = figures
+            else:
+                (soft_awake if arg2 == 0 else soft)[arg] = figures
         elif kind == "BM_PileStep":
-            pile["asleep" if arg2 != 0 else "awake"] = dict(figures, objects=arg)
+            key = "asleep" if arg2 != 0 else "awake"
+            pile[key + ("_soft" if arg3 != 0 else "")] = dict(figures, objects=arg)
         elif kind == "BM_MujocoStep":
             mujoco[arg] = figures
         elif kind == "BM_Collision":
@@ -95,12 +101,15 @@ def physics_rows(gbench):
             fk = {"mean_ns": mean_us * 1e3}
     rows = []
     for n in sorted(ours):
-        o, m = ours[n], mujoco.get(n)
+        o, m, so = ours[n], mujoco.get(n), soft.get(n)
         rows.append({"loose_objects": n, "scene": SCENES.get(n, f"{n} loose objects"),
                      "dynamic_objects": int(o.get("dynamic_objects", 0)),
                      "ours": o, "ours_awake": awake.get(n), "mujoco": m,
                      "ratio_p50": o["p50_us"] / m["p50_us"] if m else None,
                      "ratio_p99": o["p99_us"] / m["p99_us"] if m else None,
+                     "ours_soft": so, "ours_soft_awake": soft_awake.get(n),
+                     "ratio_soft_p50": so["p50_us"] / m["p50_us"] if m and so else None,
+                     "ratio_soft_p99": so["p99_us"] / m["p99_us"] if m and so else None,
                      "collision": collision.get(n)})
     return rows, fk, pile
 
@@ -178,6 +187,12 @@ def main():
                                f"{r['ratio_p99']:.2f}x"
                                for r in rows if r["ratio_p50"] is not None),
          "met": not slower and bool(rows)},
+        {"target": "... the same with the soft-constraint contacts (`contact: {solver: soft}`)",
+         "measured": ", ".join(f"{r['dynamic_objects']} dynamic: {r['ratio_soft_p50']:.2f}x / "
+                               f"{r['ratio_soft_p99']:.2f}x"
+                               for r in rows if r["ratio_soft_p50"] is not None) or "not run",
+         "met": bool(rows) and all(r["ratio_soft_p50"] is not None and r["ratio_soft_p50"] <= 1.0
+                                   and r["ratio_soft_p99"] <= 1.0 for r in rows)},
         {"target": "500 loose objects: one step p99 under 2 ms",
          "measured": (f"p50 {row500['ours']['p50_us']:.0f} us, p99 {row500['ours']['p99_us']:.0f} us "
                       f"({row500['ours'].get('asleep', 0):.0f} asleep); every object awake: p50 "
@@ -282,6 +297,24 @@ def main():
                   f"{r['ratio_p50']:.2f}x / {r['ratio_p99']:.2f}x |" if r["ratio_p50"] is not None else
                   f"| {r['scene']} | ... | | {o['p50_us']:.1f} / {o['p99_us']:.1f} | | | | | |")
     md.append("")
+    if any(r.get("ours_soft") for r in rows):
+        md.append("The same scenes with `contact: {solver: soft}` (the same springs as soft "
+                  "constraints, one solve a step, the controls as bodies on their joints; "
+                  "docs/ARCHITECTURE.md, \"Soft-constraint contacts\"):\n")
+        md.append("| scene | asleep | ours p50 / p99 (us) | contacts | every object awake: "
+                  "p50 / p99 (us) | ours / MuJoCo (p50 / p99) | cup held |")
+        md.append("|---|---|---|---|---|---|---|")
+        for r in rows:
+            so, sa = r.get("ours_soft"), r.get("ours_soft_awake") or {}
+            if not so:
+                continue
+            awake_text = f"{sa['p50_us']:.1f} / {sa['p99_us']:.1f}" if sa else ""
+            ratio_text = (f"{r['ratio_soft_p50']:.2f}x / {r['ratio_soft_p99']:.2f}x"
+                          if r["ratio_soft_p50"] is not None else "")
+            md.append(f"| {r['scene']} | {so.get('asleep', 0):.0f} | {so['p50_us']:.1f} / "
+                      f"{so['p99_us']:.1f} | {so.get('contacts', 0):.0f} | {awake_text} | "
+                      f"{ratio_text} | {so.get('cup_held', 0):.0f} |")
+        md.append("")
     if pile_asleep and pile_awake:
         md.append(f"A pile of {pile_asleep['objects']} boxes and balls in a bin "
                   f"(`bench_scenes.hpp`, `pile_scene`), 6 s after the drop: with sleeping "
@@ -292,6 +325,13 @@ def main():
                   f"{pile_awake['p99_us']:.0f} us. The lowest object's centroid "
                   f"{pile_asleep.get('lowest_z_mm', 0):.1f} mm and "
                   f"{pile_awake.get('lowest_z_mm', 0):.1f} mm above the floor.\n")
+    soft_asleep, soft_awake = pile.get("asleep_soft"), pile.get("awake_soft")
+    if soft_asleep and soft_awake:
+        md.append(f"The same pile with the soft-constraint contacts (one solve a step): with "
+                  f"sleeping {soft_asleep.get('asleep', 0):.0f} asleep, "
+                  f"{soft_asleep['p50_us']:.1f} / {soft_asleep['p99_us']:.1f} us; every object "
+                  f"awake, {soft_awake.get('contacts', 0):.0f} contacts, "
+                  f"{soft_awake['p50_us']:.0f} / {soft_awake['p99_us']:.0f} us (p50 / p99).\n")
     md.append("Collision detection alone (broadphase + narrowphase, one substep's poses, every "
               "object awake):\n")
     md.append("| scene | pairs | contacts | p50 (us) | p99 (us) |")
