@@ -166,7 +166,6 @@ void ControlSystem::solver_joints(const std::vector<ContactPoint>& contacts, dou
       if (std::any_of(joints.begin(), joints.end(), taken)) continue;  // (a few at a time)
       const ControlSpec& c = scene_.controls[ci];
       const ControlState& s = state_.controls[ci];
-      const ObjectSpec& o = scene_.objects[static_cast<std::size_t>(object)];
       const BodyState& body = state_.bodies[object];
       SolverJoint joint;
       joint.body = object;
@@ -177,9 +176,7 @@ void ControlSystem::solver_joints(const std::vector<ContactPoint>& contacts, dou
       // its mean rate over the step under gravity and its mechanism alone, and how a generalised
       // impulse changes it (solver_joint.hpp). Its stops are the rate's bounds, not part of the
       // free rate: a toggle its snap holds against a stop moves only once a push beats the snap.
-      const Eigen::Vector3d weight_G = o.mass_kg * scene_.gravity_mps2;
-      const ControlStepFree free = free_control_step(
-          c, inertia_[ci], generalised_force(c, joint.centroid_G, weight_G, Eigen::Vector3d::Zero()), dt_s, s);
+      const ControlStepFree free = free_control_step(c, inertia_[ci], weight_Q(ci), dt_s, s);
       joint.qd_free = (free.q - s.q) / dt_s;
       joint.mobility = control_travel_per_force(c, inertia_[ci], s, dt_s) / (dt_s * dt_s);
       const double inf = std::numeric_limits<double>::infinity();
@@ -200,11 +197,14 @@ void ControlSystem::integrate_soft(const std::vector<SolverJoint>& joints, doubl
     if (body.held()) continue;  // moved with the hand (move_held)
     const bool untouched = contact_Q_[ci] == 0.0;
     if (untouched && at_rest_[ci] != 0) continue;
-    const ObjectSpec& o = scene_.objects[c.body];
-    const Eigen::Vector3d weight_G = o.mass_kg * scene_.gravity_mps2;
-    advance(ci, contact_Q_[ci] + generalised_force(c, body.X_GO.translation(), weight_G, Eigen::Vector3d::Zero()),
-            untouched, dt_s);
+    advance(ci, contact_Q_[ci] + weight_Q(ci), untouched, dt_s);
   }
+}
+
+double ControlSystem::weight_Q(int ci) const {
+  const ControlSpec& c = scene_.controls[ci];
+  const Eigen::Vector3d weight_G = scene_.objects[c.body].mass_kg * scene_.gravity_mps2;
+  return generalised_force(c, state_.bodies[c.body].X_GO.translation(), weight_G, Eigen::Vector3d::Zero());
 }
 
 void ControlSystem::advance(int ci, double Q, bool untouched, double dt_s) {

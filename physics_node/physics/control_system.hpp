@@ -91,6 +91,8 @@ class ControlSystem {
   // the free motion of control `control` under generalised force Q (contacts and gravity);
   // `untouched`: no contact force on it
   void advance(int control, double Q, bool untouched, double dt_s);
+  // gravity's generalised force on control `control`'s body where it is now
+  double weight_Q(int control) const;
   void note_position(int control, ControlCause cause, int hand_id, int link);
 
   const Scene& scene_;
