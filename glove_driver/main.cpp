@@ -135,6 +135,10 @@ void add_flags(CLI::App& app, Flags& f) {
       ->capture_default_str();
 }
 
+// Later than this past --start-at-ns, a first start is reported: two hands begun apart by
+// more than a few samples no longer move together.
+constexpr int64_t kLateStartWarning_ns = 20'000'000;
+
 int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Source& source,
                   const PublisherOptions& options, bool hold_at_end, int64_t start_at_ns,
                   bool join_timeline) {
@@ -154,6 +158,13 @@ int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Sour
   // due before now is skipped
   bool joining = join_timeline && start_at_ns > 0 && start_at_ns < run_start_ns;
   if (joining) start_ns = start_at_ns;
+  // a first start past the rig's start (a scene slow to load, a sanitized build): the log
+  // still plays whole, but behind the other hands' and behind where a restart would join it
+  if (!joining && start_at_ns > 0 && run_start_ns - start_at_ns > kLateStartWarning_ns) {
+    spdlog::warn("began {:.3f} s after the rig's start (--start-at-ns): the reader matched late; "
+                 "this hand's samples run that far behind the rig's timeline",
+                 ns_to_seconds(run_start_ns - start_at_ns));
+  }
   uint64_t skipped = 0;
   bool restarted = false;
   bool ended = false;

@@ -95,6 +95,10 @@ int run(RigConfig rig, const Options& options) {
     DdsParticipant participant(dds, "rig_launcher");
     RigMonitor monitor(participant);
     spdlog::info("rig {} on domain {}; logs in {}/logs", rig.path, rig.domain_id, out_dir);
+    // the rig's timeline: a glove log's first sample is due here, and a restarted driver
+    // (--join-timeline) joins the log where this clock puts it
+    spdlog::info("the glove drivers begin at start_at_ns={} (CLOCK_MONOTONIC, {:.1f} s from now)",
+                 rig.start_at_ns, ns_to_seconds(rig.start_at_ns - monotonic_now_ns()));
     try {
       supervisor.start_nodes();
       if (options.ui) {
