@@ -20,6 +20,7 @@ class HandFeed {
  public:
   // Queues a sample (newer than those queued); source_stamp_ns goes with it to the driver.
   void queue(const hand::GloveSample& sample, int64_t source_stamp_ns = 0);
+  void reserve(std::size_t samples) { queued_.reserve(samples); }  // a whole log queued at once
   bool has_queued() const { return next_ < queued_.size(); }
   // Samples queued and not taken yet.
   std::size_t queued_count() const { return queued_.size() - next_; }

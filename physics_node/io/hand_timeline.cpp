@@ -22,6 +22,7 @@ HandTimeline::HandTimeline(physics::World& world, const std::vector<HandSamples>
     drivers_.emplace_back(world, world.scene().hands[static_cast<std::size_t>(h.hand)], timing,
                           h.hand);
     drivers_.back().set_origin(t0_ns);
+    feeds_[k].reserve(h.samples.size());
     for (const hand::GloveSample& s : h.samples) feeds_[k].queue(s);
   }
   for (std::size_t k = 0; k < hands.size(); ++k)

@@ -2,7 +2,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <charconv>
 #include <cstdio>
+#include <stdexcept>
 
 #include "common/json_file.hpp"
 #include "physics_node/io/grasp_event_text.hpp"
@@ -12,6 +14,14 @@ namespace vcockpit::physics_io {
 std::string hand_name(int hand_id) { return hand_id == 1 ? "left" : "right"; }
 
 namespace {
+// v as printf's "%.<digits>f" writes it
+void append_fixed(std::string& out, double v, int digits) {
+  char text[400];  // room for DBL_MAX's 309 integer digits
+  const auto [end, error] = std::to_chars(text, text + sizeof text, v, std::chars_format::fixed, digits);
+  if (error != std::errc()) throw std::logic_error("a value too long for a row: " + std::to_string(v));
+  out.append(text, end);
+}
+
 // "right", "left", or "both" while two hands hold it
 std::string holders_name(const physics::BodyState& b) {
   return (b.holders & (b.holders - 1)) != 0 ? "both" : hand_name(b.held_by);
@@ -37,20 +47,32 @@ void TrajectoryWriter::write(const physics::World& world) {
     if (!finite) continue;  // the row is left out
     const Eigen::Vector3d p = b.X_GO.translation();
     const Eigen::Quaterniond q(b.X_GO.linear());
-    std::fprintf(file_.get(),
-                 "%.6f,%s,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%.9f,%s,",
-                 t_s, objects[i].name.c_str(), p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(),
-                 b.v_G.x(), b.v_G.y(), b.v_G.z(), b.w_G.x(), b.w_G.y(), b.w_G.z(),
-                 b.held_by == physics::kNotHeld ? "" : holders_name(b).c_str());
+    // std::to_chars, not fprintf: the same digits (both round the exact binary value) in a
+    // fifth of the time, which was a sixth of the offline runner's step
+    row_.clear();
+    append_fixed(row_, t_s, 6);
+    row_ += ',';
+    row_ += name;
+    for (const double v : {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), b.v_G.x(), b.v_G.y(),
+                           b.v_G.z(), b.w_G.x(), b.w_G.y(), b.w_G.z()}) {
+      row_ += ',';
+      append_fixed(row_, v, 9);
+    }
+    row_ += ',';
+    if (b.held_by != physics::kNotHeld) row_ += holders_name(b);
+    row_ += ',';
     const int control = objects[i].control;
     if (control >= 0) {  // the control's coordinate (m or rad) and its position's name
       const physics::ControlState& s = world.state().controls[static_cast<std::size_t>(control)];
       const auto& positions = world.scene().controls[static_cast<std::size_t>(control)].positions;
-      std::fprintf(file_.get(), "%.9f,%s\n", s.q,
-                   positions[static_cast<std::size_t>(s.position)].name.c_str());
+      append_fixed(row_, s.q, 9);
+      row_ += ',';
+      row_ += positions[static_cast<std::size_t>(s.position)].name;
+      row_ += '\n';
     } else {
-      std::fprintf(file_.get(), ",\n");
+      row_ += ",\n";
     }
+    std::fwrite(row_.data(), 1, row_.size(), file_.get());
   }
 }
 

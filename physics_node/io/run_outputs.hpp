@@ -49,6 +49,7 @@ class TrajectoryWriter {
  private:
   AtomicFile file_;
   NonFiniteGuard guard_{"trajectories.csv"};
+  std::string row_;  // one row's text, its capacity kept from row to row
 };
 
 class EventWriter {

@@ -205,6 +205,8 @@ int World::choose_substeps(bool holding) {
       sweep = {&hs.X_GL, hs.to.X_GH, hs.to.q_rad};
     }
   }
+  // soft constraints are stable at the full step: one collision, one solve, no sweep to judge
+  if (scene_.contact.solver == ContactSolver::kSoft) return 1;
   return substep_choice_.choose(state_.bodies, sweeps_);
 }
 
@@ -371,8 +373,6 @@ void World::step() {
   {
     StageTimer timer(stage_times_, Stage::kSubstepChoice);
     state_.substeps = choose_substeps(any_held);
-    // soft constraints are stable at the full step: one collision, one solve
-    if (scene_.contact.solver == ContactSolver::kSoft) state_.substeps = 1;
   }
   VCOCKPIT_ASSERT(state_.substeps >= 1 && state_.substeps <= scene_.contact.max_substeps,
                   "substeps in [1, max_substeps]");
