@@ -47,8 +47,8 @@ void TrajectoryWriter::write(const physics::World& world) {
     if (!finite) continue;  // the row is left out
     const Eigen::Vector3d p = b.X_GO.translation();
     const Eigen::Quaterniond q(b.X_GO.linear());
-    // std::to_chars, not fprintf: the same digits (both round the exact binary value) in a
-    // fifth of the time, which was a sixth of the offline runner's step
+    // std::to_chars, not fprintf: the same digits (both round the exact binary value), without
+    // printf's format parsing and locking per value
     row_.clear();
     append_fixed(row_, t_s, 6);
     row_ += ',';

@@ -230,8 +230,10 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
         const Eigen::Vector3d v_kinematic = kinematic_velocity(c.p_G);
         const Eigen::Vector3d d = B.X_GB * before->r_B - A.X_GB * before->r_A - h_s * v_kinematic;
         const Eigen::Vector3d d_t = d - d.dot(c.n_G) * c.n_G;
-        const Eigen::Vector3d ahead_A = A.dynamic ? Eigen::Vector3d::Zero() : Eigen::Vector3d(h_s * A.point_velocity(c.p_G));
-        const Eigen::Vector3d ahead_B = B.dynamic ? Eigen::Vector3d::Zero() : Eigen::Vector3d(h_s * B.point_velocity(c.p_G));
+        const auto ahead = [&](const ContactBody& body) -> Eigen::Vector3d {
+          return body.dynamic ? Eigen::Vector3d::Zero() : Eigen::Vector3d(h_s * body.point_velocity(c.p_G));
+        };
+        const Eigen::Vector3d ahead_A = ahead(A), ahead_B = ahead(B);
         anchor.r_A = X_AG * (c.p_G + ahead_A);
         anchor.r_B = X_BG * (c.p_G + d_t + ahead_B);
         was_sliding = was_sliding || !before->sticking;
