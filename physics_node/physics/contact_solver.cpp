@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "common/assert.hpp"
 #include "physics_node/physics/anchor_match.hpp"
@@ -17,6 +18,8 @@ void tangent_basis(const Eigen::Vector3d& n, Eigen::Vector3d& t1, Eigen::Vector3
   t1.normalize();
   t2 = n.cross(t1);
 }
+
+constexpr double kUnbounded = std::numeric_limits<double>::infinity();
 
 double along(const Eigen::Matrix3d& inv_I_G, const Eigen::Vector3d& u) { return u.dot(inv_I_G * u); }
 
@@ -145,6 +148,7 @@ void SoftContactSolver::solve(const std::vector<ContactPoint>& contacts,
     bodies[i].v_G = v_[i];
     bodies[i].w_G = w_[i];
   }
+  for (Point& p : points_) p.lambda_n_spring = p.lambda_n;
   for (int it = 0; it < params_.relax_iterations; ++it) sweep(false);
   restitution();
   store(contacts, bodies, h_s, applied);
@@ -322,9 +326,18 @@ void SoftContactSolver::warm_start() {
 void SoftContactSolver::solve_normal(Point& p, bool use_bias) {
   if (!(p.K_n > 0.0)) return;
   const double v_n = relative_velocity(p).dot(p.n);
-  const double step = use_bias ? -(v_n + p.spring.beta * p.s0 + p.spring.gamma * p.lambda_n) / (p.K_n + p.spring.gamma)
-                               : -v_n / p.K_n;  // relax: rigid, keeps what the spring did
-  const double next = std::max(0.0, p.lambda_n + step);
+  double step = use_bias ? -(v_n + p.spring.beta * p.s0 + p.spring.gamma * p.lambda_n) / (p.K_n + p.spring.gamma)
+                         : -v_n / p.K_n;  // relax: rigid, keeps what the spring did
+  // The relax sweeps take out what the dashpot's restitution puts back: an impact is stopped
+  // rigidly, and a rebound loses the springs' push-out. A slow point keeps the spring's own
+  // end-of-step speed, or a heavy body would reach its rest depth by creep.
+  double upper = kUnbounded;
+  if (!use_bias) {
+    const double threshold = params_.restitution_threshold_mps;
+    if (p.v_n_before > threshold) upper = p.lambda_n_spring;
+    else if (p.v_n_before >= -threshold) return;
+  }
+  const double next = std::clamp(p.lambda_n + step, 0.0, upper);
   apply_impulse(p, (next - p.lambda_n) * p.n);
   p.lambda_n = next;
 }

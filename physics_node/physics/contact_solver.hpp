@@ -71,6 +71,7 @@ class SoftContactSolver {
     SoftSpring spring;
     Eigen::Vector2d delta_t = Eigen::Vector2d::Zero();  // stick spring's stretch along t1, t2
     double lambda_n = 0.0;
+    double lambda_n_spring = 0.0;  // what the biased sweeps left (a slow point relaxes below it)
     Eigen::Vector2d lambda_t = Eigen::Vector2d::Zero();
     double v_n_before = 0.0;   // the approach speed before the solve (restitution)
     double restitution = 0.0;  // the dashpot's e for this point's zeta
