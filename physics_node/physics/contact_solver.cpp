@@ -213,6 +213,7 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
       p.s0 = -c.depth_m - h_s * v_kinematic.dot(p.n);
       const Eigen::Vector3d v_rel = relative_velocity(p);
       p.v_n_before = v_rel.dot(p.n);
+      p.v_n_own = p.v_n_before - v_kinematic.dot(p.n);
       const Eigen::Vector3d v_t = v_rel - p.v_n_before * p.n;
       // the penalty force now weighs the pair's speed for eq. 15's test
       const double N_now = normal_force_N(k, c.depth_m, p.v_n_before);
@@ -330,12 +331,14 @@ void SoftContactSolver::solve_normal(Point& p, bool use_bias) {
                          : -v_n / p.K_n;  // relax: rigid, keeps what the spring did
   // The relax sweeps take out what the dashpot's restitution puts back: an impact is stopped
   // rigidly, and a rebound loses the springs' push-out. A slow point keeps the spring's own
-  // end-of-step speed, or a heavy body would reach its rest depth by creep.
+  // end-of-step speed, or a heavy body would reach its rest depth by creep. (A moving kinematic
+  // body, a hand link or a held object, pushes through its spring only: the proxy bounds that
+  // spring's force, and a rigid stop would throw what it touches at the hand's speed.)
   double upper = kUnbounded;
   if (!use_bias) {
     const double threshold = params_.restitution_threshold_mps;
-    if (p.v_n_before > threshold) upper = p.lambda_n_spring;
-    else if (p.v_n_before >= -threshold) return;
+    if (p.v_n_own > threshold) upper = p.lambda_n_spring;
+    else if (p.v_n_own >= -threshold) return;
   }
   const double next = std::clamp(p.lambda_n + step, 0.0, upper);
   apply_impulse(p, (next - p.lambda_n) * p.n);
@@ -438,7 +441,7 @@ void SoftContactSolver::restitution() {
     if (pair.kinematic) continue;
     for (std::size_t i = pair.first; i < pair.end; ++i) {
       Point& p = points_[i];
-      if (!(p.K_n > 0.0) || p.v_n_before > -threshold || p.lambda_n <= 0.0) continue;
+      if (!(p.K_n > 0.0) || p.v_n_own > -threshold || p.lambda_n <= 0.0) continue;
       const double v_n = relative_velocity(p).dot(p.n);
       const double next = std::max(0.0, p.lambda_n - (v_n + p.restitution * p.v_n_before) / p.K_n);
       apply_impulse(p, (next - p.lambda_n) * p.n);

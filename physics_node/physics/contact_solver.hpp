@@ -73,7 +73,8 @@ class SoftContactSolver {
     double lambda_n = 0.0;
     double lambda_n_spring = 0.0;  // what the biased sweeps left (a slow point relaxes below it)
     Eigen::Vector2d lambda_t = Eigen::Vector2d::Zero();
-    double v_n_before = 0.0;   // the approach speed before the solve (restitution)
+    double v_n_before = 0.0;   // the normal speed before the solve (< 0 approaching)
+    double v_n_own = 0.0;      // its dynamic bodies' part: an impact, or a rebound, if fast
     double restitution = 0.0;  // the dashpot's e for this point's zeta
   };
   struct Pair {
