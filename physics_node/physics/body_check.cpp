@@ -1,5 +1,7 @@
 #include "physics_node/physics/body_check.hpp"
 
+#include <algorithm>
+
 #include "common/assert.hpp"
 
 namespace vcockpit::physics {
@@ -30,7 +32,8 @@ BodyFaultKind check_body(const BodyState& body, const SanityLimits& limits) {
   return BodyFaultKind::kNone;
 }
 
-BodyCheck::BodyCheck(const Scene& scene) : scene_(scene), fault_of_(scene.objects.size(), -1) {
+BodyCheck::BodyCheck(const Scene& scene)
+    : scene_(scene), recovered_(scene.objects.size(), 0), fault_of_(scene.objects.size(), -1) {
   faults_.reserve(scene.objects.size());
   new_faults_.reserve(scene.objects.size());
 }
@@ -39,11 +42,15 @@ void BodyCheck::check(std::vector<BodyState>& bodies, const std::vector<BodyStat
                       int64_t t_ns) {
   VCOCKPIT_ASSERT(bodies.size() == scene_.objects.size() && start.size() == bodies.size(),
                   "one body state per object");
+  if (any_recovered_) std::fill(recovered_.begin(), recovered_.end(), uint8_t{0});
+  any_recovered_ = false;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!scene_.objects[i].dynamic) continue;
     const BodyFaultKind what = check_body(bodies[i], scene_.limits);
     if (what == BodyFaultKind::kNone) continue;
     recover(static_cast<int>(i), bodies[i], start[i]);
+    recovered_[i] = 1;
+    any_recovered_ = true;
     int& index = fault_of_[i];
     if (index < 0) {
       index = static_cast<int>(faults_.size());

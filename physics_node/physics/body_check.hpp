@@ -41,6 +41,9 @@ class BodyCheck {
   // `start` (the step's start), at rest. No allocation.
   void check(std::vector<BodyState>& bodies, const std::vector<BodyState>& start, int64_t t_ns);
 
+  // whether the last check put `object` back (its contacts' cached impulses are not to be trusted)
+  bool recovered(int object) const { return recovered_[static_cast<std::size_t>(object)] != 0; }
+  bool any_recovered() const { return any_recovered_; }
   const std::vector<BodyFault>& faults() const { return faults_; }          // every object found
   const std::vector<BodyFault>& new_faults() const { return new_faults_; }  // first found now
   void clear_new_faults() { new_faults_.clear(); }
@@ -49,6 +52,8 @@ class BodyCheck {
   void recover(int object, BodyState& body, const BodyState& start) const;
 
   const Scene& scene_;
+  std::vector<uint8_t> recovered_;  // per object: put back by the last check
+  bool any_recovered_ = false;
   std::vector<int> fault_of_;  // per object: its index in faults_, -1 before its first fault
   std::vector<BodyFault> faults_;
   std::vector<BodyFault> new_faults_;

@@ -30,18 +30,23 @@ Eigen::Vector3d SoftContactSolver::relative_velocity(const Point& p) const {
 }
 
 void SoftContactSolver::apply_impulse(const Point& p, const Eigen::Vector3d& P) {
-  // P on b, -P on a; kinematic bodies and joint bodies have zero inverse mass and inertia
-  v_[p.b] += inv_m_[p.b] * P;
-  w_[p.b] += inv_I_G_[p.b] * p.r_b.cross(P);
-  v_[p.a] -= inv_m_[p.a] * P;
-  w_[p.a] -= inv_I_G_[p.a] * p.r_a.cross(P);
+  // P on b, -P on a; kinematic bodies and joint bodies have zero inverse mass and inertia, and
+  // are skipped: 0 * NaN is NaN, and a static floor would carry one body's fault to the others
+  if (inv_m_[p.b] > 0.0) {
+    v_[p.b] += inv_m_[p.b] * P;
+    w_[p.b] += inv_I_G_[p.b] * p.r_b.cross(P);
+  }
+  if (inv_m_[p.a] > 0.0) {
+    v_[p.a] -= inv_m_[p.a] * P;
+    w_[p.a] -= inv_I_G_[p.a] * p.r_a.cross(P);
+  }
   if (const int j = joint_of_[p.b]; j >= 0) push_joint(p.b, (*joints_)[j].along(p.p_G, P));
   if (const int j = joint_of_[p.a]; j >= 0) push_joint(p.a, -(*joints_)[j].along(p.p_G, P));
 }
 
 void SoftContactSolver::apply_angular_impulse(int a, int b, const Eigen::Vector3d& L) {
-  w_[b] += inv_I_G_[b] * L;
-  w_[a] -= inv_I_G_[a] * L;
+  if (inv_m_[b] > 0.0) w_[b] += inv_I_G_[b] * L;
+  if (inv_m_[a] > 0.0) w_[a] -= inv_I_G_[a] * L;
   if (const int j = joint_of_[b]; j >= 0) push_joint(b, (*joints_)[j].along_couple(L));
   if (const int j = joint_of_[a]; j >= 0) push_joint(a, -(*joints_)[j].along_couple(L));
 }

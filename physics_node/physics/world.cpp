@@ -400,6 +400,7 @@ void World::step() {
   {
     StageTimer timer(stage_times_, Stage::kBodyCheck);
     body_check_.check(state_.bodies, start_bodies_, state_.time_ns);
+    if (body_check_.any_recovered()) forget_anchors_of_recovered_bodies();
   }
   grasp_stage();
   if (scene_.sleep.enabled) update_sleep();
@@ -690,6 +691,13 @@ void World::move_held_objects(double dt_s) {
     body.X_GO = held_pose(i);
     finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
   }
+}
+
+void World::forget_anchors_of_recovered_bodies() {
+  // a broken body's contacts solved with its broken state: their impulses (a NaN, or a runaway's
+  // absurd push) must not warm-start the next step
+  const auto broken = [&](int body) { return body < object_count_ && body_check_.recovered(body); };
+  std::erase_if(state_.anchors, [&](const StickAnchor& a) { return broken(a.body_a) || broken(a.body_b); });
 }
 
 void World::build_contact_bodies() {

@@ -203,6 +203,7 @@ class World {
   Eigen::Isometry3d held_pose(int object) const;
   void move_held_objects(double dt_s);
   void build_contact_bodies();
+  void forget_anchors_of_recovered_bodies();
   void integrate(double dt_s);
   // Sleeping (sleep.hpp): the broadphases told which objects sleep; the islands a contact of
   // this substep reaches woken (true if any woke); after a step, which objects may sleep and
