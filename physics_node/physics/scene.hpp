@@ -169,12 +169,12 @@ enum class ContactSolver { kPenalty, kSoft };
 // Contact model details beyond the paper's equations.
 struct ContactParams {
   double slip_speed_mps = 1.0e-3;  // eq. 15-17 epsilon: |v_t| at or above it is sliding
-  double substep_safety = 0.2;     // dt_sub <= safety * sqrt(m_eff / k_eff)
-  int max_substeps = 32;
+  double substep_safety = 0.2;     // penalty: dt_sub <= safety * sqrt(m_eff / k_eff)
+  int max_substeps = 32;           // penalty
   int max_points_per_pair = 4;
-  ContactSolver solver = ContactSolver::kPenalty;
-  // soft: Gauss-Seidel sweeps with the springs' bias, then without it (to take out the
-  // push-out speed), and the slowest impact given the dashpot's restitution
+  ContactSolver solver = ContactSolver::kSoft;
+  // soft: Gauss-Seidel sweeps with the springs' bias, then relax sweeps without it on impacts
+  // and rebounds (faster than the threshold), then the dashpot's restitution for those impacts
   int iterations = 8;
   int relax_iterations = 2;
   double restitution_threshold_mps = 0.1;

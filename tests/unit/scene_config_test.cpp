@@ -337,7 +337,7 @@ TEST_F(ShippedCockpit, GraspAndContactBlocks) {
   EXPECT_DOUBLE_EQ(scene_->grasp.release_opening_share, 0.2);
   EXPECT_DOUBLE_EQ(scene_->grasp.release_gap_m, 0.005);
   EXPECT_EQ(scene_->contact.max_points_per_pair, 4);
-  EXPECT_EQ(scene_->contact.solver, physics::ContactSolver::kPenalty);  // soft: no controls yet
+  EXPECT_EQ(scene_->contact.solver, physics::ContactSolver::kSoft);
 }
 
 // ---- a small valid scene, so each case can break one thing ----------------------------------

@@ -33,8 +33,8 @@ std::string source_dir() {
   return dir ? dir : ".";
 }
 
-// The default cockpit and its bundled grasping log: the cup is grasped at 2.63 s, lifted and
-// released at 6.48 s.
+// The default cockpit and its bundled grasping log: the cup is grasped at 3.25 s, lifted and
+// released at 6.76 s.
 struct Cockpit {
   Scene scene = load_scene(source_dir() + "/config/cockpit.yaml");
   std::vector<hand::GloveSample> samples =
@@ -74,7 +74,7 @@ TEST(WorldState, TwoWorldsSteppingTheSameInputsHaveEqualHashes) {
   feed_a.feed(a);
   feed_b.feed(b);
   EXPECT_EQ(hash_world_state(a.state()), hash_world_state(b.state()));
-  for (int i = 0; i < 3000; ++i) {  // through the grasp at 2.63 s
+  for (int i = 0; i < 3500; ++i) {  // through the grasp at 3.25 s
     a.step();
     b.step();
     feed_a.feed(a);
@@ -101,7 +101,7 @@ TEST(WorldState, RestoredWorldContinuesBitIdenticallyThroughGraspAndRelease) {
   EXPECT_TRUE(restored.contacts().empty());
 
   int events = 0;
-  while (original.time_ns() < 7'500'000'000) {  // past the release at 6.48 s
+  while (original.time_ns() < 7'500'000'000) {  // past the release at 6.76 s
     original.step();
     restored.step();
     ASSERT_EQ(hash_world_state(original.state()), hash_world_state(restored.state()))
@@ -494,7 +494,7 @@ TEST(WorldCheckpoint, AWorldSavedHeldAndRestoredFromTheBytesGoesOnBitIdentically
   restored.restore(read.world);
   EXPECT_EQ(hash_world_state(restored.state()), hash_world_state(original.state()));
   GloveFeed restored_feed = feed;
-  while (original.time_ns() < 7'000'000'000) {  // through the release at 6.48 s
+  while (original.time_ns() < 7'000'000'000) {  // through the release at 6.76 s
     original.step();
     restored.step();
     feed.feed(original);
