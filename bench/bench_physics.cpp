@@ -30,22 +30,22 @@ struct HeldWorld {
   physics::HandInput hand;
 };
 
-physics::Scene scene_with(int loose_objects, bool sleep, bool soft) {
+physics::Scene scene_with(int loose_objects, bool sleep, bool penalty) {
   physics::Scene scene = loose_objects == 0 ? cockpit_scene() : crowded_cockpit_scene(loose_objects);
   scene.sleep.enabled = sleep;
-  if (soft) scene.contact.solver = physics::ContactSolver::kSoft;
+  scene.contact.solver = penalty ? physics::ContactSolver::kPenalty : physics::ContactSolver::kSoft;
   return scene;
 }
 
 // One per scene (and sleeping or not) for the whole run: the lead-in (4 s of the glove log) is
 // paid once.
-HeldWorld& held_world(int loose_objects, bool sleep = true, bool soft = false) {
+HeldWorld& held_world(int loose_objects, bool sleep = true, bool penalty = false) {
   static std::map<std::tuple<int, bool, bool>, HeldWorld> worlds;
-  const auto key = std::make_tuple(loose_objects, sleep, soft);
+  const auto key = std::make_tuple(loose_objects, sleep, penalty);
   auto it = worlds.find(key);
   if (it == worlds.end()) {
     HeldWorld held;
-    held.world = std::make_unique<physics::World>(scene_with(loose_objects, sleep, soft));
+    held.world = std::make_unique<physics::World>(scene_with(loose_objects, sleep, penalty));
     held.hand = step_to_hold(*held.world);
     it = worlds.emplace(key, std::move(held)).first;
   }
@@ -103,10 +103,10 @@ void BM_Collision(benchmark::State& state) {
 BENCHMARK(BM_Collision)->Arg(0)->Arg(10)->Arg(100)->Arg(500)->Iterations(2000)
     ->Unit(benchmark::kMicrosecond);
 
-// One full world step (all substeps and the grasp test) with the hand holding the cup.
-// range(1): 1 with sleeping (the default), 0 with every object kept awake. range(2): 1 with the
-// soft-constraint contacts (one solve a step, the controls on their joints in it), 0 with the
-// penalty's substeps.
+// One full world step (collision, the contacts' solve and the grasp test) with the hand holding
+// the cup. range(1): 1 with sleeping (the default), 0 with every object kept awake. range(2): 0
+// with the soft-constraint contacts (the default: one solve a step, the controls on their joints
+// in it), 1 with the penalty springs in substeps (contact.solver: penalty).
 void BM_WorldStep(benchmark::State& state) {
   const int loose = static_cast<int>(state.range(0));
   HeldWorld& held = held_world(loose, state.range(1) != 0, state.range(2) != 0);
@@ -152,13 +152,13 @@ void BM_MujocoStep(benchmark::State& state) {
 
 // A pile of range(0) objects settled in its bin: with sleeping, stepped once every object sleeps;
 // without (range(1) == 0), stepped as long after the drop, every object awake at rest. range(2):
-// 1 with the soft-constraint contacts (one solve a step), 0 with the penalty's substeps.
+// 0 with the soft-constraint contacts (the default), 1 with the penalty's substeps.
 void BM_PileStep(benchmark::State& state) {
   const int objects = static_cast<int>(state.range(0));
   const bool sleep = state.range(1) != 0;
   physics::Scene scene = pile_scene(objects);
   scene.sleep.enabled = sleep;
-  if (state.range(2) != 0) scene.contact.solver = physics::ContactSolver::kSoft;
+  scene.contact.solver = state.range(2) != 0 ? physics::ContactSolver::kPenalty : physics::ContactSolver::kSoft;
   physics::World world(scene);
   constexpr double kSettle_s = 6.0;  // (the slowest ball stops rolling in 2-3 s)
   while (world.time_ns() < std::llround(kSettle_s * 1e9)) world.step();
@@ -181,19 +181,19 @@ void BM_PileStep(benchmark::State& state) {
 void register_steps() {
   for (const int loose : {0, 10, 100, 500}) {
     const int64_t iterations = loose >= 500 ? 500 : loose >= 100 ? 1000 : 3000;
-    for (const int soft : {0, 1}) {
+    for (const int penalty : {0, 1}) {
       benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
-          ->Args({loose, 1, soft})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
+          ->Args({loose, 1, penalty})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
       benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
-          ->Args({loose, 0, soft})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
+          ->Args({loose, 0, penalty})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
     }
     benchmark::RegisterBenchmark("BM_MujocoStep", BM_MujocoStep)
         ->Arg(loose)->Iterations(iterations)->Unit(benchmark::kMicrosecond);
   }
-  for (const int soft : {0, 1})
+  for (const int penalty : {0, 1})
     for (const int sleep : {1, 0})
       benchmark::RegisterBenchmark("BM_PileStep", BM_PileStep)
-          ->Args({200, sleep, soft})->Iterations(500)->Unit(benchmark::kMicrosecond);
+          ->Args({200, sleep, penalty})->Iterations(500)->Unit(benchmark::kMicrosecond);
 }
 
 }  // namespace
