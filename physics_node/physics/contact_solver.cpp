@@ -259,6 +259,13 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
     }
     pair.end = points_.size();
     pair.n_mean = n_sum.normalized();
+    // the rolling and spinning rows' axes and inverse inertias are the step's (not each sweep's)
+    if (pair.mu.mu_roll_m > 0.0) {
+      tangent_basis(pair.n_mean, pair.u1, pair.u2);
+      pair.K_roll1 = inverse_inertia_along(pair.a, pair.b, pair.u1);
+      pair.K_roll2 = inverse_inertia_along(pair.a, pair.b, pair.u2);
+    }
+    if (pair.mu.mu_spin_m > 0.0) pair.K_spin = inverse_inertia_along(pair.a, pair.b, pair.n_mean);
     // eq. 15: a sliding pair sticks again once slower than epsilon (anchors start over); a new
     // or sticking pair sticks until its springs pull past the cap (inside the iterations)
     const bool slow = load_sum > 0.0 ? speed_weighted / load_sum < params_.slip_speed_mps : true;
@@ -412,10 +419,9 @@ void SoftContactSolver::solve_rolling(Pair& pair) {
   const Eigen::Vector3d& n = pair.n_mean;
   const Eigen::Vector3d w_rel = w_[pair.b] - w_[pair.a];
   if (mu_roll > 0.0) {
-    Eigen::Vector3d u1, u2;
-    tangent_basis(n, u1, u2);
-    const double K1 = inverse_inertia_along(pair.a, pair.b, u1);
-    const double K2 = inverse_inertia_along(pair.a, pair.b, u2);
+    const Eigen::Vector3d& u1 = pair.u1;
+    const Eigen::Vector3d& u2 = pair.u2;
+    const double K1 = pair.K_roll1, K2 = pair.K_roll2;
     const Eigen::Vector2d before = pair.lambda_roll;
     Eigen::Vector2d next = before;
     if (K1 > 0.0) next.x() -= w_rel.dot(u1) / K1;
@@ -427,7 +433,7 @@ void SoftContactSolver::solve_rolling(Pair& pair) {
     pair.lambda_roll = next;
   }
   if (mu_spin > 0.0) {
-    const double K = inverse_inertia_along(pair.a, pair.b, n);
+    const double K = pair.K_spin;
     if (K > 0.0) {
       const double w_spin = (w_[pair.b] - w_[pair.a]).dot(n);
       const double cap = mu_spin * load;

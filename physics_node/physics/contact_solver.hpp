@@ -84,6 +84,8 @@ class SoftContactSolver {
     bool sliding = false;      // this step: kinetic friction
     bool kinematic = false;    // both bodies kinematic: the penalty force in closed form
     Eigen::Vector3d n_mean = Eigen::Vector3d::UnitZ();  // the patch's normal (rolling, spinning)
+    Eigen::Vector3d u1 = Eigen::Vector3d::UnitX(), u2 = Eigen::Vector3d::UnitY();  // rolling axes
+    double K_roll1 = 0.0, K_roll2 = 0.0, K_spin = 0.0;  // inverse inertias about u1, u2, n_mean
     Eigen::Vector2d lambda_roll = Eigen::Vector2d::Zero();
     double lambda_spin = 0.0;
   };
