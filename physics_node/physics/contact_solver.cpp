@@ -29,19 +29,37 @@ Eigen::Vector3d SoftContactSolver::relative_velocity(const Point& p) const {
   return (v_[p.b] + w_[p.b].cross(p.r_b)) - (v_[p.a] + w_[p.a].cross(p.r_a));
 }
 
-void SoftContactSolver::apply_impulse(const Point& p, const Eigen::Vector3d& P) {
-  // P on b, -P on a; kinematic bodies and joint bodies have zero inverse mass and inertia, and
-  // are skipped: 0 * NaN is NaN, and a static floor would carry one body's fault to the others
-  if (inv_m_[p.b] > 0.0) {
-    v_[p.b] += inv_m_[p.b] * P;
-    w_[p.b] += inv_I_G_[p.b] * p.r_b.cross(P);
-  }
-  if (inv_m_[p.a] > 0.0) {
-    v_[p.a] -= inv_m_[p.a] * P;
-    w_[p.a] -= inv_I_G_[p.a] * p.r_a.cross(P);
-  }
+void SoftContactSolver::push_joints(const Point& p, const Eigen::Vector3d& P) {
   if (const int j = joint_of_[p.b]; j >= 0) push_joint(p.b, (*joints_)[j].along(p.p_G, P));
   if (const int j = joint_of_[p.a]; j >= 0) push_joint(p.a, -(*joints_)[j].along(p.p_G, P));
+}
+
+SoftContactSolver::Row SoftContactSolver::make_row(const Point& p, const Eigen::Vector3d& u) const {
+  Row row;
+  row.u = u;
+  row.ra_u = p.r_a.cross(u);
+  row.rb_u = p.r_b.cross(u);
+  row.spin_a = inv_I_G_[p.a] * row.ra_u;
+  row.spin_b = inv_I_G_[p.b] * row.rb_u;
+  return row;
+}
+
+double SoftContactSolver::row_velocity(const Point& p, const Row& row) const {
+  return (v_[p.b] - v_[p.a]).dot(row.u) + w_[p.b].dot(row.rb_u) - w_[p.a].dot(row.ra_u);
+}
+
+void SoftContactSolver::apply_row(const Point& p, const Row& row, double impulse) {
+  // kinematic bodies and joint bodies have zero inverse mass and inertia, and are skipped: 0 * NaN
+  // is NaN, and a static floor would carry one body's fault to the others
+  if (inv_m_[p.b] > 0.0) {
+    v_[p.b] += (inv_m_[p.b] * impulse) * row.u;
+    w_[p.b] += impulse * row.spin_b;
+  }
+  if (inv_m_[p.a] > 0.0) {
+    v_[p.a] -= (inv_m_[p.a] * impulse) * row.u;
+    w_[p.a] -= impulse * row.spin_a;
+  }
+  if (p.on_joint) push_joints(p, impulse * row.u);
 }
 
 void SoftContactSolver::apply_angular_impulse(int a, int b, const Eigen::Vector3d& L) {
@@ -208,9 +226,13 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
       p.p_G = c.p_G;
       p.r_a = c.p_G - A.X_GB.translation();
       p.r_b = c.p_G - B.X_GB.translation();
+      p.on_joint = joint_of_[p.a] >= 0 || joint_of_[p.b] >= 0;
       p.K_n = inverse_mass_along(p, p.n);
       p.K_t1 = inverse_mass_along(p, p.t1);
       p.K_t2 = inverse_mass_along(p, p.t2);
+      p.row_n = make_row(p, p.n);
+      p.row_t1 = make_row(p, p.t1);
+      p.row_t2 = make_row(p, p.t2);
       p.spring = spring;
       p.restitution = restitution;
       // the kinematic bodies are at the step's end already: take their motion out of the gap
@@ -331,14 +353,16 @@ void SoftContactSolver::warm_start() {
     for (std::size_t i = pair.first; i < pair.end; ++i) {
       Point& p = points_[i];
       if (pair.sliding) p.lambda_t.setZero();  // (kinetic friction is found afresh)
-      apply_impulse(p, p.lambda_n * p.n + p.lambda_t.x() * p.t1 + p.lambda_t.y() * p.t2);
+      apply_row(p, p.row_n, p.lambda_n);
+      apply_row(p, p.row_t1, p.lambda_t.x());
+      apply_row(p, p.row_t2, p.lambda_t.y());
     }
   }
 }
 
 void SoftContactSolver::solve_normal(Point& p, bool use_bias) {
   if (!(p.K_n > 0.0)) return;
-  const double v_n = relative_velocity(p).dot(p.n);
+  const double v_n = row_velocity(p, p.row_n);
   double step = use_bias ? -(v_n + p.spring.beta * p.s0 + p.spring.gamma * p.lambda_n) / (p.K_n + p.spring.gamma)
                          : -v_n / p.K_n;  // relax: rigid, keeps what the spring did
   // The relax sweeps take out what the dashpot's restitution puts back: an impact is stopped
@@ -353,7 +377,7 @@ void SoftContactSolver::solve_normal(Point& p, bool use_bias) {
     else if (p.v_n_own >= -threshold) return;
   }
   const double next = std::clamp(p.lambda_n + step, 0.0, upper);
-  apply_impulse(p, (next - p.lambda_n) * p.n);
+  apply_row(p, p.row_n, next - p.lambda_n);
   p.lambda_n = next;
 }
 
@@ -366,8 +390,7 @@ void SoftContactSolver::solve_friction(Pair& pair, bool use_bias) {
     if (p.lambda_n <= 0.0) {
       step = -p.lambda_t;  // an unloaded point holds nothing
     } else {
-      const Eigen::Vector3d v_rel = relative_velocity(p);
-      const Eigen::Vector2d v_t(v_rel.dot(p.t1), v_rel.dot(p.t2));
+      const Eigen::Vector2d v_t(row_velocity(p, p.row_t1), row_velocity(p, p.row_t2));
       const double g = p.spring.gamma;
       if (!pair.sliding && use_bias) {
         // the stick spring (eq. 16), implicit: same k_pt, c_pt as the normal
@@ -386,7 +409,8 @@ void SoftContactSolver::solve_friction(Pair& pair, bool use_bias) {
         }
       }
     }
-    apply_impulse(p, step.x() * p.t1 + step.y() * p.t2);
+    apply_row(p, p.row_t1, step.x());
+    apply_row(p, p.row_t2, step.y());
     p.lambda_t += step;
   }
   if (pair.sliding) return;  // (each point capped above)
@@ -406,7 +430,8 @@ void SoftContactSolver::solve_friction(Pair& pair, bool use_bias) {
   for (std::size_t i = pair.first; i < pair.end; ++i) {
     Point& p = points_[i];
     const Eigen::Vector2d change = p.lambda_t * (scale - 1.0);
-    apply_impulse(p, change.x() * p.t1 + change.y() * p.t2);
+    apply_row(p, p.row_t1, change.x());
+    apply_row(p, p.row_t2, change.y());
     p.lambda_t += change;
   }
 }
@@ -453,9 +478,9 @@ void SoftContactSolver::restitution() {
     for (std::size_t i = pair.first; i < pair.end; ++i) {
       Point& p = points_[i];
       if (!(p.K_n > 0.0) || p.v_n_own > -threshold || p.lambda_n <= 0.0) continue;
-      const double v_n = relative_velocity(p).dot(p.n);
+      const double v_n = row_velocity(p, p.row_n);
       const double next = std::max(0.0, p.lambda_n - (v_n + p.restitution * p.v_n_before) / p.K_n);
-      apply_impulse(p, (next - p.lambda_n) * p.n);
+      apply_row(p, p.row_n, next - p.lambda_n);
       p.lambda_n = next;
     }
   }

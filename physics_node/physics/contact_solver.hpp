@@ -60,14 +60,24 @@ class SoftContactSolver {
   const Eigen::Vector3d& w_end(int body) const { return w_[static_cast<std::size_t>(body)]; }
 
  private:
+  // One direction u of a point's impulse, found once a step: r x u for each body (a velocity's
+  // part along u is (v_b - v_a).u + w_b.(r_b x u) - w_a.(r_a x u)) and I^-1 (r x u) (the spin
+  // an impulse along u gives). Each sweep then needs no cross product and no inertia product.
+  struct Row {
+    Eigen::Vector3d u = Eigen::Vector3d::UnitZ();
+    Eigen::Vector3d ra_u = Eigen::Vector3d::Zero(), rb_u = Eigen::Vector3d::Zero();
+    Eigen::Vector3d spin_a = Eigen::Vector3d::Zero(), spin_b = Eigen::Vector3d::Zero();
+  };
   struct Point {
     int a = -1, b = -1;
+    bool on_joint = false;  // a or b moves on a control's joint
     Eigen::Vector3d n = Eigen::Vector3d::UnitZ(), t1 = Eigen::Vector3d::UnitX(),
                     t2 = Eigen::Vector3d::UnitY();
     Eigen::Vector3d p_G = Eigen::Vector3d::Zero();  // where it acts
     Eigen::Vector3d r_a = Eigen::Vector3d::Zero(), r_b = Eigen::Vector3d::Zero();
     double s0 = 0.0;  // separation (m, < 0 overlapping), shifted back by the kinematic motion
     double K_n = 0.0, K_t1 = 0.0, K_t2 = 0.0;  // inverse effective masses
+    Row row_n, row_t1, row_t2;
     SoftSpring spring;
     Eigen::Vector2d delta_t = Eigen::Vector2d::Zero();  // stick spring's stretch along t1, t2
     double lambda_n = 0.0;
@@ -101,7 +111,10 @@ class SoftContactSolver {
              double h_s, std::vector<AppliedContact>& applied);
 
   Eigen::Vector3d relative_velocity(const Point& p) const;
-  void apply_impulse(const Point& p, const Eigen::Vector3d& P);
+  Row make_row(const Point& p, const Eigen::Vector3d& u) const;
+  double row_velocity(const Point& p, const Row& row) const;  // the relative velocity along u
+  void apply_row(const Point& p, const Row& row, double impulse);  // impulse * u on b, -it on a
+  void push_joints(const Point& p, const Eigen::Vector3d& P);
   void apply_angular_impulse(int a, int b, const Eigen::Vector3d& L);
   // a generalised impulse on joint body `body`'s joint; its velocity follows
   void push_joint(int body, double impulse);
