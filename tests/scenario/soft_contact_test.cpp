@@ -64,17 +64,23 @@ TEST(SoftContact, ADropLeavesTheFloorWithTheDashpotsRestitution) {
   }
 }
 
+// A 10 cm cube of `m_kg` with its centroid at `z_m` over a floor, both of stiffness `k_Npm`,
+// awake throughout.
+physics::Scene a_10cm_cube_over_a_floor(double k_Npm, double m_kg, double z_m) {
+  physics::Scene scene = soft_scene();
+  scene.sleep.enabled = false;
+  scene.objects.push_back(floor_box(material(k_Npm)));
+  scene.objects.push_back(dynamic_object("box", physics::Shape::box({0.1, 0.1, 0.1}), m_kg,
+                                         at(0, 0, z_m), material(k_Npm)));
+  return scene;
+}
+
 TEST(SoftContact, AHeavyBlockSettlesAsTheDampedSpringNotByCreep) {
   // set down touching the floor, a 5 kg block sinks to m g / k_pair as the damped spring does
   // (about 60 ms on the penalty path); a relax pass that stops every inward motion made it creep
   // there with tau = (m + h c + h^2 k) / (h k), 0.22 s
-  physics::Scene scene = soft_scene();
-  scene.sleep.enabled = false;
   const double k = 5.0e4, m = 5.0;
-  scene.objects.push_back(floor_box(material(k)));
-  scene.objects.push_back(dynamic_object("block", physics::Shape::box({0.1, 0.1, 0.1}), m,
-                                         at(0, 0, 0.05), material(k)));
-  physics::World world(scene);
+  physics::World world(a_10cm_cube_over_a_floor(k, m, 0.05));
   const double rest_m = m * 9.81 / (k / 2.0);
   for (int i = 0; i < 120; ++i) world.step();
   const double depth_m = 0.05 - world.bodies()[1].X_GO.translation().z();
@@ -83,13 +89,8 @@ TEST(SoftContact, AHeavyBlockSettlesAsTheDampedSpringNotByCreep) {
 }
 
 TEST(SoftContact, ABoxRestsAtItsWeightOverTheSeriesSpringsDepthAndIsStill) {
-  physics::Scene scene = soft_scene();
-  scene.sleep.enabled = false;
   const double k = 5.0e4, m = 0.5;
-  scene.objects.push_back(floor_box(material(k)));
-  scene.objects.push_back(dynamic_object("box", physics::Shape::box({0.1, 0.1, 0.1}), m,
-                                         at(0, 0, 0.05 + 0.002), material(k)));
-  physics::World world(scene);
+  physics::World world(a_10cm_cube_over_a_floor(k, m, 0.05 + 0.002));
   for (int i = 0; i < 3000; ++i) world.step();
   const physics::BodyState& b = world.bodies()[1];
   const double depth_m = 0.05 - b.X_GO.translation().z();
