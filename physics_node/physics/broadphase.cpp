@@ -48,6 +48,7 @@ SweepAndPrune::SweepAndPrune(std::vector<BroadphaseBody> kinds)
     (kinds_[i] == BroadphaseBody::kStatic ? statics_ : order_).push_back(static_cast<int>(i));
   awake_.reserve(order_.size());
   sleeping_.reserve(order_.size());
+  static_movers_.reserve(order_.size());
 }
 
 bool SweepAndPrune::can_act(int a, int b) const {
@@ -70,7 +71,7 @@ bool SweepAndPrune::can_act(int a, int b) const {
 }
 
 void SweepAndPrune::sweep_across(const std::vector<int>& firsts, const std::vector<int>& seconds,
-                                 bool after_ties, std::vector<BodyPair>& out) const {
+                                 bool after_ties, bool all_act, std::vector<BodyPair>& out) const {
   const int axis = axis_;
   std::size_t start = 0;  // the first of `seconds` starting at or after (after_ties: after) a
   for (const int a : firsts) {
@@ -84,9 +85,23 @@ void SweepAndPrune::sweep_across(const std::vector<int>& firsts, const std::vect
       const int b = seconds[j];
       const Aabb& box_b = boxes_[static_cast<std::size_t>(b)];
       if (box_b.lo[axis] > box_a.hi[axis]) break;
-      if (!can_act(a, b) || !box_a.overlaps(box_b)) continue;
+      if (!box_a.overlaps(box_b) || (!all_act && !can_act(a, b))) continue;
       out.push_back({std::min(a, b), std::max(a, b)});
     }
+  }
+}
+
+void SweepAndPrune::sort_by_lower_end(std::vector<int>& bodies) const {
+  const int axis = axis_;
+  for (std::size_t i = 1; i < bodies.size(); ++i) {
+    const int body = bodies[i];
+    const double key = boxes_[static_cast<std::size_t>(body)].lo[axis];
+    std::size_t j = i;
+    while (j > 0 && boxes_[static_cast<std::size_t>(bodies[j - 1])].lo[axis] > key) {
+      bodies[j] = bodies[j - 1];
+      --j;
+    }
+    bodies[j] = body;
   }
 }
 
@@ -108,52 +123,58 @@ void SweepAndPrune::find_pairs(std::vector<BodyPair>& out) {
   // the moving bodies by sweep and prune: insertion sort by the lower end (stable: ties keep
   // their order, so the sweep is a function of the poses' history only, and the output is
   // sorted anyway)
-  for (std::size_t i = 1; i < order_.size(); ++i) {
-    const int body = order_[i];
-    const double key = boxes_[static_cast<std::size_t>(body)].lo[axis];
-    std::size_t j = i;
-    while (j > 0 && boxes_[static_cast<std::size_t>(order_[j - 1])].lo[axis] > key) {
-      order_[j] = order_[j - 1];
-      --j;
-    }
-    order_[j] = body;
-  }
+  sort_by_lower_end(order_);
   // the moving bodies split, each list still sorted: a sleeping body pairs only with awake ones,
   // so two sleepers are never even looked at (a heap of sleepers costs what its size does, not
   // what its crowding does)
+  // (a disabled body, a link of an inactive hand, acts with nothing: left out here)
   awake_.clear();
   sleeping_.clear();
-  for (const int body : order_) (asleep_[static_cast<std::size_t>(body)] != 0 ? sleeping_ : awake_).push_back(body);
+  static_movers_.clear();
+  for (const int body : order_) {
+    const auto b = static_cast<std::size_t>(body);
+    if (enabled_[b] == 0) continue;
+    if (asleep_[b] != 0) {
+      sleeping_.push_back(body);
+      continue;
+    }
+    awake_.push_back(body);
+    // the awake bodies that act with static ones: free objects, and hand links when asked for
+    // (a control sits in its panel's cut-out)
+    if (kinds_[b] == BroadphaseBody::kDynamic || (kinds_[b] == BroadphaseBody::kHand && report_hand_static_))
+      static_movers_.push_back(body);
+  }
+  // two awake bodies (enabled, neither static) act when either is a free object, or when one is
+  // a control and the other a hand link (can_act's rules for such bodies, by kind alone: a
+  // hand's links crowd each other on every axis, so this is asked before the boxes)
+  const auto awake_pair_acts = [](BroadphaseBody ka, BroadphaseBody kb) {
+    if (ka == BroadphaseBody::kDynamic || kb == BroadphaseBody::kDynamic) return true;
+    return (ka == BroadphaseBody::kControl && kb == BroadphaseBody::kHand) ||
+           (ka == BroadphaseBody::kHand && kb == BroadphaseBody::kControl);
+  };
   for (std::size_t i = 0; i < awake_.size(); ++i) {
     const int a = awake_[i];
-    if (enabled_[static_cast<std::size_t>(a)] == 0) continue;
+    const BroadphaseBody ka = kinds_[static_cast<std::size_t>(a)];
     const Aabb& box_a = boxes_[static_cast<std::size_t>(a)];
     for (std::size_t j = i + 1; j < awake_.size(); ++j) {
       const int b = awake_[j];
       const Aabb& box_b = boxes_[static_cast<std::size_t>(b)];
       if (box_b.lo[axis] > box_a.hi[axis]) break;  // no later box reaches back to a
-      if (!can_act(a, b) || !box_a.overlaps(box_b)) continue;
+      if (!awake_pair_acts(ka, kinds_[static_cast<std::size_t>(b)]) || !box_a.overlaps(box_b)) continue;
       out.push_back({std::min(a, b), std::max(a, b)});
     }
   }
   if (!sleeping_.empty()) {
     // each awake-sleeping pair once, from the box that starts first (ties: the awake one's)
-    sweep_across(awake_, sleeping_, /*after_ties=*/false, out);
-    sweep_across(sleeping_, awake_, /*after_ties=*/true, out);
+    sweep_across(awake_, sleeping_, /*after_ties=*/false, /*all_act=*/false, out);
+    sweep_across(sleeping_, awake_, /*after_ties=*/true, /*all_act=*/false, out);
   }
-  // the static bodies never move and never pair with each other: each awake body that can act
-  // with them against each of them (the floor and the walls span the sweep axis, so in the sweep
-  // they met every body)
-  for (const int a : awake_) {
-    const BroadphaseBody ka = kinds_[static_cast<std::size_t>(a)];
-    const bool acts = ka == BroadphaseBody::kDynamic ||
-                      (ka == BroadphaseBody::kHand && enabled_[static_cast<std::size_t>(a)] != 0 &&
-                       report_hand_static_);
-    if (!acts) continue;
-    const Aabb& box_a = boxes_[static_cast<std::size_t>(a)];
-    for (const int b : statics_)
-      if (box_a.overlaps(boxes_[static_cast<std::size_t>(b)])) out.push_back({std::min(a, b), std::max(a, b)});
-  }
+  // the static bodies never move and never pair with each other: the same two-list sweep between
+  // them and the awake bodies that act with them (the floor and the walls span the sweep axis
+  // and meet every body; a panel meets only what reaches its span)
+  sort_by_lower_end(statics_);
+  sweep_across(static_movers_, statics_, /*after_ties=*/false, /*all_act=*/true, out);
+  sweep_across(statics_, static_movers_, /*after_ties=*/true, /*all_act=*/true, out);
   std::sort(out.begin(), out.end());
 }
 

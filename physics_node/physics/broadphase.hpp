@@ -1,10 +1,9 @@
 #pragma once
 // Broadphase: the body pairs whose axis-aligned boxes overlap and that can act on each other, by
 // sweep and prune along one axis (Baraff's, as in Bullet's and PhysX's SAP) over the moving
-// bodies, and each moving body against the static ones (which never pair with each other, and
-// whose floor and walls span the sweep axis). The moving bodies keep their sorted order from
-// substep to substep, so re-sorting after a small motion is an insertion sort of a nearly
-// sorted list: O(n) plus the few swaps.
+// bodies, and a sweep of the moving bodies across the static ones (which never pair with each
+// other). Both lists keep their sorted order from step to step, so re-sorting after a small
+// motion is an insertion sort of a nearly sorted list: O(n) plus the few swaps.
 //
 // Pairs that cannot act are never reported: static-static, asleep-static, asleep-asleep (a
 // sleeping body moves for nothing but a moving one), hand-hand (a hand's own links, and
@@ -25,7 +24,8 @@ struct Aabb {
   Eigen::Vector3d hi = Eigen::Vector3d::Zero();
 
   bool overlaps(const Aabb& o) const {
-    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+    return lo.x() <= o.hi.x() && o.lo.x() <= hi.x() && lo.y() <= o.hi.y() && o.lo.y() <= hi.y() &&
+           lo.z() <= o.hi.z() && o.lo.z() <= hi.z();
   }
 };
 
@@ -68,18 +68,22 @@ class SweepAndPrune {
 
  private:
   bool can_act(int a, int b) const;
+  // Insertion sort by the lower end of the box on the sweep axis: stable, and O(n) for a list
+  // sorted the last time (the boxes moved little since).
+  void sort_by_lower_end(std::vector<int>& bodies) const;
   // The pairs of a body of `firsts` and one of `seconds` (each sorted by the lower end of its box)
   // whose second starts within the first's span on the sweep axis, at or after its start
-  // (after_ties: strictly after).
+  // (after_ties: strictly after). all_act: every such pair can act (not asked again).
   void sweep_across(const std::vector<int>& firsts, const std::vector<int>& seconds, bool after_ties,
-                    std::vector<BodyPair>& out) const;
+                    bool all_act, std::vector<BodyPair>& out) const;
 
   std::vector<BroadphaseBody> kinds_;
   std::vector<Aabb> boxes_;
   std::vector<int> order_;    // the moving bodies by the lower end of their box on the sweep axis
-  std::vector<int> statics_;  // the static bodies, in body order
-  std::vector<int> awake_;     // order_'s awake bodies, then its sleeping ones (find_pairs)
+  std::vector<int> statics_;  // the static bodies, by the lower end of their box (find_pairs)
+  std::vector<int> awake_;     // order_'s enabled bodies, awake and asleep (find_pairs)
   std::vector<int> sleeping_;
+  std::vector<int> static_movers_;  // awake_'s bodies that act with static ones
   std::vector<uint8_t> enabled_;  // per body
   std::vector<uint8_t> asleep_;   // per body
   int axis_ = -1;           // chosen on the first sweep: where the boxes are spread the most
