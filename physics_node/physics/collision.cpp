@@ -819,9 +819,21 @@ bool CollisionWorld::link_within(int hand, Link link, const Eigen::Isometry3d& X
   box.lo.array() -= gap_m;
   box.hi.array() += gap_m;
   if (!box.overlaps(shape_aabb(m.shapes[o], m.objects[o]->getTransform()))) return false;
+  const Eigen::Isometry3d X_GC =
+      X_GL * m.X_LC[static_cast<std::size_t>(hand)][static_cast<std::size_t>(link)];
+  const Body& link_body = m.bodies[body];
+  if (link_body.shape == ShapeKind::kCapsule && Impl::is_round(m.bodies[o].shape)) {
+    // a capsule link and a cylinder or capsule: closest points (segment_contact.hpp), as the
+    // narrowphase finds them; a segment reaching inside the body overlaps it
+    const Eigen::Vector3d axis_G = X_GC.linear().col(2) * link_body.half_length_m;
+    const SegmentContact s = segment_contact(X_GC.translation() - axis_G,
+                                             X_GC.translation() + axis_G, link_body.radius_m,
+                                             m.round_body(object));
+    return !s.resolved || -s.depth_m <= gap_m;
+  }
   const fcl::CollisionObjectd probe(
       std::const_pointer_cast<fcl::CollisionGeometryd>(m.objects[body]->collisionGeometry()),
-      X_GL * m.X_LC[static_cast<std::size_t>(hand)][static_cast<std::size_t>(link)]);
+      X_GC);
   // (an overlap gives a distance of zero or less)
   const fcl::DistanceRequestd request;
   fcl::DistanceResultd result;
