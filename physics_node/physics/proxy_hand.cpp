@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "common/assert.hpp"
 #include "physics_node/physics/world_state.hpp"
@@ -73,7 +74,7 @@ ProxyHand::ProxyHand(const Scene& scene, int hand)
 ProxyPose ProxyHand::step_goal(const ProxyPose& now, const HandInput& tracked_from,
                                const HandInput& tracked, bool pushing, bool holding,
                                const std::vector<Eigen::Vector3d>& blocking_out_G,
-                               double step_s) const {
+                               double step_s, hand::KinematicsMemo& fk) const {
   double v_max = pushing ? params_.push_speed_mps : params_.max_speed_mps;
   double w_max =
       pushing ? std::min(params_.max_spin_radps, params_.push_speed_mps / kHandReach_m)
@@ -116,21 +117,21 @@ ProxyPose ProxyHand::step_goal(const ProxyPose& now, const HandInput& tracked_fr
   const double turn_max_rad = w_max * step_s;
   const double share = turn_rad > turn_max_rad ? turn_max_rad / turn_rad : 1.0;
   goal.X_GH.linear() = q_now.slerp(share, q_to).normalized().toRotationMatrix();
-  limit_finger_speed(now.q_rad, params_.max_speed_mps * step_s, goal.q_rad);
+  limit_finger_speed(now.q_rad, params_.max_speed_mps * step_s, goal.q_rad, fk);
   return goal;
 }
 
 void ProxyHand::limit_finger_speed(const JointAngles& now_rad, double reach_m,
-                                   JointAngles& goal_rad) const {
+                                   JointAngles& goal_rad, hand::KinematicsMemo& fk) const {
   // The shares are found from how far each finger's links and tip would move (in the hand's
   // frame); a share is exact only to first order (a curling finger's tip moves along an arc
   // longer than its chord), so the scaled step is measured again, a few times.
   constexpr int kPasses = 4;
   HandLinkPoses from;
   HandLinkPoses to;
-  forward_kinematics(hand_, now_rad, from);
+  fk.solve(now_rad, from);
   for (int pass = 0; pass < kPasses; ++pass) {
-    forward_kinematics(hand_, goal_rad, to);
+    fk.solve(goal_rad, to);
     std::array<double, kFingerCount> moved_m{};
     for (int f = 0; f < kFingerCount; ++f)
       moved_m[static_cast<std::size_t>(f)] =
@@ -168,6 +169,8 @@ void ProxyHand::limit_finger_speed(const JointAngles& now_rad, double reach_m,
 ProxyPose ProxyHand::advance(const ProxyPose& prev, const ProxyPose& start,
                              const ProxyPose& goal, int substeps) {
   VCOCKPIT_ASSERT(substeps >= 1, "a step has at least one substep");
+  if (substeps == 1 && prev.q_rad == start.q_rad && prev.X_GH.matrix() == start.X_GH.matrix())
+    return goal;
   const double share = 1.0 / substeps;
   ProxyPose next;
   next.X_GH.translation() =
@@ -341,7 +344,7 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
     if (share[static_cast<std::size_t>(f)] < 1.0)
       slide_finger(static_cast<Finger>(f), share[static_cast<std::size_t>(f)], q_goal_rad, pose);
   result.fingers_held = true;
-  move_links(pose, links, X_GL, contacts, hand_static);
+  move_links(q_goal_rad, pose, links, X_GL, contacts, hand_static);
 }
 
 void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_goal_rad,
@@ -424,12 +427,20 @@ void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_g
   }
 }
 
-void ProxyHand::move_links(const ProxyPose& pose, HandLinkPoses& links,
-                           std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
+void ProxyHand::move_links(const JointAngles& links_q_rad, const ProxyPose& pose,
+                           HandLinkPoses& links, std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
                            std::vector<ContactPoint>& contacts,
                            std::vector<ContactPoint>& hand_static) {
   const std::array<Eigen::Isometry3d, kLinkCount> X_GL_was = X_GL;
-  forward_kinematics(hand_, pose.q_rad, links);
+  // only the fingers whose joints moved: a finger's chain depends on its own joints alone, so
+  // the others' links are already what forward kinematics gives (bit for bit)
+  for (int f = 0; f < kFingerCount; ++f) {
+    bool moved = false;
+    for (std::size_t j = 0; j < kJointCount && !moved; ++j)
+      moved = finger_joints_[static_cast<std::size_t>(f)][j] &&
+              std::memcmp(&pose.q_rad[j], &links_q_rad[j], sizeof(double)) != 0;
+    if (moved) finger_kinematics(hand_, static_cast<Finger>(f), pose.q_rad, links);
+  }
   for (int l = 0; l < kLinkCount; ++l) X_GL[l] = pose.X_GH * links.X_HL[l];
   // the contacts follow their links (to first order: the overlap's midpoint moves half as far)
   const auto follow = [&](std::vector<ContactPoint>& list) {
@@ -520,9 +531,10 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
     moved = true;
   }
   if (!moved) return;
+  const JointAngles links_q_rad = pose.q_rad;
   pose.q_rad = bent.q_rad;
   result.fingers_held = true;
-  move_links(pose, links, X_GL, contacts, hand_static);
+  move_links(links_q_rad, pose, links, X_GL, contacts, hand_static);
 }
 
 void ProxyHand::shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, ProxyPose& pose,

@@ -39,6 +39,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "hand/kinematics_memo.hpp"
 #include "physics_node/physics/contact.hpp"
 #include "physics_node/physics/finger_jacobian.hpp"
 #include "physics_node/physics/hand_names.hpp"
@@ -82,9 +83,11 @@ class ProxyHand {
   // step's constrain_wrist). While `holding`, the wrist moves as the tracked
   // hand does over the step (`tracked_from` to `tracked`) and closes its lag behind it at no
   // more than the pushing speed.
+  // `fk` is this hand's forward kinematics (the goal's answer is kept there for the step).
   ProxyPose step_goal(const ProxyPose& now, const HandInput& tracked_from,
                       const HandInput& tracked, bool pushing, bool holding,
-                      const std::vector<Eigen::Vector3d>& blocking_out_G, double step_s) const;
+                      const std::vector<Eigen::Vector3d>& blocking_out_G, double step_s,
+                      hand::KinematicsMemo& fk) const;
 
   // The tentative pose one substep on: the step's motion from `start` to `goal`, split evenly
   // over its `substeps`, added to where the proxy is now (`prev`). A proxy that the world holds
@@ -92,6 +95,7 @@ class ProxyHand {
   // 1 / remaining of all it still lacked made the last substep take the whole step's lag in one
   // bite: a held-back finger jabbed 35 um into the cup in the last substep and backed off in
   // the others, and that substep's contact damping read 20 N where the grip pressed 2-5 N.
+  // A step of one substep from where it started is the goal itself, bit for bit.
   static ProxyPose advance(const ProxyPose& prev, const ProxyPose& start, const ProxyPose& goal,
                            int substeps);
   // The fingers flagged in `fingers`, kept where they were for the earlier substeps of a step
@@ -181,7 +185,8 @@ class ProxyHand {
   // origins and its tip moves farther than `reach_m` (in the hand's frame): a finger catches up
   // with the tracked one at bounded speed, as the wrist does, so a finger that the world held
   // back and then lets go does not jump through a panel in one step.
-  void limit_finger_speed(const JointAngles& now_rad, double reach_m, JointAngles& goal_rad) const;
+  void limit_finger_speed(const JointAngles& now_rad, double reach_m, JointAngles& goal_rad,
+                          hand::KinematicsMemo& fk) const;
   Link link_of(int body) const { return static_cast<Link>(body - link_base_); }
   void hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& prev_links, ProxyPose& pose,
                          HandLinkPoses& links, std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
@@ -197,8 +202,9 @@ class ProxyHand {
                           std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
                           std::vector<ContactPoint>& contacts,
                           std::vector<ContactPoint>& hand_static, ProxyConstraint& result);
-  // Puts the links at `pose` (forward kinematics) and carries every hand contact with its link.
-  void move_links(const ProxyPose& pose, HandLinkPoses& links,
+  // Puts the links at `pose` (forward kinematics; `links` are those of the joint angles
+  // `links_q_rad`) and carries every hand contact with its link.
+  void move_links(const JointAngles& links_q_rad, const ProxyPose& pose, HandLinkPoses& links,
                   std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
                   std::vector<ContactPoint>& contacts, std::vector<ContactPoint>& hand_static);
   void shift_out(std::array<Eigen::Isometry3d, kLinkCount>& X_GL, ProxyPose& pose,

@@ -121,6 +121,7 @@ World::World(Scene scene)
     HandSim& sim = hands_[h];
     HandState& hs = state_.hands[h];
     sim.hand_id = hand_id_of(scene_.hands[h]);
+    sim.fk.emplace(scene_.hands[h]);
     sim.holder_bit = static_cast<uint8_t>(1u << h);
     sim.held_mask.assign(object_count_, 0);
     sim.resting_links.assign(object_count_, 0);
@@ -199,7 +200,7 @@ int World::choose_substeps(bool holding) {
       from.X_GH.translation() += hs.finger_pull_G;
       to.X_GH.translation() += hs.finger_pull_G;
       sim.proxy_goal = sim.proxy->step_goal(sim.proxy_start, from, to, hs.pushing, this_holds,
-                                            hs.blocking_out_G, scene_.step_s);
+                                            hs.blocking_out_G, scene_.step_s, *sim.fk);
       sweep = {&hs.X_GL, sim.proxy_goal.X_GH, sim.proxy_goal.q_rad};
     } else {
       sweep = {&hs.X_GL, hs.to.X_GH, hs.to.q_rad};
@@ -510,7 +511,7 @@ void World::place_hand(int hand, const Eigen::Isometry3d& X_GH, const JointAngle
   HandState& hs = state_.hands[static_cast<std::size_t>(hand)];
   hs.X_GH = X_GH;
   hs.q_rad = q_rad;
-  forward_kinematics(scene_.hands[static_cast<std::size_t>(hand)], q_rad, sim.link_poses);
+  sim.fk->solve(q_rad, sim.link_poses);
   for (int l = 0; l < kLinkCount; ++l) hs.X_GL[l] = hs.X_GH * sim.link_poses.X_HL[l];
 }
 
@@ -572,6 +573,7 @@ void World::constrain_proxy(int hand, double dt_s) {
                                                        sim.hand_static, hs.blocking_out_G);
   hs.X_GH = pose.X_GH;
   hs.q_rad = pose.q_rad;
+  if (fingers_moved) sim.fk->remember(hs.q_rad, sim.link_poses);  // (the next step starts here)
   hs.pushing = r.pushing;
   if (!held_pairs_skipped_) hs.fingers_on_held = sim.proxy->fingers_touching(sim.contacts, held_mask_);
   sim.proxy_prev_links = sim.link_poses;
@@ -655,7 +657,7 @@ void World::observe_tracked_hand(int hand) const {
   sim.tracked_offset_m = 0.0;
   if (!sim.proxy || !hs.active) return;
   HandLinkPoses tracked;
-  forward_kinematics(scene_.hands[static_cast<std::size_t>(hand)], hs.to.q_rad, tracked);
+  sim.fk->solve(hs.to.q_rad, tracked);
   const Eigen::Isometry3d& X_GT = hs.to.X_GH;
   double offset_m = 0.0;
   for (int l = 0; l < kLinkCount; ++l) {

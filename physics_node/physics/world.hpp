@@ -160,6 +160,9 @@ class World {
     std::vector<uint32_t> resting_links;  // GraspHold::resting_links at the start of this step
     std::array<Eigen::Isometry3d, kLinkCount> X_GL_before;  // the links one substep ago
     HandLinkPoses link_poses;
+    // this hand's forward kinematics: the proxy now, the tracked hand and the goal, each once a
+    // step (the grasp stage's view of the glove is const)
+    mutable std::optional<hand::KinematicsMemo> fk;
     HandLinkPoses proxy_prev_links;  // the proxy's links one substep ago, in H
     ProxyPose proxy_prev;            // the proxy one substep ago
     ProxyPose proxy_start;           // the proxy at the start of this step

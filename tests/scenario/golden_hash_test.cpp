@@ -61,8 +61,8 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0x84197444bb823f26") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0xca50d6c5028254c2") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0x6eac6cb863d96a0b") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x43925d938465c1b2") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
