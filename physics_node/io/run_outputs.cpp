@@ -2,10 +2,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include <charconv>
 #include <cstdio>
 #include <stdexcept>
 
+#include "common/fixed_decimal.hpp"
 #include "common/json_file.hpp"
 #include "physics_node/io/grasp_event_text.hpp"
 
@@ -14,14 +14,6 @@ namespace vcockpit::physics_io {
 std::string hand_name(int hand_id) { return hand_id == 1 ? "left" : "right"; }
 
 namespace {
-// v as printf's "%.<digits>f" writes it
-void append_fixed(std::string& out, double v, int digits) {
-  char text[400];  // room for DBL_MAX's 309 integer digits
-  const auto [end, error] = std::to_chars(text, text + sizeof text, v, std::chars_format::fixed, digits);
-  if (error != std::errc()) throw std::logic_error("a value too long for a row: " + std::to_string(v));
-  out.append(text, end);
-}
-
 // "right", "left", or "both" while two hands hold it
 std::string holders_name(const physics::BodyState& b) {
   return (b.holders & (b.holders - 1)) != 0 ? "both" : hand_name(b.held_by);
@@ -47,8 +39,8 @@ void TrajectoryWriter::write(const physics::World& world) {
     if (!finite) continue;  // the row is left out
     const Eigen::Vector3d p = b.X_GO.translation();
     const Eigen::Quaterniond q(b.X_GO.linear());
-    // std::to_chars, not fprintf: the same digits (both round the exact binary value), without
-    // printf's format parsing and locking per value
+    // append_fixed, not fprintf: the same digits (both round the exact binary value), without
+    // printf's format parsing and locking per value (common/fixed_decimal.hpp)
     row_.clear();
     append_fixed(row_, t_s, 6);
     row_ += ',';
