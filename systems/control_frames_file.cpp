@@ -1,6 +1,7 @@
 #include "systems/control_frames_file.hpp"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -131,13 +132,19 @@ ControlFramesWriter::ControlFramesWriter(const std::string& path,
 void ControlFramesWriter::write(const ControlFrame& frame) {
   if (frame.position.size() != controls_ || frame.q.size() != controls_)
     throw std::invalid_argument("a control frame of another size");
+  // std::to_chars with a precision writes what printf's "%.17g" does (round-trip exact), without
+  // its format parsing and locking per value
   std::string row = std::to_string(frame.time_ns);
-  char number[40];
+  char number[64];
   for (std::size_t c = 0; c < controls_; ++c) {
-    std::snprintf(number, sizeof number, ",%d,%.17g", frame.position[c], frame.q[c]);
-    row += number;
+    row += ',';
+    row.append(number, std::to_chars(number, number + sizeof number, frame.position[c]).ptr);
+    row += ',';
+    row.append(number, std::to_chars(number, number + sizeof number, frame.q[c],
+                                     std::chars_format::general, 17).ptr);
   }
-  file_.write(row + "\n");
+  row += '\n';
+  file_.write(row);
 }
 
 }  // namespace vcockpit::systems
