@@ -64,6 +64,7 @@ def commit():
 SCENES = {0: "cockpit, right hand holding the cup (5 loose objects, 11 controls, left hand idle)",
           10: "cockpit + 10 loose objects (15 loose, 11 controls)",
           100: "cockpit + 100 loose objects (105 loose, 11 controls)",
+          300: "cockpit + 300 loose objects (305 loose, 11 controls)",
           500: "cockpit + 500 loose objects (505 loose, 11 controls)"}
 
 
@@ -107,6 +108,10 @@ def physics_rows(gbench):
                      "ours": o, "ours_awake": awake.get(n), "mujoco": m,
                      "ratio_p50": o["p50_us"] / m["p50_us"] if m else None,
                      "ratio_p99": o["p99_us"] / m["p99_us"] if m else None,
+                     "ratio_awake_p50": (awake[n]["p50_us"] / m["p50_us"]
+                                         if m and awake.get(n) else None),
+                     "ratio_awake_p99": (awake[n]["p99_us"] / m["p99_us"]
+                                         if m and awake.get(n) else None),
                      "ours_penalty": so, "ours_penalty_awake": penalty_awake.get(n),
                      "ratio_penalty_p50": so["p50_us"] / m["p50_us"] if m and so else None,
                      "ratio_penalty_p99": so["p99_us"] / m["p99_us"] if m and so else None,
@@ -175,13 +180,23 @@ def main():
     floor_transit = floor["dds_transit_us"]
     e2e = rig["glove_to_frame_latency_ms"]
     row500 = next((r for r in rows if r["loose_objects"] == 500), None)
+    row300 = next((r for r in rows if r["loose_objects"] == 300), None)
     slower = [r for r in rows if r["ratio_p50"] is not None and
               (r["ratio_p50"] > 1.0 or r["ratio_p99"] > 1.0)]
+    # MuJoCo 2.2 has no sleeping: the like-for-like figure is ours with every object awake
+    slower_awake = [r for r in rows if r["ratio_awake_p50"] is None or
+                    r["ratio_awake_p50"] > 1.0 or r["ratio_awake_p99"] > 1.0]
     pile_asleep, pile_awake = pile.get("asleep"), pile.get("awake")
     pile_share = (pile_asleep["p50_us"] / pile_awake["p50_us"]
                   if pile_asleep and pile_awake else None)
     targets = [
-        {"target": "physics step no slower than MuJoCo on the same scene (p50 and p99; ours "
+        {"target": "physics step no slower than MuJoCo on the same scene, every object awake "
+                   "(p50 and p99; MuJoCo 2.2 has no sleeping)",
+         "measured": ", ".join(f"{r['dynamic_objects']} dynamic: {r['ratio_awake_p50']:.2f}x / "
+                               f"{r['ratio_awake_p99']:.2f}x"
+                               for r in rows if r["ratio_awake_p50"] is not None) or "not run",
+         "met": not slower_awake and bool(rows)},
+        {"target": "... and with its resting objects asleep (p50 and p99; ours "
                    "with its resting objects asleep, MuJoCo 2.2 has no sleeping)",
          "measured": ", ".join(f"{r['dynamic_objects']} dynamic: {r['ratio_p50']:.2f}x / "
                                f"{r['ratio_p99']:.2f}x"
@@ -194,14 +209,21 @@ def main():
                                for r in rows if r["ratio_penalty_p50"] is not None) or "not run",
          "met": bool(rows) and all(r["ratio_penalty_p50"] is not None and r["ratio_penalty_p50"] <= 1.0
                                    and r["ratio_penalty_p99"] <= 1.0 for r in rows)},
-        {"target": "500 loose objects: one step p99 under 2 ms",
+        {"target": "500 loose objects: one step p99 under 2 ms, every object awake",
          "measured": (f"p50 {row500['ours']['p50_us']:.0f} us, p99 {row500['ours']['p99_us']:.0f} us "
                       f"({row500['ours'].get('asleep', 0):.0f} asleep); every object awake: p50 "
                       f"{row500['ours_awake']['p50_us']:.0f} us, p99 "
                       f"{row500['ours_awake']['p99_us']:.0f} us")
          if row500 and row500.get("ours_awake") else "not run",
          "met": bool(row500) and bool(row500.get("ours_awake")) and
-                row500["ours"]["p99_us"] < 2000.0},
+                row500["ours_awake"]["p99_us"] < 2000.0},
+        {"target": "300 loose objects, every object awake: one step p99 under 1 ms (the 1 kHz "
+                   "loop keeps real time)",
+         "measured": (f"p50 {row300['ours_awake']['p50_us']:.0f} us, p99 "
+                      f"{row300['ours_awake']['p99_us']:.0f} us")
+         if row300 and row300.get("ours_awake") else "not run",
+         "met": bool(row300) and bool(row300.get("ours_awake")) and
+                row300["ours_awake"]["p99_us"] < 1000.0},
         {"target": "a pile of 200 objects asleep costs under 10 % of its awake step",
          "measured": (f"{pile_asleep['p50_us']:.1f} us asleep ({pile_asleep.get('asleep', 0):.0f} "
                       f"of {pile_asleep['objects']}) vs {pile_awake['p50_us']:.0f} us awake "
@@ -230,8 +252,8 @@ def main():
          "measured": f"p50 {retarget['all']['p50_us']:.0f} us, p99 {retarget['all']['p99_us']:.0f} us "
                      f"(two-handed three-claps p99 {retarget['three-claps']['p99_us']:.0f} us)",
          "met": retarget["all"]["p99_us"] < 200.0 and retarget["three-claps"]["p99_us"] < 200.0},
-        {"target": "offline runner at 50x real time or better",
-         "measured": f"{offline['realtime_factor']:.1f}x", "met": offline["realtime_factor"] >= 50.0},
+        {"target": "offline runner at 100x real time or better",
+         "measured": f"{offline['realtime_factor']:.1f}x", "met": offline["realtime_factor"] >= 100.0},
     ]
 
     results = {
@@ -284,8 +306,8 @@ def main():
               "\"Sleeping\"), and with every object kept awake (`sleep: {enabled: false}`).\n")
     md.append("| scene | substeps | asleep | ours p50 / p99 (us) | contacts | every object awake: "
               "substeps, p50 / p99 (us) | MuJoCo p50 / p99 (us) | contacts | ours / MuJoCo "
-              "(p50 / p99) |")
-    md.append("|---|---|---|---|---|---|---|---|---|")
+              "(p50 / p99) | every object awake: ours / MuJoCo (p50 / p99) |")
+    md.append("|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         o, mj, aw = r["ours"], r["mujoco"] or {}, r.get("ours_awake") or {}
         awake_text = (f"{aw.get('substeps', 0):.0f}, {aw['p50_us']:.1f} / {aw['p99_us']:.1f}"
@@ -295,8 +317,11 @@ def main():
                   f"{awake_text} | "
                   f"{mj.get('p50_us', float('nan')):.1f} / {mj.get('p99_us', float('nan')):.1f} | "
                   f"{mj.get('contacts', 0):.0f} | "
-                  f"{r['ratio_p50']:.2f}x / {r['ratio_p99']:.2f}x |" if r["ratio_p50"] is not None else
-                  f"| {r['scene']} | ... | | {o['p50_us']:.1f} / {o['p99_us']:.1f} | | | | | |")
+                  f"{r['ratio_p50']:.2f}x / {r['ratio_p99']:.2f}x | " +
+                  (f"{r['ratio_awake_p50']:.2f}x / {r['ratio_awake_p99']:.2f}x |"
+                   if r["ratio_awake_p50"] is not None else " |")
+                  if r["ratio_p50"] is not None else
+                  f"| {r['scene']} | ... | | {o['p50_us']:.1f} / {o['p99_us']:.1f} | | | | | | |")
     md.append("")
     if any(r.get("ours_penalty") for r in rows):
         md.append("The same scenes with `contact: {solver: penalty}` (the same springs stepped "
