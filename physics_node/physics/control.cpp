@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace vcockpit::physics {
 
@@ -191,13 +192,49 @@ ControlStepFree free_control_step(const ControlSpec& c, double M, double Q_ext, 
   return {s.q + next.x, qd, true};
 }
 
+int mechanism_steps(const ControlSpec& c, double M, double qd, double dt_s) {
+  if (c.detents.empty() || !(M > 0.0)) return 1;
+  double k_peak = 0.0;
+  double half_width = std::numeric_limits<double>::infinity();
+  for (const Detent& d : c.detents) {
+    if (!(d.half_width > 0.0)) continue;
+    k_peak = std::max(k_peak, d.strength * kPi / d.half_width);
+    half_width = std::min(half_width, d.half_width);
+  }
+  if (!(k_peak > 0.0)) return 1;
+  const double by_stiffness = std::sqrt((c.stiffness + k_peak) / M) * dt_s / 0.5;
+  const double by_speed = std::abs(qd) * dt_s / (0.25 * half_width);
+  const double steps = std::ceil(std::max(by_stiffness, by_speed));
+  if (!(steps > 1.0)) return 1;  // (NaN too)
+  return static_cast<int>(std::min(steps, static_cast<double>(kMaxMechanismSteps)));
+}
+
+ControlStepFree free_control_motion(const ControlSpec& c, double M, double Q_ext, double dt_s,
+                                    const ControlState& s) {
+  const int n = mechanism_steps(c, M, s.qd, dt_s);
+  if (n == 1) return free_control_step(c, M, Q_ext, dt_s, s);
+  ControlState at = s;
+  ControlStepFree out{s.q, s.qd, false};
+  for (int i = 0; i < n; ++i) {
+    const ControlStepFree next = free_control_step(c, M, Q_ext, dt_s / n, at);
+    if (!next.moved) break;  // at rest within its friction: it stays
+    at.q = next.q;
+    at.qd = next.qd;
+    out = {next.q, next.qd, true};
+  }
+  return out;
+}
+
 void integrate_control(const ControlSpec& c, double M, double Q_ext, double dt_s,
                        uint32_t gates_open, ControlState& s) {
-  const ControlStepFree next = free_control_step(c, M, Q_ext, dt_s, s);
-  if (!next.moved) return;
-  const double q = reachable_q(c, s.q, next.q, gates_open);
-  s.qd = q != next.q ? 0.0 : next.qd;  // a stop or a gate: inelastic
-  s.q = q;
+  const int n = mechanism_steps(c, M, s.qd, dt_s);
+  for (int i = 0; i < n; ++i) {
+    const ControlStepFree next = free_control_step(c, M, Q_ext, dt_s / n, s);
+    if (!next.moved) return;  // at rest within its friction: it stays
+    const double q = reachable_q(c, s.q, next.q, gates_open);
+    s.qd = q != next.q ? 0.0 : next.qd;  // a stop or a gate: inelastic
+    s.q = q;
+  }
 }
 
 double control_travel_per_force(const ControlSpec& c, double M, const ControlState& s, double dt_s) {

@@ -175,11 +175,25 @@ struct ControlStepFree {
 ControlStepFree free_control_step(const ControlSpec& c, double M, double Q_ext, double dt_s,
                                   const ControlState& s);
 
-// One substep of the joint's motion law with generalised force Q_ext (contacts and gravity) and
-// joint inertia M: the spring and damper exactly, Coulomb friction (a control at rest stays while
-// the net force is within it; a moving one stops rather than turn back), then the travel limits
-// and the closed gates as inelastic stops. `gates_open`:
-// the gates a grasping hand has lifted the lever over (bit g).
+// The mechanism's own steps within a step of dt_s from rate qd: a detent's force is held over a
+// step (only its restoring slope is implicit), so a light knob that crosses a detent within one
+// step is pushed by a force it has already passed, gains energy from nothing and spins on by
+// itself. Steps short enough that its stiffest detent turns at most half a radian of its
+// oscillation (omega h <= 0.5) and the coordinate moves at most a quarter of a detent's
+// half-width; at most kMaxMechanismSteps. 1 for a control without detents.
+constexpr int kMaxMechanismSteps = 32;
+int mechanism_steps(const ControlSpec& c, double M, double qd, double dt_s);
+
+// The free motion over dt_s (gravity and the mechanism, Q_ext held), in mechanism_steps, without
+// stops: where the coordinate would go.
+ControlStepFree free_control_motion(const ControlSpec& c, double M, double Q_ext, double dt_s,
+                                    const ControlState& s);
+
+// The joint's motion law over dt_s, in mechanism_steps, with generalised force Q_ext (contacts and
+// gravity) held and joint inertia M: the spring and damper exactly, Coulomb friction (a control
+// at rest stays while the net force is within it; a moving one stops rather than turn back), then
+// the travel limits and the closed gates as inelastic stops. `gates_open`: the gates a grasping
+// hand has lifted the lever over (bit g).
 void integrate_control(const ControlSpec& c, double M, double Q_ext, double dt_s,
                        uint32_t gates_open, ControlState& s);
 

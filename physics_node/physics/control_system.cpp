@@ -176,7 +176,7 @@ void ControlSystem::solver_joints(const std::vector<ContactPoint>& contacts, dou
       // its mean rate over the step under gravity and its mechanism alone, and how a generalised
       // impulse changes it (solver_joint.hpp). Its stops are the rate's bounds, not part of the
       // free rate: a toggle its snap holds against a stop moves only once a push beats the snap.
-      const ControlStepFree free = free_control_step(c, inertia_[ci], weight_Q(ci), dt_s, s);
+      const ControlStepFree free = free_control_motion(c, inertia_[ci], weight_Q(ci), dt_s, s);
       joint.qd_free = (free.q - s.q) / dt_s;
       joint.mobility = control_travel_per_force(c, inertia_[ci], s, dt_s) / (dt_s * dt_s);
       const double inf = std::numeric_limits<double>::infinity();

@@ -244,3 +244,70 @@ TEST(ControlModel, TheJointMotionTakesTheBodyFromOneCoordinateToAnother) {
 
 }  // namespace
 }  // namespace vcockpit::physics
+
+namespace vcockpit::physics {
+namespace {
+
+// The panel's heading knob: 8 g on a 1 cm radius (4e-7 kg m^2), firm clicks every 10 deg (0.06 N m
+// within 5 deg). Its stiffest detent rings at sqrt(k / M) = 2300 rad/s, past what one explicit
+// step of 1 ms holds (omega h = 2.3): spun and let go, the step's held detent force pushed it on
+// through clicks it had already passed, and it spun on by itself (a knob brushed by a fingertip
+// clicked ten times in 26 ms). In its mechanism's own steps it loses energy to its damper from
+// the first step and stops in a click.
+ControlSpec heading_knob() {
+  ControlSpec c;
+  c.kind = ControlKind::kRotary;
+  c.joint = JointKind::kRevolute;
+  c.limited = false;
+  c.damping = 1e-4;
+  c.detents = {{0.0, 0.06, 5 * kDeg}};
+  c.detent_period = 10 * kDeg;
+  c.positions = {{"click", 0.0, -2 * kDeg, 2 * kDeg}, {"between", 5 * kDeg, 3 * kDeg, 7 * kDeg}};
+  return c;
+}
+
+// Kinetic energy plus the click's potential (the integral of its restoring torque).
+double knob_energy(const ControlSpec& c, double M, const ControlState& s) {
+  const Detent& d = c.detents.front();
+  const double x = std::remainder(s.q - d.q, c.detent_period);
+  const double w = d.half_width;
+  const double V = std::abs(x) < w ? d.strength * w / kPi * (1.0 - std::cos(kPi * x / w))
+                                   : 2.0 * d.strength * w / kPi;
+  return 0.5 * M * s.qd * s.qd + V;
+}
+
+TEST(ControlModel, ALightKnobSpunAndLetGoStopsInAClickWithoutGainingEnergy) {
+  const ControlSpec c = heading_knob();
+  const double M = 4e-7, dt = 1e-3;
+  EXPECT_EQ(mechanism_steps(c, M, 0.0, dt), 5) << "omega h = 2.3 in steps of omega h <= 0.5";
+  EXPECT_EQ(mechanism_steps(c, M, 100.0, dt), 5) << "100 rad/s is 1.3 quarter half-widths a step";
+  EXPECT_EQ(mechanism_steps(c, M, 1000.0, dt), 32) << "at most kMaxMechanismSteps";
+  ControlSpec bare = c;
+  bare.detents.clear();
+  EXPECT_EQ(mechanism_steps(bare, M, 1000.0, dt), 1) << "no detent: the spring is exact already";
+
+  for (const double spin_radps : {60.0, 200.0, -300.0}) {
+    ControlState s;
+    s.qd = spin_radps;
+    double energy = knob_energy(c, M, s);
+    int clicks = 0;
+    for (int k = 0; k < 300; ++k) {
+      integrate_control(c, M, 0.0, dt, 0u, s);
+      if (update_position(c, s)) ++clicks;
+      const double now = knob_energy(c, M, s);
+      ASSERT_LE(now, energy * (1.0 + 1e-9) + 1e-15) << spin_radps << " rad/s, step " << k;
+      energy = now;
+    }
+    const double off_deg = std::remainder(s.q, c.detent_period) / kDeg;
+    EXPECT_LT(std::abs(off_deg), 0.5) << spin_radps << " rad/s: at rest in a click";
+    EXPECT_LT(std::abs(s.qd), 1e-3) << spin_radps << " rad/s";
+    // its kinetic energy carries it over a few clicks at most (each a barrier of 2 S w / pi =
+    // 3.3 mJ; 300 rad/s is 18 mJ), two position changes each
+    EXPECT_LE(clicks, 2 * static_cast<int>(std::ceil(0.5 * M * spin_radps * spin_radps /
+                                                       (2.0 * 0.06 * 5 * kDeg / kPi))) + 2)
+        << spin_radps << " rad/s";
+  }
+}
+
+}  // namespace
+}  // namespace vcockpit::physics
