@@ -17,8 +17,9 @@ namespace {
 
 constexpr char kMagic[8] = {'V', 'C', 'K', 'P', 'O', 'I', 'N', 'T'};
 // 2: GraspHold::opposed_fingers and palm_opposed; 3: GraspHold::grip_tightest_rad;
-// 4: HandState::finger_pull_G; 5: BodyState's sleep (still_s, asleep, island)
-constexpr uint64_t kVersion = 6;
+// 4: HandState::finger_pull_G; 5: BodyState's sleep (still_s, asleep, island); 6: the stick
+// anchors' impulses (the soft solver's warm start); 7: GraspHold::grip_gap_m
+constexpr uint64_t kVersion = 7;
 constexpr uint64_t kFrozenFlag = 1;
 // anchors are per touching pair: far more than any scene makes, far less than a corrupt length
 constexpr uint64_t kMaxVarCount = 1u << 16;

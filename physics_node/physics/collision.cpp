@@ -813,12 +813,20 @@ bool CollisionWorld::link_within(int hand, Link link, const Eigen::Isometry3d& X
   const Impl& m = *impl_;
   VCOCKPIT_ASSERT(0 <= hand && hand < hand_count_ && 0 <= object && object < object_count_,
                   "a hand link and an object");
-  const auto body = static_cast<std::size_t>(hand_link_body(hand, link));
   const auto o = static_cast<std::size_t>(object);
   Aabb box = hand_link_box(hand, link, X_GL);
   box.lo.array() -= gap_m;
   box.hi.array() += gap_m;
   if (!box.overlaps(shape_aabb(m.shapes[o], m.objects[o]->getTransform()))) return false;
+  return link_gap_m(hand, link, X_GL, object) <= gap_m;
+}
+
+double CollisionWorld::link_gap_m(int hand, Link link, const Eigen::Isometry3d& X_GL, int object) const {
+  const Impl& m = *impl_;
+  VCOCKPIT_ASSERT(0 <= hand && hand < hand_count_ && 0 <= object && object < object_count_,
+                  "a hand link and an object");
+  const auto body = static_cast<std::size_t>(hand_link_body(hand, link));
+  const auto o = static_cast<std::size_t>(object);
   const Eigen::Isometry3d X_GC =
       X_GL * m.X_LC[static_cast<std::size_t>(hand)][static_cast<std::size_t>(link)];
   const Body& link_body = m.bodies[body];
@@ -829,16 +837,15 @@ bool CollisionWorld::link_within(int hand, Link link, const Eigen::Isometry3d& X
     const SegmentContact s = segment_contact(X_GC.translation() - axis_G,
                                              X_GC.translation() + axis_G, link_body.radius_m,
                                              m.round_body(object));
-    return !s.resolved || -s.depth_m <= gap_m;
+    return s.resolved ? std::max(0.0, -s.depth_m) : 0.0;
   }
   const fcl::CollisionObjectd probe(
       std::const_pointer_cast<fcl::CollisionGeometryd>(m.objects[body]->collisionGeometry()),
       X_GC);
-  // (an overlap gives a distance of zero or less)
   const fcl::DistanceRequestd request;
   fcl::DistanceResultd result;
   fcl::distance(&probe, m.objects[o].get(), request, result);
-  return result.min_distance <= gap_m;
+  return std::max(0.0, result.min_distance);  // (an overlap gives zero or less)
 }
 
 std::size_t CollisionWorld::candidate_pair_count() const { return impl_->pairs.size(); }

@@ -82,6 +82,8 @@ class CollisionWorld {
   bool link_overlaps(int hand, Link link, const Eigen::Isometry3d& X_GL, int object) const;
   // Whether it is within gap_m of the object's surface (or in it), the same way.
   bool link_within(int hand, Link link, const Eigen::Isometry3d& X_GL, int object, double gap_m) const;
+  // How far it is off the object's surface, the same way (0 touching or in it).
+  double link_gap_m(int hand, Link link, const Eigen::Isometry3d& X_GL, int object) const;
 
   std::size_t candidate_pair_count() const;
   // Narrowphase points dropped since construction for a zero, NaN or non-unit normal (or a NaN

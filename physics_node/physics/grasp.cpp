@@ -188,6 +188,8 @@ GraspCheck evaluate_grasp(const HandContact* contacts, std::size_t count,
     }
   }
   const bool opposer = check.thumb || check.palm_opposes;
+  check.pinch = gesture && !held && opposer && any_finger &&
+                (params.gesture_rule != GestureRule::kPaper || check.min_thumb_angle_deg > alpha0);
 
   // the gesture rule first (off: any contact will do), then eqs. 30-31
   if (check.links_in_contact < (gesture ? min_contacts : 1)) {

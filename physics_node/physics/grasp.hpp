@@ -74,6 +74,10 @@ struct GraspCheck {
   double residual_force_N = 0.0;
   double residual_torque_Nm = 0.0;
   GraspReason verdict = GraspReason::kTooFewContacts;  // kStableGrasp when it holds
+  // The gesture rule but for its count: an opposer and a finger opposed to it (a pinch). Two
+  // hands that each pinch an object have more than 2 contact points on it together (the
+  // two-handed grasp, GraspTracker::update_free).
+  bool pinch = false;
   bool holds() const { return verdict == GraspReason::kStableGrasp; }
   // The gesture rule holds (contacts, thumb or palm, opposition); eqs. 30-31 may not.
   bool gesture_holds() const {

@@ -142,7 +142,8 @@ void GraspTracker::update_held_by_one(int object, HandOnObject* hands, std::size
 }
 
 // No hand holds it: the first hand whose own test takes it; else two hands whose gestures hold on
-// their own and whose contacts together meet eqs. 30-31 (not a control: one hand at a time).
+// their own, or that each pinch it (an opposer and an opposed finger: more than 2 contact points
+// together), and whose contacts together meet eqs. 30-31 (not a control: one hand at a time).
 void GraspTracker::update_free(int object, const ObjectSpec& o, HandOnObject* hands,
                                std::size_t hand_count, const GraspCheck* checks, BodyState& body,
                                std::vector<GraspEvent>& events, const GraspJoint* joint) const {
@@ -152,7 +153,8 @@ void GraspTracker::update_free(int object, const ObjectSpec& o, HandOnObject* ha
   }
   if (body.held() || joint != nullptr) return;
   const auto may_join = [&](std::size_t k) {
-    return hands[k].count != 0 && may_take(hands[k]) && checks[k].gesture_holds();
+    return hands[k].count != 0 && may_take(hands[k]) &&
+           (checks[k].gesture_holds() || checks[k].pinch);
   };
   for (std::size_t a = 0; a < hand_count; ++a) {
     for (std::size_t b = a + 1; b < hand_count && may_join(a); ++b) {

@@ -8,14 +8,14 @@
 //            release_delay_s in a row and the object has been held for min_hold_s: the glove's
 //            gripping fingers opened by release_opening_share of their flexion at the grasp, or
 //            the tracked thumb (the palm, when it opposed) or every finger opposed at the grasp
-//            is farther than release_gap_m from the object's surface; at once when the glove is
-//            lost. The proxy's contact forces on an attached object do not let go of it: its
-//            fingers keep closing onto a body that cannot move to balance them. (kContactTest,
-//            the paper's: the stable-grasp test at its looser held thresholds fails instead.) The
-//            object
-//            leaves with the hand's motion over velocity_window_s (its held poses), so it can be
-//            set down or thrown without a jump; a hand slower than settle_speed_mps over
-//            settle_window_s is setting it down, and that window's mean is taken instead.
+//            is release_gap_m farther from the object's surface than at the grasp; at once
+//            when the glove is lost. The proxy's contact forces on an attached object do not
+//            let go of it: its fingers keep closing onto a body that cannot move to balance
+//            them. (kContactTest, the paper's: the stable-grasp test at its looser held
+//            thresholds fails instead.) The object leaves with the hand's motion over
+//            velocity_window_s (its held poses), so it can be set down or thrown without a
+//            jump; a hand slower than settle_speed_mps over settle_window_s is setting it
+//            down, and that window's mean is taken instead.
 // With several hands, a hand's contacts count only for its own test, and:
 //   handover  an object one hand holds that another hand's own test holds (unheld thresholds)
 //             goes to that hand in the same step: RELEASE "handed over" by the first, GRASP by
@@ -78,6 +78,11 @@ struct GraspHold {
   // the tracked hand must keep (hold_rule kTrackedGrip)
   uint8_t opposed_fingers = 0;
   bool palm_opposed = false;
+  // How far each link of the tracked hand, posed on the proxy's wrist, was off the object's
+  // surface at the grasp (m; 0 touching or in it). A glove's calibration puts its thumb a few mm
+  // off where the proxy's touches, and noise moves it a few more: the tracked thumb or finger
+  // leaves when it is release_gap_m farther off than it gripped (World::tracked_links_near).
+  std::array<double, kLinkCount> grip_gap_m{};
   // The links (bit l) the proxy keeps a hair off it (ProxyHand::depth_limit_m) after a release:
   // those that touched it, and those whose glove link passes through it during the regrab
   // cooldown; after the cooldown, if the glove has opened from its grip (release_opening_deg),
@@ -117,10 +122,10 @@ struct HandOnObject {
   // only while hold->hand_clearing)
   uint32_t glove_links_inside = 0;
   // the links of the tracked hand, posed on the proxy's wrist (the hand's shape, not its lag),
-  // within release_gap_m of the object's surface (bit l), or, for a control, where the tracked
-  // hand is against the control as it would move it (World::tracked_links_near); known only
-  // while this hand holds it and hold_rule is kTrackedGrip, and measured only as far as the
-  // verdict needs (the first near link of the thumb or palm, and of one opposed finger)
+  // no more than release_gap_m farther off the object's surface than at the grasp (bit l;
+  // GraspHold::grip_gap_m), or, for a control, where the tracked hand is against the control
+  // as it would move it (World::tracked_links_near); known only while this hand holds it and
+  // hold_rule is kTrackedGrip, and measured only as far as the verdict needs (the first near link of the thumb or palm, and of one opposed finger)
   bool grip_known = false;
   uint32_t tracked_links_near = 0;
   GraspHold* hold = nullptr;  // this hand's grasp state of the object

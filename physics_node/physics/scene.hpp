@@ -158,7 +158,8 @@ struct GraspParams {
   double release_opening_share = 0.2;
   double release_opening_deg = 15.0;
   // kTrackedGrip: let go when the tracked thumb (or the opposing palm), or every finger that was
-  // opposed at the grasp, is farther than this from the object's surface (the hand moved off it).
+  // opposed at the grasp, is this much farther from the object's surface than it was at the
+  // grasp (the hand moved off it; GraspHold::grip_gap_m).
   double release_gap_m = 0.005;
 };
 

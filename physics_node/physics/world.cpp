@@ -598,6 +598,21 @@ uint32_t World::glove_links_inside(int hand, int object, const GraspHold& hold) 
   return inside;
 }
 
+void World::note_grip_gaps(int hand, int object, GraspHold& hold) const {
+  const HandSim& sim = hands_[static_cast<std::size_t>(hand)];
+  const HandState& hs = hand_state(hand);
+  hold.grip_gap_m.fill(0.0);
+  if (!hs.active) return;
+  observe_tracked_hand(hand);
+  const Eigen::Isometry3d X_HT = sim.proxy ? hs.X_GH * hs.to.X_GH.inverse() : Eigen::Isometry3d::Identity();
+  for (int l = 0; l < kLinkCount; ++l) {
+    const Eigen::Isometry3d X_GL = sim.proxy ? X_HT * sim.tracked_X_GL[l] : hs.X_GL[l];
+    // (at most one gap more: a link that far off at the grasp was not gripping)
+    hold.grip_gap_m[static_cast<std::size_t>(l)] =
+        std::min(collision_.link_gap_m(hand, static_cast<Link>(l), X_GL, object), scene_.grasp.release_gap_m);
+  }
+}
+
 uint32_t World::tracked_links_near(int hand, int object, const GraspHold& hold) const {
   const HandSim& sim = hands_[static_cast<std::size_t>(hand)];
   const HandState& hs = hand_state(hand);
@@ -613,7 +628,10 @@ uint32_t World::tracked_links_near(int hand, int object, const GraspHold& hold) 
   // past an end stop or a closed gate, is off it both ways. (For a round knob on its own axis
   // the carrying back changes no distance; for a lever's handle it does.)
   const int control = scene_.objects[static_cast<std::size_t>(object)].control;
-  const double gap_m = scene_.grasp.release_gap_m;
+  // each link's gap counted from where it gripped (GraspHold::grip_gap_m)
+  const auto gap_m = [&](int link) {
+    return scene_.grasp.release_gap_m + hold.grip_gap_m[static_cast<std::size_t>(link)];
+  };
   std::optional<Eigen::Isometry3d> X_back;  // (worked out the first time a link needs it)
   const auto carried_back = [&]() -> const Eigen::Isometry3d& {
     if (!X_back) {
@@ -626,9 +644,9 @@ uint32_t World::tracked_links_near(int hand, int object, const GraspHold& hold) 
   const auto near = [&](Link l) {
     const int i = static_cast<int>(l);
     const Eigen::Isometry3d X_GL = sim.proxy ? X_HT * sim.tracked_X_GL[i] : hs.X_GL[i];
-    if (collision_.link_within(hand, l, X_GL, object, gap_m)) return true;
+    if (collision_.link_within(hand, l, X_GL, object, gap_m(i))) return true;
     return sim.proxy && control >= 0 &&
-           collision_.link_within(hand, l, carried_back() * sim.tracked_X_GL[i], object, gap_m);
+           collision_.link_within(hand, l, carried_back() * sim.tracked_X_GL[i], object, gap_m(i));
   };
   const auto bit = [](Link l) { return 1u << static_cast<int>(l); };
   // a finger's links from its tip in: the tip is the one nearest an object it grips
@@ -809,8 +827,14 @@ void World::grasp_stage() {
                       (state_.bodies[object].holders & hands_[h].holder_bit) != 0;
       on.tracked_links_near = on.grip_known ? tracked_links_near(static_cast<int>(h), object, hold) : 0u;
     }
+    const std::size_t events_before = events_.size();
     grasp_tracker_.update_hands(object, o, on_object_.data(), on_object_.size(), state_.bodies[object],
                                 events_, controls_.grasp_joint_of(object));
+    for (std::size_t e = events_before; e < events_.size(); ++e) {
+      if (!events_[e].grasp || events_[e].object != object) continue;
+      const int h = hand_index(events_[e].hand_id);
+      if (h >= 0) note_grip_gaps(h, object, state_.hands[static_cast<std::size_t>(h)].grasp[static_cast<std::size_t>(object)]);
+    }
   };
   const auto clear_hand_contacts = [&] {
     for (HandSim& sim : hands_) sim.on_object.clear();

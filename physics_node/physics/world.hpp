@@ -202,6 +202,9 @@ class World {
   // Only the links the verdict needs are measured, tips first: the opposer's (the thumb's, or the
   // palm) until one is near, then the opposed fingers' until one is near.
   uint32_t tracked_links_near(int hand, int object, const GraspHold& hold) const;
+  // At a grasp: how far each link of the tracked hand, posed as tracked_links_near poses it, is
+  // off the object (GraspHold::grip_gap_m).
+  void note_grip_gaps(int hand, int object, GraspHold& hold) const;
   // Where a held object is: eq. 29 for one hand, the mean of both hands' held poses for two.
   Eigen::Isometry3d held_pose(int object) const;
   void move_held_objects(double dt_s);

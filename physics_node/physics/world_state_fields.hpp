@@ -60,6 +60,8 @@ void grasp_hold(V& v, Hold& g) {
     v.num(q);
   v.num(g.opposed_fingers);
   v.num(g.palm_opposed);
+  for (auto& d : g.grip_gap_m)
+    v.num(d);
   v.num(g.resting_links);
   v.num(g.hand_clearing);
   v.num(g.handed_over);

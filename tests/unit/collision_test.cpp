@@ -751,6 +751,39 @@ TEST(CollisionHand, IndexTipDipsTwoMillimetresIntoABox) {
   EXPECT_NEAR(x_hi, p0.x() + length_m, kPointTol_m);  // the segment's end sphere
 }
 
+// How far a tracked link is off an object (the grasp rule's release gap): the flat index tip
+// held above a box (FCL's distance) and above a cylinder lying across it (closest points), at
+// 0, 3 and 7 mm; in it, 0. link_within agrees at 5 mm.
+TEST(CollisionHand, ALinksGapToAnObjectIsItsDistanceOffTheSurface) {
+  const HandModel& hand = shipped_hand();
+  const auto X_GL = flat_hand_links(hand, pose(0.2, -0.1, 0.9));
+  const auto distal = static_cast<std::size_t>(Link::kIndexDistal);
+  const Eigen::Vector3d p0 = X_GL[distal].translation();
+  const double r_m = hand.capsules[distal].radius_m;
+  for (const bool round : {false, true}) {
+    for (const double gap_m : {-2e-3, 0.0, 3e-3, 7e-3}) {
+      Scene scene;
+      scene.hands = {hand};
+      if (round) {
+        // a 1 cm cylinder along y under the tip's middle: its top gap_m below the capsule
+        const double radius_m = 0.01;
+        const double x_m = p0.x() + 0.5 * hand.capsules[distal].length_m;
+        Eigen::Isometry3d X = pose(x_m, p0.y(), p0.z() - r_m - gap_m - radius_m);
+        X.linear() = rx90();
+        scene.objects = {object("bar", true, Shape::cylinder(radius_m, 0.05), X)};
+      } else {
+        scene.objects = {box_under_index_tip(hand, X_GL, -gap_m, true)};
+      }
+      CollisionWorld world(scene);
+      step(world, initial_poses(scene), &X_GL);
+      const double measured_m = world.link_gap_m(0, Link::kIndexDistal, X_GL[distal], 0);
+      EXPECT_NEAR(measured_m, std::max(0.0, gap_m), 1e-6) << (round ? "cylinder" : "box") << ", " << gap_m;
+      EXPECT_EQ(world.link_within(0, Link::kIndexDistal, X_GL[distal], 0, 5e-3), gap_m <= 5e-3)
+          << (round ? "cylinder" : "box") << ", " << gap_m;
+    }
+  }
+}
+
 TEST(CollisionHand, DisabledHandGivesNoHandPairs) {
   const HandModel& hand = shipped_hand();
   const auto X_GL = flat_hand_links(hand, pose(0.2, -0.1, 0.9));

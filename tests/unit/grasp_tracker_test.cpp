@@ -676,6 +676,39 @@ TEST(GraspTrackerTwoHands, AHeavyBoxIsHeldByBothHandsTogetherNotByOneAlone) {
             "release left (glove lost) with right\nrelease right (force residual too large) with left\n");
 }
 
+// A two-link pinch: the thumb and one finger across the object (a glove whose index and middle
+// fingers fall short of a bar and only the ring finger reaches it).
+std::vector<HandContact> two_link_pinch(double side_y_m, double lift_N) {
+  std::vector<HandContact> c = pinch(kCentre, side_y_m, 0.0);
+  c.pop_back();
+  c[1].link = Link::kRingDistal;
+  c[0].F_G = Eigen::Vector3d(4.0, 0.0, lift_N / 2);
+  c[1].F_G = Eigen::Vector3d(-4.0, 0.0, lift_N / 2);
+  return c;
+}
+
+// The gesture constraint's "more than 2 contact points" is the object's: two hands that each
+// pinch it (thumb and an opposed finger) hold it with four. One such pinch alone, or two hands
+// of which one does not oppose its thumb, do not.
+TEST(GraspTrackerTwoHands, TwoTwoLinkPinchesMakeAGraspOfFourContactPoints) {
+  const double weight_N = 2.5 * 9.81;
+  {
+    TwoHandRig rig(2.5);
+    for (int i = 0; i < 5; ++i) rig.step(two_link_pinch(-0.15, weight_N / 2), {});
+    EXPECT_EQ(rig.body.holders, 0u) << "one pinch is 2 contact points: " << rig.text();
+    rig.step(two_link_pinch(-0.15, weight_N / 2), two_link_pinch(0.15, weight_N / 2));
+    EXPECT_EQ(rig.body.holders, 3u);
+    EXPECT_EQ(rig.text(), "grasp right (stable grasp) with left\ngrasp left (stable grasp) with right\n");
+  }
+  {
+    TwoHandRig rig(2.5);
+    std::vector<HandContact> unopposed = two_link_pinch(0.15, weight_N / 2);
+    unopposed[1].n_G = Eigen::Vector3d::UnitZ();  // 90 deg from the thumb's: not beyond alpha0
+    for (int i = 0; i < 5; ++i) rig.step(two_link_pinch(-0.15, weight_N / 2), unopposed);
+    EXPECT_EQ(rig.body.holders, 0u) << rig.text();
+  }
+}
+
 // A squeeze about the object's centroid that carries nothing yet (the panel under it does): the
 // thumb pushing +x with `squeeze_N`, two fingers -x with half of it each, and the palm on top
 // pressing down with `press_N`.
