@@ -3,25 +3,19 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <string>
 
 #include "hand/config/hand_yaml.hpp"
 #include "hand/kinematics_memo.hpp"
+#include "tests/support/test_files.hpp"
 
 namespace vcockpit::hand {
 namespace {
 
-std::string source_dir() {
-  if (const char* dir = std::getenv("VCOCKPIT_SOURCE_DIR")) return dir;
-  const std::string file = __FILE__;  // <repo>/tests/unit/kinematics_memo_test.cpp
-  return file.substr(0, file.rfind("/tests/unit/"));
-}
-
 const HandModel& shipped_hand() {
-  static const HandModel model = load_hand_model(source_dir() + "/config/hand.yaml");
+  static const HandModel model = load_hand_model(test::source_dir() + "/config/hand.yaml");
   return model;
 }
 
