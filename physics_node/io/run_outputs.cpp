@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 #include "common/fixed_decimal.hpp"
@@ -26,9 +27,18 @@ TrajectoryWriter::TrajectoryWriter(const std::string& path) : file_(path) {
                "t_s,object,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,held_by,control_q,control_position\n");
 }
 
+bool TrajectoryWriter::RowState::operator==(const RowState& o) const {
+  // bit for bit: -0.0 and 0.0 print differently, and a value that changed in its last bit may
+  // round to other digits
+  return std::memcmp(values.data(), o.values.data(), sizeof values) == 0 && holders == o.holders &&
+         held_by == o.held_by && position == o.position;
+}
+
 void TrajectoryWriter::write(const physics::World& world) {
   const auto& objects = world.scene().objects;
+  if (last_.size() != objects.size()) last_.assign(objects.size(), {});
   const double t_s = static_cast<double>(world.time_ns()) / 1e9;
+  std::string& row = row_;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     if (!objects[i].dynamic) continue;
     const auto& b = world.bodies()[i];
@@ -37,34 +47,52 @@ void TrajectoryWriter::write(const physics::World& world) {
                         guard_.pass(b.v_G.allFinite(), name, "linear velocity", world.time_ns()) &&
                         guard_.pass(b.w_G.allFinite(), name, "angular velocity", world.time_ns());
     if (!finite) continue;  // the row is left out
-    const Eigen::Vector3d p = b.X_GO.translation();
-    const Eigen::Quaterniond q(b.X_GO.linear());
-    // append_fixed, not fprintf: the same digits (both round the exact binary value), without
-    // printf's format parsing and locking per value (common/fixed_decimal.hpp)
-    row_.clear();
-    append_fixed(row_, t_s, 6);
-    row_ += ',';
-    row_ += name;
-    for (const double v : {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), b.v_G.x(), b.v_G.y(),
-                           b.v_G.z(), b.w_G.x(), b.w_G.y(), b.w_G.z()}) {
-      row_ += ',';
-      append_fixed(row_, v, 9);
-    }
-    row_ += ',';
-    if (b.held_by != physics::kNotHeld) row_ += holders_name(b);
-    row_ += ',';
     const int control = objects[i].control;
-    if (control >= 0) {  // the control's coordinate (m or rad) and its position's name
-      const physics::ControlState& s = world.state().controls[static_cast<std::size_t>(control)];
-      const auto& positions = world.scene().controls[static_cast<std::size_t>(control)].positions;
-      append_fixed(row_, s.q, 9);
-      row_ += ',';
-      row_ += positions[static_cast<std::size_t>(s.position)].name;
-      row_ += '\n';
-    } else {
-      row_ += ",\n";
+    const physics::ControlState* control_state =
+        control >= 0 ? &world.state().controls[static_cast<std::size_t>(control)] : nullptr;
+    RowState now;
+    std::memcpy(now.values.data(), b.X_GO.matrix().data(), 12 * sizeof(double));
+    std::memcpy(now.values.data() + 12, b.v_G.data(), 3 * sizeof(double));
+    std::memcpy(now.values.data() + 15, b.w_G.data(), 3 * sizeof(double));
+    now.values[18] = control_state ? control_state->q : 0.0;
+    now.holders = b.holders;
+    now.held_by = b.held_by;
+    now.position = control_state ? control_state->position : -1;
+    // most objects lie still (or sleep) between rows: their row after the time is the same text
+    Memo& memo = last_[i];
+    if (!memo.valid || !(memo.state == now)) {
+      memo.state = now;
+      memo.valid = true;
+      std::string& tail = memo.tail;
+      const Eigen::Vector3d p = b.X_GO.translation();
+      const Eigen::Quaterniond q(b.X_GO.linear());
+      // append_fixed, not fprintf: the same digits (both round the exact binary value), without
+      // printf's format parsing and locking per value (common/fixed_decimal.hpp)
+      tail.clear();
+      tail += ',';
+      tail += name;
+      for (const double v : {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), b.v_G.x(),
+                             b.v_G.y(), b.v_G.z(), b.w_G.x(), b.w_G.y(), b.w_G.z()}) {
+        tail += ',';
+        append_fixed(tail, v, 9);
+      }
+      tail += ',';
+      if (b.held_by != physics::kNotHeld) tail += holders_name(b);
+      tail += ',';
+      if (control_state) {  // the control's coordinate (m or rad) and its position's name
+        const auto& positions = world.scene().controls[static_cast<std::size_t>(control)].positions;
+        append_fixed(tail, control_state->q, 9);
+        tail += ',';
+        tail += positions[static_cast<std::size_t>(control_state->position)].name;
+        tail += '\n';
+      } else {
+        tail += ",\n";
+      }
     }
-    std::fwrite(row_.data(), 1, row_.size(), file_.get());
+    row.clear();
+    append_fixed(row, t_s, 6);
+    row += memo.tail;
+    std::fwrite(row.data(), 1, row.size(), file_.get());
   }
 }
 

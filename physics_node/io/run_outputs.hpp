@@ -50,6 +50,21 @@ class TrajectoryWriter {
   AtomicFile file_;
   NonFiniteGuard guard_{"trajectories.csv"};
   std::string row_;  // one row's text, its capacity kept from row to row
+  // What an object's row was made of (pose, velocities, control coordinate, all bit for bit;
+  // its holders and control position) and its text after the time
+  struct RowState {
+    std::array<double, 19> values{};
+    uint8_t holders = 0;
+    int held_by = physics::kNotHeld;
+    int position = -1;
+    bool operator==(const RowState& o) const;
+  };
+  struct Memo {
+    RowState state;
+    std::string tail;
+    bool valid = false;
+  };
+  std::vector<Memo> last_;  // per object (dynamic ones used)
 };
 
 class EventWriter {

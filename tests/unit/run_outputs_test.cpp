@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <map>
@@ -59,6 +60,12 @@ void expect_all_finite(const nlohmann::json& j, const std::string& where) {
     for (std::size_t i = 0; i < j.size(); ++i)
       expect_all_finite(j[i], where + "[" + std::to_string(i) + "]");
   }
+}
+
+std::string printf_fixed(double v, int digits) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", digits, v);
+  return text;
 }
 
 nlohmann::json parse_json(const std::string& text, const std::string& what) {
@@ -185,6 +192,66 @@ TEST(RunOutputs, AControlsChangeIsAnEventAndItsCoordinateATrajectoryColumn) {
   const nlohmann::json s = parse_json(read_text(options.out_dir + "/summary.json"), "summary");
   EXPECT_EQ(s.at("controls").at("reset"), "out");
   EXPECT_EQ(s.at("control_events"), 1);
+}
+
+// An object's row is the text of its state at that write: the writer reuses the text of an
+// object that has not changed since its last row (most lie still), and must see a change of one
+// bit -- here a velocity of 0.0 turned -0.0, which prints differently.
+TEST(TrajectoryWriter, EachRowIsTheObjectsStateAtThatWriteEvenWhenOneBitChanged) {
+  physics::Scene scene;
+  physics::ObjectSpec floor;
+  floor.name = "floor";
+  floor.shape = physics::Shape::box({1.0, 1.0, 0.1});
+  floor.X_GO.translation() = Eigen::Vector3d(0.0, 0.0, -0.05);
+  scene.objects.push_back(floor);
+  physics::ObjectSpec box = floor;
+  box.name = "box";
+  box.dynamic = true;
+  box.shape = physics::Shape::box({0.04, 0.04, 0.04});
+  box.mass_kg = 0.1;
+  box.I_O = box.shape.unit_density_inertia() * (box.mass_kg / box.shape.volume_m3());
+  box.X_GO.translation() = Eigen::Vector3d(0.0, 0.0, 0.1);  // falling
+  scene.objects.push_back(box);
+  physics::ObjectSpec still = box;
+  still.name = "still";
+  still.X_GO.translation() = Eigen::Vector3d(0.3, 0.0, 0.02);  // at rest on the floor
+  scene.objects.push_back(still);
+  physics::World world(scene);
+
+  const auto expected_row = [&](int i) {
+    const physics::BodyState& b = world.bodies()[static_cast<std::size_t>(i)];
+    const Eigen::Vector3d p = b.X_GO.translation();
+    const Eigen::Quaterniond q(b.X_GO.linear());
+    std::string row = printf_fixed(static_cast<double>(world.time_ns()) / 1e9, 6) + "," +
+                      scene.objects[static_cast<std::size_t>(i)].name;
+    for (const double v : {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z(), b.v_G.x(), b.v_G.y(),
+                           b.v_G.z(), b.w_G.x(), b.w_G.y(), b.w_G.z()})
+      row += "," + printf_fixed(v, 9);
+    return row + ",,,\n";
+  };
+  const std::string path = make_temp_dir("trajectory_writer_test") + "/trajectories.csv";
+  std::string expected = "t_s,object,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,held_by,control_q,control_position\n";
+  {
+    physics_io::TrajectoryWriter writer(path);
+    const auto write = [&] {
+      writer.write(world);
+      expected += expected_row(1) + expected_row(2);
+    };
+    write();
+    for (int step = 0; step < 30; ++step) {
+      world.step();
+      if (step % 3 == 2) write();
+    }
+    physics::WorldState state = world.state();
+    state.bodies[2].v_G.x() = 0.0;
+    world.restore(state);
+    write();
+    state.bodies[2].v_G.x() = -0.0;  // one bit
+    world.restore(state);
+    write();
+    writer.commit();
+  }
+  EXPECT_EQ(read_text(path), expected);
 }
 
 TEST(RunOutputs, AnEventsNonFiniteResidualIsLeftOutAndNamed) {
