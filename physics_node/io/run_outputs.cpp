@@ -184,6 +184,7 @@ void write_summary(const std::string& path, const RunSummary& s, const physics::
     stages[physics::stage_name(static_cast<physics::Stage>(i))] =
         i < static_cast<int>(s.stage_total_s.size()) ? s.stage_total_s[i] : 0.0;
   }
+  j["stage_timing_every"] = s.stage_timing_every;  // stage_wall_s: estimates from one step in so many
   j["control_events"] = s.control_events;
   auto& controls = j["controls"] = nlohmann::ordered_json::object();
   for (std::size_t c = 0; c < world.scene().controls.size(); ++c) {

@@ -116,6 +116,7 @@ struct RunSummary {
   double penetration_sum_m = 0.0;
   uint64_t penetration_points = 0;
   std::vector<double> stage_total_s;  // per Stage
+  int stage_timing_every = 1;          // the steps per timed one (World::set_stage_timing_every)
   double hand_peak_wrist_mps = 0.0;    // HandMotionPeak
   double hand_peak_joint_radps = 0.0;
   bool have_input = false;  // a glove log drove the hand: `input` and `timing` apply

@@ -14,19 +14,22 @@
 namespace vcockpit::physics {
 namespace {
 
-// Adds the wall time of a scope to one stage (an observation; never feeds back into results).
+// Adds the wall time of a scope to one stage (an observation; never feeds back into results),
+// on the steps that are timed (StageTimes::timed).
 class StageTimer {
  public:
   StageTimer(StageTimes& times, Stage stage)
-      : slot_(times.ns[static_cast<int>(stage)]), start_(std::chrono::steady_clock::now()) {}
+      : slot_(times.timed ? &times.ns[static_cast<int>(stage)] : nullptr),
+        start_(slot_ ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{}) {}
   ~StageTimer() {
-    slot_ += std::chrono::duration_cast<std::chrono::nanoseconds>(
-                 std::chrono::steady_clock::now() - start_)
-                 .count();
+    if (!slot_) return;
+    *slot_ += std::chrono::duration_cast<std::chrono::nanoseconds>(
+                  std::chrono::steady_clock::now() - start_)
+                  .count();
   }
 
  private:
-  int64_t& slot_;
+  int64_t* slot_;
   std::chrono::steady_clock::time_point start_;
 };
 
@@ -348,6 +351,7 @@ void World::set_hand_input(const HandInput& input, int hand) {
 
 void World::step() {
   stage_times_ = StageTimes{};
+  stage_times_.timed = state_.steps % static_cast<uint64_t>(stage_timing_every_) == 0;
   events_.clear();
   controls_.begin_step();
   body_check_.clear_new_faults();
@@ -411,6 +415,13 @@ void World::step() {
     hands_[h].tracked_observed = false;
     state_.hands[h].from = state_.hands[h].to;
   }
+  if (stage_times_.timed)  // this step stands for the ones up to the next timed one
+    for (int64_t& ns : stage_times_.ns) ns *= stage_timing_every_;
+}
+
+void World::set_stage_timing_every(int steps) {
+  VCOCKPIT_ASSERT(steps >= 1, "stage timing needs a step count of at least 1");
+  stage_timing_every_ = steps;
 }
 
 void World::substep(double dt_s, double alpha, int remaining, bool skip_held_hand_pairs) {

@@ -53,6 +53,7 @@ const char* stage_name(Stage stage);
 
 struct StageTimes {
   std::array<int64_t, kStageCount> ns{};  // wall time per stage over the last step
+  bool timed = true;  // the last step was timed (World::set_stage_timing_every)
 };
 
 // Hand-object penetration over the last step (m), and the deepest link in a static object.
@@ -139,6 +140,11 @@ class World {
   const std::vector<ControlEvent>& control_events() const { return controls_.events(); }
   const std::vector<AppliedContact>& contacts() const { return applied_; }
   const StageTimes& stage_times() const { return stage_times_; }
+  // Times the stages of one step in `steps` (1, the default: every step): two clock reads per
+  // stage cost a few per cent of a small scene's step, which a run as fast as it can go (the
+  // offline runner) need not pay. A timed step reports its times multiplied by `steps`, the
+  // others none, so sums over a run estimate its totals.
+  void set_stage_timing_every(int steps);
   // over every hand
   const PenetrationStats& hand_penetration() const { return penetration_; }
 
@@ -261,6 +267,7 @@ class World {
   std::vector<AppliedContact> applied_;
   std::vector<GraspEvent> events_;
   StageTimes stage_times_;
+  int stage_timing_every_ = 1;
   PenetrationStats penetration_;
 };
 

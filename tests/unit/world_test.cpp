@@ -465,6 +465,35 @@ TEST(WorldStep, EachStageIsTimedWhereItRunsAndOnlyThere) {
   for (int s = 0; s < kStageCount; ++s) EXPECT_EQ(world.stage_times().ns[s], 0) << "observations of the last step";
 }
 
+// A run that times one step in three (World::set_stage_timing_every) reads the clocks on steps
+// 0, 3, 6, ..., and each such step reports three times what it took (a sum over a run estimates
+// the run's); the steps between report nothing. What the world computes does not change.
+TEST(WorldStep, OneStepInNIsTimedAndStandsForTheNSteps) {
+  Cockpit cockpit;
+  World sampled(cockpit.scene);
+  World every(cockpit.scene);
+  sampled.set_stage_timing_every(3);
+  GloveFeed glove_a{&cockpit.samples}, glove_b{&cockpit.samples};
+  for (int step = 0; step < 9; ++step) {
+    glove_a.feed(sampled);
+    glove_b.feed(every);
+    sampled.step();
+    every.step();
+    const StageTimes& t = sampled.stage_times();
+    EXPECT_EQ(t.timed, step % 3 == 0) << step;
+    int64_t total = 0;
+    for (const int64_t ns : t.ns) {
+      EXPECT_EQ(ns % 3, 0) << step;
+      total += ns;
+    }
+    if (t.timed)
+      EXPECT_GT(total, 0) << step;
+    else
+      EXPECT_EQ(total, 0) << step;
+  }
+  EXPECT_EQ(hash_world_state(sampled.state()), hash_world_state(every.state()));
+}
+
 namespace checkpoint {
 
 using physics_io::Checkpoint;
