@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "common/assert.hpp"
+
 namespace vcockpit::hand {
 namespace {
 
@@ -32,35 +34,56 @@ DhRow mirror_row(DhRow row) {
   return row;
 }
 
-void chain_kinematics(const HandModel& model, Finger finger, const JointAngles& q,
-                      HandLinkPoses& out) {
+// The chain's rows from `first` on, from the frame before it (R, p): eqs. 8-10, X_HB T(0,1)
+// T(1,2) ...; a row tagged with a link outputs that link's proximal joint frame (DH frame i lies
+// on joint i+1's axis), turned by the next row's theta. Composed column by column (what
+// dh_transform and the next row's Rz(theta) Tz(d) multiply out to), one sine and cosine per row:
+// this runs on every substep. A row's cosine and sine come from `cached` unless its joint is
+// `changed_joint` (or nothing is cached); `fill`, if given, keeps each row's frame and trig.
+void chain_from(const HandModel& model, Finger finger, const JointAngles& q, std::size_t first,
+                Eigen::Matrix3d R, Eigen::Vector3d p, const FingerChainCache* cached,
+                int changed_joint, HandLinkPoses& out, FingerChainCache* fill) {
   const FingerChain& chain = model.fingers[static_cast<std::size_t>(finger)];
-  const auto links = finger_links(finger);
-  // a malformed chain that never names a link leaves it at the base instead of garbage
-  for (Link link : links)
-    out.X_HL[static_cast<std::size_t>(link)] = chain.X_HB;
-
-  // eqs. 8-10: X_HB T(0,1) T(1,2) ... ; a row tagged with a link outputs that link's proximal
-  // joint frame (DH frame i lies on joint i+1's axis), turned by the next row's theta.
-  // Composed column by column (what dh_transform and the next row's Rz(theta) Tz(d) multiply out
-  // to), one sine and cosine per row: this runs on every substep.
-  Eigen::Matrix3d R = chain.X_HB.linear();
-  Eigen::Vector3d p = chain.X_HB.translation();
   const std::size_t n = chain.rows.size();
+  const auto trig = [&](std::size_t i, double& c, double& s) {
+    const DhRow& row = chain.rows[i];
+    if (cached && row.joint != changed_joint) {
+      c = cached->cos_theta[i];
+      s = cached->sin_theta[i];
+      return;
+    }
+    const double theta = row_theta(row, q);
+    c = std::cos(theta);
+    s = std::sin(theta);
+  };
+  // a link's frame: the frame after row i, turned by the next row's Rz(theta_next) Tz(d_next)
+  const auto output_link = [&](std::size_t i, const Eigen::Matrix3d& R_i, const Eigen::Vector3d& p_i,
+                               double ct_next, double st_next) {
+    const DhRow& row = chain.rows[i];
+    if (row.link < 0 || row.link >= kLinkCount) return;
+    Eigen::Isometry3d& X_HL = out.X_HL[static_cast<std::size_t>(row.link)];
+    X_HL.linear() = R_i;
+    X_HL.translation() = p_i;
+    if (i + 1 < n) {
+      X_HL.linear().col(0) = ct_next * R_i.col(0) + st_next * R_i.col(1);
+      X_HL.linear().col(1) = ct_next * R_i.col(1) - st_next * R_i.col(0);
+      X_HL.translation() = p_i + chain.rows[i + 1].d_m * R_i.col(2);
+    }
+  };
   double ct_next = 1.0, st_next = 0.0;
-  if (n > 0) {
-    const double theta = row_theta(chain.rows[0], q);
-    ct_next = std::cos(theta);
-    st_next = std::sin(theta);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
+  if (first < n) trig(first, ct_next, st_next);
+  // the row before `first` outputs a link that row `first` turns
+  if (first > 0 && first < n) output_link(first - 1, R, p, ct_next, st_next);
+  for (std::size_t i = first; i < n; ++i) {
     const DhRow& row = chain.rows[i];
     const double ct = ct_next, st = st_next;
-    if (i + 1 < n) {
-      const double theta = row_theta(chain.rows[i + 1], q);
-      ct_next = std::cos(theta);
-      st_next = std::sin(theta);
+    if (fill) {
+      fill->R_before[i] = R;
+      fill->p_before[i] = p;
+      fill->cos_theta[i] = ct;
+      fill->sin_theta[i] = st;
     }
+    if (i + 1 < n) trig(i + 1, ct_next, st_next);
     // R Rz(theta), then Tz(d) Tx(a), then Rx(alpha)
     const Eigen::Vector3d x = ct * R.col(0) + st * R.col(1);
     const Eigen::Vector3d y = ct * R.col(1) - st * R.col(0);
@@ -72,21 +95,34 @@ void chain_kinematics(const HandModel& model, Finger finger, const JointAngles& 
     R.col(0) = x;
     R.col(1) = ca * y + sa * z;
     R.col(2) = ca * z - sa * y;
-    if (row.link < 0 || row.link >= kLinkCount) continue;
-    Eigen::Isometry3d& X_HL = out.X_HL[static_cast<std::size_t>(row.link)];
-    X_HL.linear() = R;
-    X_HL.translation() = p;
-    if (i + 1 < n) {  // joint_frame of the next row: Rz(theta_next) Tz(d_next)
-      X_HL.linear().col(0) = ct_next * R.col(0) + st_next * R.col(1);
-      X_HL.linear().col(1) = ct_next * R.col(1) - st_next * R.col(0);
-      X_HL.translation() = p + chain.rows[i + 1].d_m * R.col(2);
-    }
+    output_link(i, R, p, ct_next, st_next);
   }
 
+  const auto links = finger_links(finger);
   const auto distal = static_cast<std::size_t>(links[2]);
   const double length_m = model.capsules[distal].length_m;
   out.p_H_tip[static_cast<std::size_t>(finger)] =
       out.X_HL[distal] * Eigen::Vector3d(length_m, 0, 0);
+}
+
+void chain_kinematics(const HandModel& model, Finger finger, const JointAngles& q,
+                      HandLinkPoses& out, FingerChainCache* fill) {
+  const FingerChain& chain = model.fingers[static_cast<std::size_t>(finger)];
+  // a malformed chain that never names a link leaves it at the base instead of garbage
+  for (Link link : finger_links(finger))
+    out.X_HL[static_cast<std::size_t>(link)] = chain.X_HB;
+  if (fill) {
+    VCOCKPIT_ASSERT(chain.rows.size() <= static_cast<std::size_t>(FingerChainCache::kMaxRows),
+                    "a finger chain longer than FingerChainCache holds");
+    fill->finger = finger;
+  }
+  chain_from(model, finger, q, 0, chain.X_HB.linear(), chain.X_HB.translation(), nullptr, -1,
+             out, fill);
+  if (fill) {
+    for (Link link : finger_links(finger))
+      fill->X_HL[static_cast<std::size_t>(link)] = out.X_HL[static_cast<std::size_t>(link)];
+    fill->p_H_tip = out.p_H_tip[static_cast<std::size_t>(finger)];
+  }
 }
 
 }  // namespace
@@ -121,12 +157,31 @@ Eigen::Isometry3d dh_transform(const DhRow& row, double theta_rad) {
 void forward_kinematics(const HandModel& model, const JointAngles& q, HandLinkPoses& out) {
   out.X_HL[static_cast<std::size_t>(Link::kPalm)] = model.X_HP;
   for (int f = 0; f < kFingerCount; ++f)
-    chain_kinematics(model, static_cast<Finger>(f), q, out);
+    chain_kinematics(model, static_cast<Finger>(f), q, out, nullptr);
 }
 
 void finger_kinematics(const HandModel& model, Finger finger, const JointAngles& q,
                        HandLinkPoses& out) {
-  chain_kinematics(model, finger, q, out);
+  chain_kinematics(model, finger, q, out, nullptr);
+}
+
+void finger_kinematics(const HandModel& model, Finger finger, const JointAngles& q,
+                       HandLinkPoses& out, FingerChainCache& cache) {
+  chain_kinematics(model, finger, q, out, &cache);
+}
+
+void finger_kinematics_probe(const HandModel& model, const FingerChainCache& cache,
+                             const JointAngles& q, int joint, HandLinkPoses& out) {
+  const Finger finger = cache.finger;
+  for (Link link : finger_links(finger))
+    out.X_HL[static_cast<std::size_t>(link)] = cache.X_HL[static_cast<std::size_t>(link)];
+  out.p_H_tip[static_cast<std::size_t>(finger)] = cache.p_H_tip;
+  const auto& rows = model.fingers[static_cast<std::size_t>(finger)].rows;
+  std::size_t first = 0;
+  while (first < rows.size() && rows[first].joint != joint) ++first;
+  if (first == rows.size()) return;  // a joint of another finger: nothing moves
+  chain_from(model, finger, q, first, cache.R_before[first], cache.p_before[first], &cache, joint,
+             out, nullptr);
 }
 
 // NaN is out of range too: it goes to the rest angle rather than poisoning the kinematics.

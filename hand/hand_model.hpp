@@ -86,6 +86,29 @@ void forward_kinematics(const HandModel& model, const JointAngles& q, HandLinkPo
 void finger_kinematics(const HandModel& model, Finger finger, const JointAngles& q,
                        HandLinkPoses& out);
 
+// One finger's chain at one q, kept so that a change of one joint re-poses only what it moves
+// (the proxy's finite-difference Jacobian probes each joint in turn): each row's frame before it
+// and its theta's cosine and sine, and the finger's links and tip.
+struct FingerChainCache {
+  static constexpr int kMaxRows = 16;  // (hand.yaml allows no more per finger)
+  Finger finger = Finger::kThumb;
+  std::array<Eigen::Matrix3d, kMaxRows> R_before;
+  std::array<Eigen::Vector3d, kMaxRows> p_before;
+  std::array<double, kMaxRows> cos_theta{};
+  std::array<double, kMaxRows> sin_theta{};
+  std::array<Eigen::Isometry3d, kLinkCount> X_HL;  // this finger's links only
+  Eigen::Vector3d p_H_tip = Eigen::Vector3d::Zero();
+};
+
+// finger_kinematics, keeping the chain in `cache`.
+void finger_kinematics(const HandModel& model, Finger finger, const JointAngles& q,
+                       HandLinkPoses& out, FingerChainCache& cache);
+// The cached finger at q, where q differs from the cached angles in channel `joint` alone: its
+// three links and tip into `out`, bit for bit what finger_kinematics gives, recomputing only the
+// rows from the first that `joint` drives (one sine and cosine each for the rows it drives).
+void finger_kinematics_probe(const HandModel& model, const FingerChainCache& cache,
+                             const JointAngles& q, int joint, HandLinkPoses& out);
+
 // T(i-1, i) of eq. 1 as an isometry, for any row and joint value (the general form, not the
 // paper's printed instances).
 Eigen::Isometry3d dh_transform(const DhRow& row, double theta_rad);

@@ -225,6 +225,9 @@ void parse_finger(const ConfigNode& node, Finger finger, HandModel& model) {
   const ConfigNode chain_node = node["chain"];
   const std::vector<ConfigNode> row_nodes = chain_node.elements();
   if (row_nodes.empty()) chain_node.fail("the chain needs rows");
+  if (row_nodes.size() > static_cast<std::size_t>(hand::FingerChainCache::kMaxRows))
+    chain_node.fail("a chain has at most " + std::to_string(hand::FingerChainCache::kMaxRows) +
+                    " rows");
   chain.rows.clear();
   for (const ConfigNode& row : row_nodes)
     chain.rows.push_back(parse_row(row, finger));

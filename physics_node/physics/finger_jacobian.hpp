@@ -34,18 +34,22 @@ struct FingerPoint {
 };
 
 // Calls depth_per_rad(i, k, d) with d the depth gained at points[i] per radian of
-// joints.joint[k], at the finger pose q_rad and the hand pose X_GH. probe_links: scratch (only
-// the finger's links are written and read).
+// joints.joint[k], at the finger pose q_rad (the one `chain` was filled at) and the hand pose
+// X_GH. Each probe re-poses only the rows its joint moves (hand::finger_kinematics_probe, bit for
+// bit a full forward kinematics). probe_links: scratch (only the finger's links are written and
+// read).
 template <class Sink>
-void finger_depth_jacobian(const HandModel& hand, Finger finger, const FingerJoints& joints,
-                           const JointAngles& q_rad, const Eigen::Isometry3d& X_GH,
-                           const FingerPoint* points, std::size_t point_count,
-                           HandLinkPoses& probe_links, Sink&& depth_per_rad) {
+void finger_depth_jacobian(const HandModel& hand, const hand::FingerChainCache& chain,
+                           const FingerJoints& joints, const JointAngles& q_rad,
+                           const Eigen::Isometry3d& X_GH, const FingerPoint* points,
+                           std::size_t point_count, HandLinkPoses& probe_links,
+                           Sink&& depth_per_rad) {
   constexpr double kProbe_rad = 1e-4;
   for (int k = 0; k < joints.count; ++k) {
+    const int j = joints.joint[static_cast<std::size_t>(k)];
     JointAngles probe = q_rad;
-    probe[joints.joint[static_cast<std::size_t>(k)]] += kProbe_rad;
-    hand::finger_kinematics(hand, finger, probe, probe_links);
+    probe[static_cast<std::size_t>(j)] += kProbe_rad;
+    hand::finger_kinematics_probe(hand, chain, probe, j, probe_links);
     for (std::size_t i = 0; i < point_count; ++i) {
       const FingerPoint& p = points[i];
       const Eigen::Vector3d u_H = probe_links.X_HL[p.link] * p.p_L - p.p_H;

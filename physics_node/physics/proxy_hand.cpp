@@ -368,7 +368,7 @@ void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_g
   // the depth each of the finger's contacts gains per radian of each joint, at the held-back pose
   slide_rows_.clear();
   slide_points_.clear();
-  finger_kinematics(hand_, finger, pose.q_rad, slide_links_);
+  finger_kinematics(hand_, finger, pose.q_rad, slide_links_, chain_);
   for (std::size_t i = 0; i < limits_.size(); ++i) {
     const ContactLimit& cl = limits_[i];
     if (cl.finger != finger) continue;
@@ -377,7 +377,7 @@ void ProxyHand::slide_finger(Finger finger, double share, const JointAngles& q_g
     slide_points_.push_back({l, cl.p_L, slide_links_.X_HL[l] * cl.p_L, cl.contact->n_G});
   }
   if (slide_rows_.empty()) return;
-  finger_depth_jacobian(hand_, finger, finger_joints, pose.q_rad, pose.X_GH, slide_points_.data(),
+  finger_depth_jacobian(hand_, chain_, finger_joints, pose.q_rad, pose.X_GH, slide_points_.data(),
                         slide_points_.size(), probe_links_,
                         [&](std::size_t i, int k, double d) { slide_rows_[i].gradient_m(k) = d; });
   for (SlideRow& row : slide_rows_) {
@@ -507,7 +507,8 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
       points[static_cast<std::size_t>(i)] = {l, links.X_HL[l].inverse() * p_H, p_H, c.n_G};
     }
     Eigen::Matrix<double, kRows, kMaxFingerJoints> J = Eigen::Matrix<double, kRows, kMaxFingerJoints>::Zero();
-    finger_depth_jacobian(hand_, static_cast<Finger>(f), finger_joints, pose.q_rad, pose.X_GH,
+    finger_kinematics(hand_, static_cast<Finger>(f), pose.q_rad, probe_links_, chain_);
+    finger_depth_jacobian(hand_, chain_, finger_joints, pose.q_rad, pose.X_GH,
                           points.data(), static_cast<std::size_t>(row_count), probe_links_,
                           [&](std::size_t i, int k, double d) {
                             J(static_cast<Eigen::Index>(i), k) = d;

@@ -241,6 +241,7 @@ class ProxyHand {
   };
   std::vector<Plane> planes_;
   HandLinkPoses probe_links_;
+  hand::FingerChainCache chain_;  // a finger's chain at its pose, for its Jacobian's probes
   struct ContactLimit {  // a finger contact as hold_back_fingers saw it
     const ContactPoint* contact;
     Link link;

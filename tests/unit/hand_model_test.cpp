@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <new>
 #include <random>
 #include <string>
@@ -273,6 +274,43 @@ TEST(HandKinematics, ChainIsTheProductOfEq1AsInEqs8To10) {
         }
       }
       EXPECT_TRUE(poses.p_H_tip[f].isApprox(X.translation(), kTol)) << f;
+    }
+  }
+}
+
+// A probe of one joint (finger_kinematics_probe, the proxy's Jacobian) re-poses only the rows
+// that joint moves, and gives bit for bit what a full forward kinematics gives: every joint of
+// every finger at random poses of the shipped hand and its mirror image, a joint of another
+// finger leaving the cached finger as it was.
+TEST(HandKinematics, AProbeOfOneJointIsTheFingersForwardKinematicsBitForBit) {
+  std::mt19937 rng(kSeed);
+  for (const HandModel& model : {shipped_hand(), mirrored(shipped_hand())}) {
+    for (int sample = 0; sample < 50; ++sample) {
+      const JointAngles q = random_pose(model, rng);
+      for (int f = 0; f < kFingerCount; ++f) {
+        const auto finger = static_cast<Finger>(f);
+        HandLinkPoses at;
+        FingerChainCache cache;
+        finger_kinematics(model, finger, q, at, cache);
+        for (int j = 0; j < kJointCount; ++j) {
+          JointAngles probe = q;
+          probe[static_cast<std::size_t>(j)] += 1e-4;
+          HandLinkPoses full, probed;
+          finger_kinematics(model, finger, probe, full);
+          finger_kinematics_probe(model, cache, probe, j, probed);
+          for (const Link link : finger_links(finger)) {
+            const auto l = static_cast<std::size_t>(link);
+            EXPECT_EQ(std::memcmp(full.X_HL[l].matrix().data(), probed.X_HL[l].matrix().data(),
+                                  16 * sizeof(double)),
+                      0)
+                << finger_name(finger) << " " << link_name(link) << ", probing "
+                << joint_name(static_cast<Joint>(j));
+          }
+          const auto tip = static_cast<std::size_t>(f);
+          EXPECT_EQ(std::memcmp(full.p_H_tip[tip].data(), probed.p_H_tip[tip].data(), 3 * sizeof(double)), 0)
+              << finger_name(finger) << " tip, probing " << joint_name(static_cast<Joint>(j));
+        }
+      }
     }
   }
 }
