@@ -59,16 +59,32 @@ SegmentContact segment_contact(const Eigen::Vector3d& a_G, const Eigen::Vector3d
   const Eigen::Vector3d ab_B = X_BG.linear() * (b_G - a_G);
   const double length_m = ab_B.norm();
   const auto distance_at = [&](double t) { return local_distance(body, a_B + t * ab_B, nullptr); };
-  // the least signed distance over t in [0, 1] (a convex function)
-  const GoldenBracket g = golden_section(distance_at, length_m, kBracket_m, kMaxIterations);
-  // the ends too: a flat minimum at an end is found by the search only to within the bracket
-  double best_t = 0.5 * (g.lo + g.hi);
-  double best = distance_at(best_t);
-  for (double t : {0.0, 1.0}) {
-    const double d = distance_at(t);
-    if (d < best) {
-      best = d;
-      best_t = t;
+  // The least signed distance over t in [0, 1]: a convex function, so least at an end when its
+  // slope there points inward (the gradient is a subgradient where the distance has a kink, and
+  // its slope bounds the one-sided one), which is three calls in four on the bundled grasp log;
+  // otherwise searched for inside.
+  Eigen::Vector3d grad0_B, grad1_B;
+  const double f0 = local_distance(body, a_B, &grad0_B);
+  const double f1 = local_distance(body, a_B + ab_B, &grad1_B);
+  double best_t = 0.0;
+  double best = f0;
+  if (grad0_B.dot(ab_B) >= 0.0) {
+    // rising from the start
+  } else if (grad1_B.dot(ab_B) <= 0.0) {
+    best_t = 1.0;  // falling to the end
+    best = f1;
+  } else {
+    const GoldenBracket g = golden_section(distance_at, length_m, kBracket_m, kMaxIterations);
+    best_t = 0.5 * (g.lo + g.hi);
+    best = distance_at(best_t);
+    // the ends too (a flat least value reaching an end)
+    if (f0 < best) {
+      best = f0;
+      best_t = 0.0;
+    }
+    if (f1 < best) {
+      best = f1;
+      best_t = 1.0;
     }
   }
   if (best <= 0.0) return out;  // the segment reaches into the body
