@@ -38,8 +38,10 @@ DhRow mirror_row(DhRow row) {
 // T(1,2) ...; a row tagged with a link outputs that link's proximal joint frame (DH frame i lies
 // on joint i+1's axis), turned by the next row's theta. Composed column by column (what
 // dh_transform and the next row's Rz(theta) Tz(d) multiply out to), one sine and cosine per row:
-// this runs on every substep. A row's cosine and sine come from `cached` unless its joint is
-// `changed_joint` (or nothing is cached); `fill`, if given, keeps each row's frame and trig.
+// this runs on every substep. With kCached, a row's cosine and sine come from `cached` unless
+// its joint is `changed_joint`; with kFill, `fill` keeps each row's frame and trig. (Template
+// flags: the plain forward kinematics pays for neither.)
+template <bool kCached, bool kFill>
 void chain_from(const HandModel& model, Finger finger, const JointAngles& q, std::size_t first,
                 Eigen::Matrix3d R, Eigen::Vector3d p, const FingerChainCache* cached,
                 int changed_joint, HandLinkPoses& out, FingerChainCache* fill) {
@@ -47,10 +49,12 @@ void chain_from(const HandModel& model, Finger finger, const JointAngles& q, std
   const std::size_t n = chain.rows.size();
   const auto trig = [&](std::size_t i, double& c, double& s) {
     const DhRow& row = chain.rows[i];
-    if (cached && row.joint != changed_joint) {
-      c = cached->cos_theta[i];
-      s = cached->sin_theta[i];
-      return;
+    if constexpr (kCached) {
+      if (row.joint != changed_joint) {
+        c = cached->cos_theta[i];
+        s = cached->sin_theta[i];
+        return;
+      }
     }
     const double theta = row_theta(row, q);
     c = std::cos(theta);
@@ -77,7 +81,7 @@ void chain_from(const HandModel& model, Finger finger, const JointAngles& q, std
   for (std::size_t i = first; i < n; ++i) {
     const DhRow& row = chain.rows[i];
     const double ct = ct_next, st = st_next;
-    if (fill) {
+    if constexpr (kFill) {
       fill->R_before[i] = R;
       fill->p_before[i] = p;
       fill->cos_theta[i] = ct;
@@ -116,8 +120,12 @@ void chain_kinematics(const HandModel& model, Finger finger, const JointAngles& 
                     "a finger chain longer than FingerChainCache holds");
     fill->finger = finger;
   }
-  chain_from(model, finger, q, 0, chain.X_HB.linear(), chain.X_HB.translation(), nullptr, -1,
-             out, fill);
+  if (fill)
+    chain_from<false, true>(model, finger, q, 0, chain.X_HB.linear(), chain.X_HB.translation(),
+                            nullptr, -1, out, fill);
+  else
+    chain_from<false, false>(model, finger, q, 0, chain.X_HB.linear(), chain.X_HB.translation(),
+                             nullptr, -1, out, nullptr);
   if (fill) {
     for (Link link : finger_links(finger))
       fill->X_HL[static_cast<std::size_t>(link)] = out.X_HL[static_cast<std::size_t>(link)];
@@ -180,8 +188,8 @@ void finger_kinematics_probe(const HandModel& model, const FingerChainCache& cac
   std::size_t first = 0;
   while (first < rows.size() && rows[first].joint != joint) ++first;
   if (first == rows.size()) return;  // a joint of another finger: nothing moves
-  chain_from(model, finger, q, first, cache.R_before[first], cache.p_before[first], &cache, joint,
-             out, nullptr);
+  chain_from<true, false>(model, finger, q, first, cache.R_before[first], cache.p_before[first],
+                          &cache, joint, out, nullptr);
 }
 
 // NaN is out of range too: it goes to the rest angle rather than poisoning the kinematics.
