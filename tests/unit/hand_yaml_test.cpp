@@ -343,6 +343,31 @@ TEST(HandConfig, LinkOnTheLastRowIsExplained) {
   EXPECT_NE(msg.find("needs a next row"), std::string::npos) << msg;
 }
 
+// A finger's chain holds at most 16 rows (the proxy's chain cache, hand::FingerChainCache): 17
+// (the index's 4 and 13 fixed ones after them, each valid alone) are refused, naming the chain.
+TEST(HandConfig, AChainOfMoreThanSixteenRowsIsRefused) {
+  std::string text = valid_hand();
+  const std::string last = row(0, 0.018, "index_dip", "");
+  const auto at = text.find(last);
+  ASSERT_NE(at, std::string::npos);
+  std::string longer = last;
+  for (int i = 0; i < 12; ++i) longer += row(0, 0.0, "", "");
+  // 16 rows: loads
+  text.replace(at, last.size(), longer);
+  EXPECT_NO_THROW(parse_hand_model(ConfigNode::load_string(text, "sixteen.yaml")));
+  // 17: refused
+  text.replace(at, longer.size(), longer + row(0, 0.0, "", ""));
+  std::string msg = "(no error)";
+  try {
+    parse_hand_model(ConfigNode::load_string(text, "seventeen.yaml"));
+  } catch (const ConfigError& e) {
+    msg = e.what();
+  }
+  EXPECT_NE(msg.find("seventeen.yaml:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(": fingers.index.chain: "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("at most 16 rows"), std::string::npos) << msg;
+}
+
 TEST(HandConfig, MissingFileIsAnError) {
   EXPECT_THROW(load_hand_model("/nonexistent_vcockpit_dir/none.yaml"), ConfigError);
 }
