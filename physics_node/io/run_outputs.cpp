@@ -38,7 +38,6 @@ void TrajectoryWriter::write(const physics::World& world) {
   const auto& objects = world.scene().objects;
   if (last_.size() != objects.size()) last_.assign(objects.size(), {});
   const double t_s = static_cast<double>(world.time_ns()) / 1e9;
-  std::string& row = row_;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     if (!objects[i].dynamic) continue;
     const auto& b = world.bodies()[i];
@@ -89,10 +88,10 @@ void TrajectoryWriter::write(const physics::World& world) {
         tail += ",\n";
       }
     }
-    row.clear();
-    append_fixed(row, t_s, 6);
-    row += memo.tail;
-    std::fwrite(row.data(), 1, row.size(), file_.get());
+    row_.clear();
+    append_fixed(row_, t_s, 6);
+    row_ += memo.tail;
+    std::fwrite(row_.data(), 1, row_.size(), file_.get());
   }
 }
 
