@@ -30,22 +30,21 @@ struct HeldWorld {
   physics::HandInput hand;
 };
 
-physics::Scene scene_with(int loose_objects, bool sleep, bool penalty) {
+physics::Scene scene_with(int loose_objects, bool sleep) {
   physics::Scene scene = loose_objects == 0 ? cockpit_scene() : crowded_cockpit_scene(loose_objects);
   scene.sleep.enabled = sleep;
-  scene.contact.solver = penalty ? physics::ContactSolver::kPenalty : physics::ContactSolver::kSoft;
   return scene;
 }
 
 // One per scene (and sleeping or not) for the whole run: the lead-in (4 s of the glove log) is
 // paid once.
-HeldWorld& held_world(int loose_objects, bool sleep = true, bool penalty = false) {
-  static std::map<std::tuple<int, bool, bool>, HeldWorld> worlds;
-  const auto key = std::make_tuple(loose_objects, sleep, penalty);
+HeldWorld& held_world(int loose_objects, bool sleep = true) {
+  static std::map<std::tuple<int, bool>, HeldWorld> worlds;
+  const auto key = std::make_tuple(loose_objects, sleep);
   auto it = worlds.find(key);
   if (it == worlds.end()) {
     HeldWorld held;
-    held.world = std::make_unique<physics::World>(scene_with(loose_objects, sleep, penalty));
+    held.world = std::make_unique<physics::World>(scene_with(loose_objects, sleep));
     held.hand = step_to_hold(*held.world);
     it = worlds.emplace(key, std::move(held)).first;
   }
@@ -62,7 +61,6 @@ void scene_counters(benchmark::State& state, const physics::World& world) {
   int dynamic = 0;
   for (const auto& o : world.scene().objects) dynamic += o.dynamic ? 1 : 0;
   state.counters["dynamic_objects"] = dynamic;
-  state.counters["substeps"] = world.substeps();
 }
 
 void BM_HandForwardKinematics(benchmark::State& state) {
@@ -78,7 +76,7 @@ void BM_HandForwardKinematics(benchmark::State& state) {
 }
 BENCHMARK(BM_HandForwardKinematics);
 
-// Broadphase and narrowphase of one substep, on the poses of a world at its holding state.
+// Broadphase and narrowphase of one step, on the poses of a world at its holding state.
 void BM_Collision(benchmark::State& state) {
   const int loose = static_cast<int>(state.range(0));
   HeldWorld& held = held_world(loose);
@@ -104,12 +102,10 @@ BENCHMARK(BM_Collision)->Arg(0)->Arg(10)->Arg(100)->Arg(500)->Iterations(2000)
     ->Unit(benchmark::kMicrosecond);
 
 // One full world step (collision, the contacts' solve and the grasp test) with the hand holding
-// the cup. range(1): 1 with sleeping (the default), 0 with every object kept awake. range(2): 0
-// with the soft-constraint contacts (the default: one solve a step, the controls on their joints
-// in it), 1 with the penalty springs in substeps (contact.solver: penalty).
+// the cup. range(1): 1 with sleeping (the default), 0 with every object kept awake.
 void BM_WorldStep(benchmark::State& state) {
   const int loose = static_cast<int>(state.range(0));
-  HeldWorld& held = held_world(loose, state.range(1) != 0, state.range(2) != 0);
+  HeldWorld& held = held_world(loose, state.range(1) != 0);
   physics::World& world = *held.world;
   StepTiming timing(static_cast<std::size_t>(state.max_iterations));
   std::array<int64_t, physics::kStageCount> stage_ns{};
@@ -151,14 +147,12 @@ void BM_MujocoStep(benchmark::State& state) {
 }
 
 // A pile of range(0) objects settled in its bin: with sleeping, stepped once every object sleeps;
-// without (range(1) == 0), stepped as long after the drop, every object awake at rest. range(2):
-// 0 with the soft-constraint contacts (the default), 1 with the penalty's substeps.
+// without (range(1) == 0), stepped as long after the drop, every object awake at rest.
 void BM_PileStep(benchmark::State& state) {
   const int objects = static_cast<int>(state.range(0));
   const bool sleep = state.range(1) != 0;
   physics::Scene scene = pile_scene(objects);
   scene.sleep.enabled = sleep;
-  scene.contact.solver = state.range(2) != 0 ? physics::ContactSolver::kPenalty : physics::ContactSolver::kSoft;
   physics::World world(scene);
   constexpr double kSettle_s = 6.0;  // (the slowest ball stops rolling in 2-3 s)
   while (world.time_ns() < std::llround(kSettle_s * 1e9)) world.step();
@@ -167,7 +161,6 @@ void BM_PileStep(benchmark::State& state) {
   timing.report(state);
   state.counters["dynamic_objects"] = objects;
   state.counters["asleep"] = asleep_count(world);
-  state.counters["substeps"] = world.substeps();
   state.counters["contacts"] = static_cast<double>(world.contacts().size());
   double lowest_m = 1.0;
   for (std::size_t i = 0; i < world.bodies().size(); ++i)
@@ -182,19 +175,16 @@ void register_steps() {
   // (300: where a 1 kHz loop must still keep real time with every object awake)
   for (const int loose : {0, 10, 100, 300, 500}) {
     const int64_t iterations = loose >= 500 ? 500 : loose >= 100 ? 1000 : 3000;
-    for (const int penalty : {0, 1}) {
-      benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
-          ->Args({loose, 1, penalty})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
-      benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
-          ->Args({loose, 0, penalty})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
-    }
+    benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
+        ->Args({loose, 1})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark("BM_WorldStep", BM_WorldStep)
+        ->Args({loose, 0})->Iterations(iterations)->Unit(benchmark::kMicrosecond);
     benchmark::RegisterBenchmark("BM_MujocoStep", BM_MujocoStep)
         ->Arg(loose)->Iterations(iterations)->Unit(benchmark::kMicrosecond);
   }
-  for (const int penalty : {0, 1})
-    for (const int sleep : {1, 0})
-      benchmark::RegisterBenchmark("BM_PileStep", BM_PileStep)
-          ->Args({200, sleep, penalty})->Iterations(500)->Unit(benchmark::kMicrosecond);
+  for (const int sleep : {1, 0})
+    benchmark::RegisterBenchmark("BM_PileStep", BM_PileStep)
+        ->Args({200, sleep})->Iterations(500)->Unit(benchmark::kMicrosecond);
 }
 
 }  // namespace

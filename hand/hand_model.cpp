@@ -38,7 +38,7 @@ DhRow mirror_row(DhRow row) {
 // T(1,2) ...; a row tagged with a link outputs that link's proximal joint frame (DH frame i lies
 // on joint i+1's axis), turned by the next row's theta. Composed column by column (what
 // dh_transform and the next row's Rz(theta) Tz(d) multiply out to), one sine and cosine per row:
-// this runs on every substep. With kCached, a row's cosine and sine come from `cached` unless
+// this runs several times a step. With kCached, a row's cosine and sine come from `cached` unless
 // its joint is `changed_joint`; with kFill, `fill` keeps each row's frame and trig. (Template
 // flags: the plain forward kinematics pays for neither.)
 template <bool kCached, bool kFill>

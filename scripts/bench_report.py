@@ -82,10 +82,9 @@ SCENES = {0: "cockpit, right hand holding the cup (5 loose objects, 11 controls,
 
 
 def physics_rows(gbench):
-    """BM_WorldStep/N/1/C (sleeping), BM_WorldStep/N/0/C (every object awake), C 0 for the soft
-    contacts (the default) and 1 for the penalty ones, and BM_MujocoStep/N side by side; the pile
-    (BM_PileStep/N/S/C); plus the micro-benchmarks."""
-    ours, awake, penalty, penalty_awake, mujoco, collision, pile, fk = {}, {}, {}, {}, {}, {}, {}, None
+    """BM_WorldStep/N/1 (sleeping), BM_WorldStep/N/0 (every object awake) and BM_MujocoStep/N side
+    by side; the pile (BM_PileStep/N/S); plus the micro-benchmarks."""
+    ours, awake, mujoco, collision, pile, fk = {}, {}, {}, {}, {}, None
     for b in gbench["benchmarks"]:
         if b.get("run_type", "iteration") != "iteration":
             continue
@@ -93,20 +92,16 @@ def physics_rows(gbench):
         kind = parts[0]
         arg = int(parts[1]) if len(parts) > 1 and parts[1].isdigit() else None
         arg2 = int(parts[2]) if len(parts) > 2 and parts[2].isdigit() else None
-        arg3 = int(parts[3]) if len(parts) > 3 and parts[3].isdigit() else 0
-        figures = {k: b[k] for k in ("p50_us", "p99_us", "max_us", "substeps", "contacts",
+        figures = {k: b[k] for k in ("p50_us", "p99_us", "max_us", "contacts",
                                      "dynamic_objects", "pairs", "cup_held", "asleep",
                                      "lowest_z_mm") if k in b}
         mean_us = b["real_time"] * {"ns": 1e-3, "us": 1.0, "ms": 1e3, "s": 1e6}[b["time_unit"]]
         figures["mean_us"] = mean_us
         if kind == "BM_WorldStep":
-            if arg3 == 0:
-                (awake if arg2 == 0 else ours)[arg] = figures
-            else:
-                (penalty_awake if arg2 == 0 else penalty)[arg] = figures
+            (awake if arg2 == 0 else ours)[arg] = figures
         elif kind == "BM_PileStep":
             key = "asleep" if arg2 != 0 else "awake"
-            pile[key + ("_penalty" if arg3 != 0 else "")] = dict(figures, objects=arg)
+            pile[key] = dict(figures, objects=arg)
         elif kind == "BM_MujocoStep":
             mujoco[arg] = figures
         elif kind == "BM_Collision":
@@ -115,7 +110,7 @@ def physics_rows(gbench):
             fk = {"mean_ns": mean_us * 1e3}
     rows = []
     for n in sorted(ours):
-        o, m, so = ours[n], mujoco.get(n), penalty.get(n)
+        o, m = ours[n], mujoco.get(n)
         rows.append({"loose_objects": n, "scene": SCENES.get(n, f"{n} loose objects"),
                      "dynamic_objects": int(o.get("dynamic_objects", 0)),
                      "ours": o, "ours_awake": awake.get(n), "mujoco": m,
@@ -125,9 +120,6 @@ def physics_rows(gbench):
                                          if m and awake.get(n) else None),
                      "ratio_awake_p99": (awake[n]["p99_us"] / m["p99_us"]
                                          if m and awake.get(n) else None),
-                     "ours_penalty": so, "ours_penalty_awake": penalty_awake.get(n),
-                     "ratio_penalty_p50": so["p50_us"] / m["p50_us"] if m and so else None,
-                     "ratio_penalty_p99": so["p99_us"] / m["p99_us"] if m and so else None,
                      "collision": collision.get(n)})
     return rows, fk, pile
 
@@ -215,13 +207,6 @@ def main():
                                f"{r['ratio_p99']:.2f}x"
                                for r in rows if r["ratio_p50"] is not None),
          "met": not slower and bool(rows)},
-        {"target": "... the same with the penalty springs in substeps (`contact: {solver: "
-                   "penalty}`, not the default)",
-         "measured": ", ".join(f"{r['dynamic_objects']} dynamic: {r['ratio_penalty_p50']:.2f}x / "
-                               f"{r['ratio_penalty_p99']:.2f}x"
-                               for r in rows if r["ratio_penalty_p50"] is not None) or "not run",
-         "met": bool(rows) and all(r["ratio_penalty_p50"] is not None and r["ratio_penalty_p50"] <= 1.0
-                                   and r["ratio_penalty_p99"] <= 1.0 for r in rows)},
         {"target": "500 loose objects: one step p99 under 2 ms, every object awake",
          "measured": (f"p50 {row500['ours']['p50_us']:.0f} us, p99 {row500['ours']['p99_us']:.0f} us "
                       f"({row500['ours'].get('asleep', 0):.0f} asleep); every object awake: p50 "
@@ -287,8 +272,7 @@ def main():
                        "parts_ms": rig.get("latency_parts_ms"),
                        "frames_rendered": rig.get("frames_rendered")},
         "offline": {k: offline.get(k) for k in ("simulated_s", "wall_s", "realtime_factor",
-                                                 "realtime_factor_runs", "substeps_per_step",
-                                                 "substeps_mean", "stage_wall_s",
+                                                 "realtime_factor_runs", "stage_wall_s",
                                                  "stage_timing_every")},
         "hand_input_in_time": follow,
         "retarget_per_frame": retarget,
@@ -313,20 +297,20 @@ def main():
         md.append(f"| {t['target']} | {t['measured']} | {status(t['met'])} |")
     md.append("")
     md.append("## Physics step: ours and MuJoCo 2.2.2, same scenes, same run\n")
-    md.append("One 1 ms step with the hand holding the cup (ours: every substep, contacts, grasp "
-              "test; MuJoCo: `mj_step`, Newton solver, the hand's links as mocap bodies). "
+    md.append("One 1 ms step with the hand holding the cup (ours: collision, the soft contact "
+              "solve, grasp test; MuJoCo: `mj_step`, Newton solver, the hand's links as mocap bodies). "
               "Wall time per step, single thread.\n")
     md.append("Ours with sleeping (the default: objects at rest sleep, docs/ARCHITECTURE.md, "
               "\"Sleeping\"), and with every object kept awake (`sleep: {enabled: false}`).\n")
-    md.append("| scene | substeps | asleep | ours p50 / p99 (us) | contacts | every object awake: "
-              "substeps, p50 / p99 (us) | MuJoCo p50 / p99 (us) | contacts | ours / MuJoCo "
+    md.append("| scene | asleep | ours p50 / p99 (us) | contacts | every object awake: "
+              "p50 / p99 (us) | MuJoCo p50 / p99 (us) | contacts | ours / MuJoCo "
               "(p50 / p99) | every object awake: ours / MuJoCo (p50 / p99) |")
-    md.append("|---|---|---|---|---|---|---|---|---|---|")
+    md.append("|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         o, mj, aw = r["ours"], r["mujoco"] or {}, r.get("ours_awake") or {}
-        awake_text = (f"{aw.get('substeps', 0):.0f}, {aw['p50_us']:.1f} / {aw['p99_us']:.1f}"
+        awake_text = (f"{aw['p50_us']:.1f} / {aw['p99_us']:.1f}"
                       if aw else "")
-        md.append(f"| {r['scene']} | {o.get('substeps', 0):.0f} | {o.get('asleep', 0):.0f} | "
+        md.append(f"| {r['scene']} | {o.get('asleep', 0):.0f} | "
                   f"{o['p50_us']:.1f} / {o['p99_us']:.1f} | {o.get('contacts', 0):.0f} | "
                   f"{awake_text} | "
                   f"{mj.get('p50_us', float('nan')):.1f} / {mj.get('p99_us', float('nan')):.1f} | "
@@ -337,42 +321,16 @@ def main():
                   if r["ratio_p50"] is not None else
                   f"| {r['scene']} | ... | | {o['p50_us']:.1f} / {o['p99_us']:.1f} | | | | | | |")
     md.append("")
-    if any(r.get("ours_penalty") for r in rows):
-        md.append("The same scenes with `contact: {solver: penalty}` (the same springs stepped "
-                  "explicitly in substeps; the default is the soft constraints, "
-                  "docs/ARCHITECTURE.md, \"Soft-constraint contacts\"):\n")
-        md.append("| scene | asleep | ours p50 / p99 (us) | contacts | every object awake: "
-                  "p50 / p99 (us) | ours / MuJoCo (p50 / p99) | cup held |")
-        md.append("|---|---|---|---|---|---|---|")
-        for r in rows:
-            so, sa = r.get("ours_penalty"), r.get("ours_penalty_awake") or {}
-            if not so:
-                continue
-            awake_text = f"{sa['p50_us']:.1f} / {sa['p99_us']:.1f}" if sa else ""
-            ratio_text = (f"{r['ratio_penalty_p50']:.2f}x / {r['ratio_penalty_p99']:.2f}x"
-                          if r["ratio_penalty_p50"] is not None else "")
-            md.append(f"| {r['scene']} | {so.get('asleep', 0):.0f} | {so['p50_us']:.1f} / "
-                      f"{so['p99_us']:.1f} | {so.get('contacts', 0):.0f} | {awake_text} | "
-                      f"{ratio_text} | {so.get('cup_held', 0):.0f} |")
-        md.append("")
     if pile_asleep and pile_awake:
         md.append(f"A pile of {pile_asleep['objects']} boxes and balls in a bin "
                   f"(`bench_scenes.hpp`, `pile_scene`), 6 s after the drop: with sleeping "
-                  f"{pile_asleep.get('asleep', 0):.0f} asleep, {pile_asleep['substeps']:.0f} "
-                  f"substep(s), {pile_asleep['p50_us']:.1f} / {pile_asleep['p99_us']:.1f} us "
-                  f"(p50 / p99); every object awake, {pile_awake['substeps']:.0f} substeps, "
+                  f"{pile_asleep.get('asleep', 0):.0f} asleep, {pile_asleep['p50_us']:.1f} / {pile_asleep['p99_us']:.1f} us "
+                  f"(p50 / p99); every object awake, "
                   f"{pile_awake.get('contacts', 0):.0f} contacts, {pile_awake['p50_us']:.0f} / "
                   f"{pile_awake['p99_us']:.0f} us. The lowest object's centroid "
                   f"{pile_asleep.get('lowest_z_mm', 0):.1f} mm and "
                   f"{pile_awake.get('lowest_z_mm', 0):.1f} mm above the floor.\n")
-    penalty_asleep, penalty_awake = pile.get("asleep_penalty"), pile.get("awake_penalty")
-    if penalty_asleep and penalty_awake:
-        md.append(f"The same pile with the penalty springs in substeps: with "
-                  f"sleeping {penalty_asleep.get('asleep', 0):.0f} asleep, "
-                  f"{penalty_asleep['p50_us']:.1f} / {penalty_asleep['p99_us']:.1f} us; every object "
-                  f"awake, {penalty_awake.get('contacts', 0):.0f} contacts, "
-                  f"{penalty_awake['p50_us']:.0f} / {penalty_awake['p99_us']:.0f} us (p50 / p99).\n")
-    md.append("Collision detection alone (broadphase + narrowphase, one substep's poses, every "
+    md.append("Collision detection alone (broadphase + narrowphase, one step's poses, every "
               "object awake):\n")
     md.append("| scene | pairs | contacts | p50 (us) | p99 (us) |")
     md.append("|---|---|---|---|---|")
@@ -465,9 +423,7 @@ def main():
     md.append(f"`physics_node --offline` on the bundled log, the median of {len(runs)} runs: "
               f"{offline['simulated_s']:.1f} s simulated in {offline['wall_s']:.3f} s = "
               f"**{offline['realtime_factor']:.1f}x real time** (the runs: "
-              + ", ".join(f"{r:.1f}x" for r in runs) + "; "
-              f"{offline.get('substeps_mean', offline['substeps_per_step']):.1f} substeps "
-              f"per step on average, at most {offline['substeps_per_step']}). Wall time by stage (s, "
+              + ", ".join(f"{r:.1f}x" for r in runs) + "). Wall time by stage (s, "
               f"from one step in {offline.get('stage_timing_every', 1)}): "
               + ", ".join(f"{k} {v:.3f}" for k, v in st.items()) + ".\n")
     md.append("## Hand tracking: retargeting time per frame\n")

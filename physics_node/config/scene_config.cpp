@@ -442,27 +442,22 @@ GraspParams parse_grasp(const ConfigNode& node) {
   return g;
 }
 
-physics::ContactSolver parse_contact_solver(const ConfigNode& n) {
-  const std::string v = n.as_string();
-  if (v == "penalty") return physics::ContactSolver::kPenalty;
-  if (v == "soft") return physics::ContactSolver::kSoft;
-  n.fail("'" + v + "': expected penalty (explicit springs over substeps) or soft (soft constraints)");
-}
-
 physics::ContactParams parse_contact(const ConfigNode& node) {
   node.expect_keys({"slip_speed_mps", "substep_safety", "max_substeps", "max_points_per_pair",
                     "solver", "iterations", "relax_iterations", "restitution_threshold_mps"});
   physics::ContactParams c;
   read_optional(node, "slip_speed_mps", c.slip_speed_mps,
                 [](const ConfigNode& n) { return positive(n); });
-  // semi-implicit Euler on a spring is stable below 2 sqrt(m/k); keep a margin under 1
-  read_optional(node, "substep_safety", c.substep_safety,
-                [](const ConfigNode& n) { return in_open_closed(n, 0.0, 1.0); });
-  read_optional(node, "max_substeps", c.max_substeps,
-                [](const ConfigNode& n) { return int_in_range(n, 1, kMaxSubsteps); });
+  // The explicit penalty path and its substeps are gone: the contacts are soft constraints, one
+  // solve a step. Scenes written for it still load; their substep settings are read (a bad value
+  // is still an error) and have nothing left to set. Asking for the penalty path is an error.
+  if (const auto k = node.find("substep_safety")) (void)in_open_closed(*k, 0.0, 1.0);
+  if (const auto k = node.find("max_substeps")) (void)int_in_range(*k, 1, kMaxSubsteps);
+  if (const auto k = node.find("solver"); k && k->as_string() != "soft")
+    k->fail("'" + k->as_string() + "': the contacts are soft constraints, one solve a step "
+            "(the explicit penalty path and its substeps were removed); the only value is soft");
   read_optional(node, "max_points_per_pair", c.max_points_per_pair,
                 [](const ConfigNode& n) { return int_in_range(n, 1, kMaxPointsPerPair); });
-  read_optional(node, "solver", c.solver, parse_contact_solver);
   read_optional(node, "iterations", c.iterations,
                 [](const ConfigNode& n) { return int_in_range(n, 1, kMaxSolverIterations); });
   read_optional(node, "relax_iterations", c.relax_iterations,

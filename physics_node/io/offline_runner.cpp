@@ -116,8 +116,6 @@ RunSummary run_offline(physics::Scene scene, const OfflineOptions& options) {
     for (int s = 0; s < physics::kStageCount; ++s) {
       summary.stage_total_s[s] += static_cast<double>(world.stage_times().ns[s]) * 1e-9;
     }
-    summary.substeps = std::max(summary.substeps, world.substeps());
-    summary.substeps_total += static_cast<uint64_t>(world.substeps());
     hand_peak.record(world);
     if (world.step_count() % 100 == 0) {
       const double wall_s =

@@ -150,9 +150,6 @@ void write_summary(const std::string& path, const RunSummary& s, const physics::
     j["log"] = s.log_paths;
   }
   j["steps"] = s.steps;
-  j["substeps_per_step"] = s.substeps;
-  j["substeps_mean"] =
-      s.steps > 0 ? static_cast<double>(s.substeps_total) / static_cast<double>(s.steps) : 0.0;
   j["simulated_s"] = s.simulated_s;
   j["wall_s"] = s.wall_s;
   j["realtime_factor"] = s.wall_s > 0 ? s.simulated_s / s.wall_s : 0.0;

@@ -105,8 +105,6 @@ struct RunSummary {
   std::string scene_path;
   std::vector<std::string> log_paths;
   uint64_t steps = 0;
-  int substeps = 0;            // the most any step used (the count is chosen every step)
-  uint64_t substeps_total = 0;  // over all steps: their mean is substeps_total / steps
   double simulated_s = 0.0;
   double wall_s = 0.0;
   int grasps = 0;

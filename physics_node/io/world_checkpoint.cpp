@@ -18,8 +18,9 @@ namespace {
 constexpr char kMagic[8] = {'V', 'C', 'K', 'P', 'O', 'I', 'N', 'T'};
 // 2: GraspHold::opposed_fingers and palm_opposed; 3: GraspHold::grip_tightest_rad;
 // 4: HandState::finger_pull_G; 5: BodyState's sleep (still_s, asleep, island); 6: the stick
-// anchors' impulses (the soft solver's warm start); 7: GraspHold::grip_gap_m
-constexpr uint64_t kVersion = 7;
+// anchors' impulses (the soft solver's warm start); 7: GraspHold::grip_gap_m; 8: no substep
+// count, no HandState::fingers_on_held (contacts are soft constraints: one solve a step)
+constexpr uint64_t kVersion = 8;
 constexpr uint64_t kFrozenFlag = 1;
 // anchors are per touching pair: far more than any scene makes, far less than a corrupt length
 constexpr uint64_t kMaxVarCount = 1u << 16;
@@ -140,7 +141,6 @@ void check_indices(const physics::WorldState& s, const physics::Scene& scene) {
   const int object_count = static_cast<int>(scene.objects.size());
   auto bad = [](const std::string& what) { throw CheckpointError(what); };
   if (s.time_ns < 0) bad("a negative time");
-  if (s.substeps < 1) bad("fewer than one substep");
   const uint64_t holders_limit = 1u << hand_count;
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     const physics::BodyState& b = s.bodies[i];

@@ -137,9 +137,9 @@ int Node::run_realtime() {
   start_clock();
   RealtimePacer pacer(std::llround(1e9 / options_.rate_hz), std::llround(1e9 / options_.publish_hz),
                       run_start_ns_);
-  spdlog::info("real time: {} Hz steps ({} substeps), world published at {} Hz; the hand {} "
+  spdlog::info("real time: {} Hz steps, world published at {} Hz; the hand {} "
                "behind its glove, gaps over {:.3f} s not bridged",
-               options_.rate_hz, world_.substeps(), options_.publish_hz,
+               options_.rate_hz, options_.publish_hz,
                options_.input_delay_s ? fmt::format("{:.1f} ms", *options_.input_delay_s * 1e3)
                                       : std::string("one usual sample interval + 2 ms"),
                static_cast<double>(options_.timing.max_gap_ns) * 1e-9);
@@ -195,8 +195,7 @@ int Node::run_lockstep() {
   const int64_t publish_every_ns = std::llround(1e9 / options_.publish_hz);
   int64_t next_publish_sim_ns = world_.time_ns();  // a resumed world goes on from its time
   bool dirty = false;
-  spdlog::info("lockstep: stepping to each sample's stamp ({} substeps per step)",
-               world_.substeps());
+  spdlog::info("lockstep: stepping to each sample's stamp");
   if (options_.wait_frame_readers > 0) {
     if (stepper_.control_frames().wait_for_readers(options_.wait_frame_readers, 30'000'000'000)) {
       spdlog::info("{} control_frame reader(s) matched", options_.wait_frame_readers);

@@ -1,7 +1,6 @@
 #pragma once
-// Carrying a contact point's stick anchor from one step (or substep) to the next: the previous
-// anchor of the same pair nearest the point, within max_m, not yet taken by another point. Both
-// contact models (the penalty forces and the soft-constraint solver) match this way.
+// Carrying a contact point's stick anchor from one step to the next: the previous anchor of the
+// same pair nearest the point, within max_m (kStickAnchorMatch_m), not yet taken by another point.
 
 #include <algorithm>
 #include <cstdint>
@@ -11,6 +10,9 @@
 #include "physics_node/physics/friction_force.hpp"
 
 namespace vcockpit::physics {
+
+// How far a contact point may be from its anchor's point of the last step and still take it.
+constexpr double kStickAnchorMatch_m = 0.005;
 
 // Contacts and anchors are sorted by pair: (body_a, body_b) in this order.
 inline bool pair_before(int a0, int b0, int a1, int b1) { return a0 != a1 ? a0 < a1 : b0 < b1; }

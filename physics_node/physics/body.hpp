@@ -34,7 +34,7 @@ struct BodyState {
   }
 };
 
-// A body as the contact model sees it during one substep.
+// A body as the contact model sees it during one step.
 struct ContactBody {
   Eigen::Isometry3d X_GB = Eigen::Isometry3d::Identity();  // pose now
   Eigen::Vector3d v_G = Eigen::Vector3d::Zero();           // velocity of the frame origin

@@ -125,7 +125,6 @@ struct CollisionWorld::Impl {
   // per hand: link frame -> collision geometry frame
   std::vector<std::array<Eigen::Isometry3d, kLinkCount>> X_LC;
   std::unique_ptr<SweepAndPrune> broadphase;
-  const std::vector<uint8_t>* skip_hand = nullptr;  // objects whose hand pairs are left out
 
   std::vector<BodyPair> pairs;
   fcl::CollisionRequestd request;
@@ -748,8 +747,6 @@ void CollisionWorld::compute_contacts(std::vector<ContactPoint>& out,
       if (hand_static != nullptr) m.narrowphase(pair, *hand_static);
       continue;
     }
-    if (hand_pair && m.skip_hand != nullptr && (*m.skip_hand)[static_cast<std::size_t>(pair.lo)] != 0)
-      continue;
     m.narrowphase(pair, out);
   }
 }
@@ -776,10 +773,6 @@ void CollisionWorld::compute_hand_static_contacts(
 void CollisionWorld::set_object_asleep(int object, bool asleep) {
   VCOCKPIT_ASSERT(0 <= object && object < object_count_, "an object of this world");
   impl_->broadphase->set_asleep(object, asleep);
-}
-
-void CollisionWorld::skip_hand_pairs_with(const std::vector<uint8_t>* objects) {
-  impl_->skip_hand = objects;
 }
 
 Aabb CollisionWorld::hand_link_box(int hand, Link link, const Eigen::Isometry3d& X_GL) const {

@@ -65,11 +65,6 @@ class CollisionWorld {
   // Whether the broadphase reports hand-static pairs (the proxy hand's), from construction.
   bool reports_hand_static() const { return report_hand_static_; }
 
-  // Pairs of a hand link and an object flagged in `objects` are left out of the narrowphase
-  // until called again (null: none). The world does this for held objects on all but the last
-  // substep of a step: both bodies move with the hand, so their contacts change nothing but the
-  // grasp test, which reads the last substep's.
-  void skip_hand_pairs_with(const std::vector<uint8_t>* objects);
   // A sleeping object (sleep.hpp) pairs only with bodies that move; every object starts awake.
   void set_object_asleep(int object, bool asleep);
 

@@ -15,4 +15,13 @@ struct ContactPoint {
   double depth_m = 0.0;                           // penetration depth (m), > 0
 };
 
+// A contact point and what the step's solve applied there (eqs. 11-17): the observation the
+// grasp test (eqs. 30-31), the controls' pushers and the adapters read.
+struct AppliedContact {
+  ContactPoint contact;
+  Eigen::Vector3d F_on_b_G = Eigen::Vector3d::Zero();  // total contact force on body b (N)
+  double normal_N = 0.0;
+  bool sliding = false;
+};
+
 }  // namespace vcockpit::physics

@@ -103,7 +103,7 @@ double SoftContactSolver::inverse_inertia_along(int a, int b, const Eigen::Vecto
 const StickAnchor* SoftContactSolver::match_anchor(const std::vector<StickAnchor>& previous,
                                                    const ContactPoint& c,
                                                    const Eigen::Vector3d& p_A) {
-  return match_stick_anchor(previous, anchor_used_, c, p_A, ContactForceModel::kAnchorMatch_m);
+  return match_stick_anchor(previous, anchor_used_, c, p_A, kStickAnchorMatch_m);
 }
 
 void SoftContactSolver::solve(const std::vector<ContactPoint>& contacts,

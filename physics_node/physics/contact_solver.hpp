@@ -23,7 +23,7 @@
 
 #include "physics_node/physics/body.hpp"
 #include "physics_node/physics/contact.hpp"
-#include "physics_node/physics/contact_forces.hpp"
+#include "physics_node/physics/anchor_match.hpp"
 #include "physics_node/physics/friction_force.hpp"
 #include "physics_node/physics/soft_constraint.hpp"
 #include "physics_node/physics/solver_joint.hpp"

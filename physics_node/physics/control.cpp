@@ -10,7 +10,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 // A gate or stop that held the coordinate leaves it this far on the side it came from, so the
-// next substep knows which side that is.
+// next step knows which side that is.
 constexpr double kGateSide = 1e-9;
 
 double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
@@ -171,16 +171,16 @@ SpringDamperState spring_damper_step(double M, double c, double k, double F, dou
 ControlStepFree free_control_step(const ControlSpec& c, double M, double Q_ext, double dt_s,
                                   const ControlState& s) {
   // the spring and damper exactly (a released button returns as its mass-spring-damper does, at
-  // any step), the rest of the generalised force held over the substep
+  // any step), the rest of the generalised force held over the step
   const double rest = spring_rest(c, s);
   double Q = Q_ext + mechanism_force(c, s.q);
   // Coulomb friction: a control at rest stays while the net force is within it; a moving one
-  // feels it against its motion, and stops rather than turn back within the substep
+  // feels it against its motion, and stops rather than turn back within the step
   const double net_at_rest = Q - c.stiffness * (s.q - rest);
   if (s.qd == 0.0 && std::abs(net_at_rest) <= c.friction) return {s.q, 0.0, false};
   const double direction = s.qd != 0.0 ? sign(s.qd) : sign(net_at_rest);
   Q -= direction * c.friction;
-  // a detent's restoring slope joins the spring, integrated exactly too: held over the substep
+  // a detent's restoring slope joins the spring, integrated exactly too: held over the step
   // it added energy every swing, and a light toggle (a few grams on 0.04 N m) rang up until it
   // jumped out of its detent. Its force at s.q stays explicit; only the slope is implicit.
   const double k_mechanism = std::max(0.0, mechanism_stiffness(c, s.q));

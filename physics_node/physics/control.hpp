@@ -11,7 +11,7 @@
 //     (a constant force pushing away from snap_centre, toward the nearer end: bistable), the
 //     travel limits and gates (stops that open only while a grasping hand lifts the lever);
 // integrated like eqs. 20-25 on q, the linear spring and damper exactly (the closed-form motion
-// of M q'' + c q' + k (q - q_rest) = Q over the substep, the other forces held over it): a
+// of M q'' + c q' + k (q - q_rest) = Q over the step, the other forces held over it): a
 // button's spring is stiff for its few grams (a period of ~10 ms), which an implicit Euler step
 // of 1 ms would damp away.
 // A grasped control follows the hand projected onto its degree of freedom (eq. 29 restricted to
@@ -165,7 +165,7 @@ struct SpringDamperState {
 SpringDamperState spring_damper_step(double M, double c, double k, double F, double x0, double v0,
                                      double t);
 
-// One substep of the joint's motion law before its stops and gates: where the coordinate goes
+// One step of the joint's motion law before its stops and gates: where the coordinate goes
 // and its rate then; `moved` false when Coulomb friction holds it at rest (q, 0).
 struct ControlStepFree {
   double q = 0.0;

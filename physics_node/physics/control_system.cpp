@@ -6,7 +6,6 @@
 #include <limits>
 
 #include "common/assert.hpp"
-#include "physics_node/physics/contact_sums.hpp"
 
 namespace vcockpit::physics {
 
@@ -101,7 +100,7 @@ void ControlSystem::begin_step() {
   }
 }
 
-// who pushes each control in this substep: the hand link with the largest normal force on its
+// who pushes each control in this step: the hand link with the largest normal force on its
 // body, or another object
 void ControlSystem::find_pushers(const std::vector<AppliedContact>& applied,
                                  const CollisionWorld& collision) {
@@ -133,24 +132,6 @@ void ControlSystem::find_pushers(const std::vector<AppliedContact>& applied,
         touched_[ci] = 1;
       }
     }
-  }
-}
-
-void ControlSystem::integrate(const std::vector<Eigen::Vector3d>& F_G_bodies,
-                              const std::vector<Eigen::Vector3d>& M_G_bodies, double dt_s) {
-  for (int ci = 0; ci < count_; ++ci) {
-    const ControlSpec& c = scene_.controls[ci];
-    const BodyState& body = state_.bodies[c.body];
-    if (body.held()) continue;  // moved with the hand (move_held)
-    // a control its last substep left where it was, at rest, with nothing touching it now, stays
-    // there exactly (the same inputs give the same step): most of a cockpit's controls, always
-    const bool untouched = F_G_bodies[c.body].isZero(0.0) && M_G_bodies[c.body].isZero(0.0);
-    if (untouched && at_rest_[ci] != 0) continue;
-    // eqs. 18-19 on the body, gravity included, projected onto the joint
-    const ObjectSpec& o = scene_.objects[c.body];
-    const Eigen::Vector3d F_G = total_force_G(F_G_bodies[c.body], o.mass_kg, scene_.gravity_mps2);
-    advance(ci, generalised_force(c, body.X_GO.translation(), F_G, M_G_bodies[c.body]), untouched,
-            dt_s);
   }
 }
 
@@ -187,7 +168,7 @@ void ControlSystem::solver_joints(const std::vector<ContactPoint>& contacts, dou
   }
 }
 
-void ControlSystem::integrate_soft(const std::vector<SolverJoint>& joints, double dt_s) {
+void ControlSystem::integrate(const std::vector<SolverJoint>& joints, double dt_s) {
   std::fill(contact_Q_.begin(), contact_Q_.end(), 0.0);
   for (const SolverJoint& joint : joints)
     contact_Q_[scene_.objects[static_cast<std::size_t>(joint.body)].control] = joint.move_impulse / dt_s;

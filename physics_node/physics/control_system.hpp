@@ -5,13 +5,13 @@
 // it, one control at a time, with control.hpp's laws:
 //   begin_step    the positions commanded since the last step (a flight model's, an
 //                 instructor's), each at rest at its position's coordinate;
-//   find_pushers  after a substep's forces: which hand link pushes each control hardest, the
-//                 hands' generalised force on it, or another object touching it;
-//   integrate     the free motion of each control no hand holds (eqs. 18-19 projected onto the
-//                 joint, then its mechanism), the body placed from the coordinate;
-//   solver_joints for the soft contact solver: each free control's body in a contact as a body
-//                 on its joint (solver_joint.hpp); integrate_soft then moves them with the
-//                 impulses the solver found;
+//   solver_joints for the contact solver: each free control's body in a contact as a body on
+//                 its joint (solver_joint.hpp);
+//   find_pushers  after the solve: which hand link pushes each control hardest, the hands'
+//                 generalised force on it, or another object touching it;
+//   integrate     the motion of each control no hand holds over the step (gravity, its
+//                 mechanism and the generalised impulse the solver gave its joint), the body
+//                 placed from the coordinate;
 //   move_held     a held control follows its hand projected onto the joint (eq. 29 restricted);
 //   after_grasp   a grasp takes the hand's pose and the coordinate as the projection's
 //                 reference; a release leaves the control with the hand's velocity along it.
@@ -23,7 +23,6 @@
 #include <vector>
 
 #include "physics_node/physics/collision.hpp"
-#include "physics_node/physics/contact_forces.hpp"
 #include "physics_node/physics/control.hpp"
 #include "physics_node/physics/grasp.hpp"
 #include "physics_node/physics/grasp_tracker.hpp"
@@ -55,16 +54,13 @@ class ControlSystem {
   // The step's start: the last step's events cleared, the commands since then applied.
   void begin_step();
   void find_pushers(const std::vector<AppliedContact>& applied, const CollisionWorld& collision);
-  // `F_G`, `M_G`: the substep's contact forces per body (the objects first).
-  void integrate(const std::vector<Eigen::Vector3d>& F_G, const std::vector<Eigen::Vector3d>& M_G,
-                 double dt_s);
   // The controls no hand holds whose bodies are in `contacts`, as the soft solver's joints for a
   // step of dt_s (`joints` cleared first).
   void solver_joints(const std::vector<ContactPoint>& contacts, double dt_s,
                      std::vector<SolverJoint>& joints);
-  // After the soft solver: each free control moved over dt_s by gravity, its mechanism and the
+  // After the solver: each free control moved over dt_s by gravity, its mechanism and the
   // generalised impulse its joint got (none for a control not in `joints`).
-  void integrate_soft(const std::vector<SolverJoint>& joints, double dt_s);
+  void integrate(const std::vector<SolverJoint>& joints, double dt_s);
   // Control `control`, held by hand index `hand` whose wrist is at X_GH and holds the control's
   // body at p_held_H (the translation of its X_HO).
   void move_held(int control, int hand, const Eigen::Isometry3d& X_GH,
@@ -104,14 +100,14 @@ class ControlSystem {
   // per control, constant
   std::vector<double> inertia_;          // its body's inertia along the joint
   std::vector<GraspJoint> grasp_joint_;  // its joint, for the grasp test
-  // per control, scratch of this step or substep
-  std::vector<int> push_link_;    // the hand link pushing it hardest in this substep
+  // per control, scratch of this step
+  std::vector<int> push_link_;    // the hand link pushing it hardest in this step
   std::vector<int> push_hand_;    // ... and its hand
   std::vector<double> push_N_;    // ... and its normal force
   std::vector<double> push_Q_;    // ... and the hands' generalised force on it
   std::vector<uint8_t> touched_;  // ... touched by another object
   std::vector<int> commanded_;    // the position commanded since the last step, -1
-  std::vector<uint8_t> at_rest_;  // its last free substep changed nothing
+  std::vector<uint8_t> at_rest_;  // its last free step changed nothing
   std::vector<double> contact_Q_;  // soft solver: the contacts' generalised force of the step
   std::vector<ControlEvent> events_;
 };

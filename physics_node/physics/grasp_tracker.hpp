@@ -116,7 +116,7 @@ inline constexpr std::size_t kMaxHands = 8;
 // One hand's part in one object's step.
 struct HandOnObject {
   HandNow hand;
-  const HandContact* contacts = nullptr;  // this hand's links on the object (last substep)
+  const HandContact* contacts = nullptr;  // this hand's links on the object (this step)
   std::size_t count = 0;
   // the links of this hand's glove (tracked) hand that overlap the object now (bit l; needed
   // only while hold->hand_clearing)

@@ -24,7 +24,7 @@
 
 namespace vcockpit::physics {
 
-// I_O_inv: the inverse of I_O, computed once per body (no factorisation per substep for it).
+// I_O_inv: the inverse of I_O, computed once per body (no factorisation per step for it).
 void integrate_body(BodyState& body, const Eigen::Vector3d& F_G, const Eigen::Vector3d& M_G,
                     double mass_kg, const Eigen::Matrix3d& I_O, const Eigen::Matrix3d& I_O_inv,
                     double dt_s);

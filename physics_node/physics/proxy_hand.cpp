@@ -166,59 +166,6 @@ void ProxyHand::limit_finger_speed(const JointAngles& now_rad, double reach_m,
   }
 }
 
-ProxyPose ProxyHand::advance(const ProxyPose& prev, const ProxyPose& start,
-                             const ProxyPose& goal, int substeps) {
-  VCOCKPIT_ASSERT(substeps >= 1, "a step has at least one substep");
-  if (substeps == 1 && prev.q_rad == start.q_rad && prev.X_GH.matrix() == start.X_GH.matrix())
-    return goal;
-  const double share = 1.0 / substeps;
-  ProxyPose next;
-  next.X_GH.translation() =
-      prev.X_GH.translation() + share * (goal.X_GH.translation() - start.X_GH.translation());
-  // the step's turn (in the world frame), a share of its angle per substep
-  const Eigen::AngleAxisd turn(goal.X_GH.linear() * start.X_GH.linear().transpose());
-  next.X_GH.linear() = (Eigen::AngleAxisd(share * turn.angle(), turn.axis()) *
-                        Eigen::Quaterniond(prev.X_GH.linear()))
-                           .normalized()
-                           .toRotationMatrix();
-  for (int j = 0; j < kJointCount; ++j)
-    next.q_rad[j] = prev.q_rad[j] + share * (goal.q_rad[j] - start.q_rad[j]);
-  return next;
-}
-
-void ProxyHand::catch_up_fingers(uint8_t fingers, const ProxyPose& prev, const ProxyPose& start,
-                                 const ProxyPose& goal, ProxyPose& pose) const {
-  for (int f = 0; f < kFingerCount; ++f) {
-    if ((fingers & (1u << f)) == 0) continue;
-    for (int j = 0; j < kJointCount; ++j)
-      if (finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(j)])
-        pose.q_rad[j] = prev.q_rad[j] + (goal.q_rad[j] - start.q_rad[j]);
-  }
-}
-
-void ProxyHand::keep_fingers(uint8_t fingers, const ProxyPose& prev, ProxyPose& pose) const {
-  if (fingers == 0) return;
-  for (int f = 0; f < kFingerCount; ++f) {
-    if ((fingers & (1u << f)) == 0) continue;
-    for (int j = 0; j < kJointCount; ++j)
-      if (finger_joints_[static_cast<std::size_t>(f)][static_cast<std::size_t>(j)])
-        pose.q_rad[j] = prev.q_rad[j];
-  }
-}
-
-uint8_t ProxyHand::fingers_touching(const std::vector<ContactPoint>& contacts,
-                                    const std::vector<uint8_t>& objects) const {
-  uint8_t fingers = 0;
-  for (const ContactPoint& c : contacts) {
-    if (!is_link(c.body_b) || is_link(c.body_a) ||
-        objects[static_cast<std::size_t>(c.body_a)] == 0)
-      continue;
-    Finger finger;
-    if (finger_of(link_of(c.body_b), finger)) fingers |= static_cast<uint8_t>(1u << static_cast<int>(finger));
-  }
-  return fingers;
-}
-
 bool ProxyHand::constrain_fingers(const ProxyPose& prev, const HandLinkPoses& prev_links,
                                   ProxyPose& pose, HandLinkPoses& links,
                                   std::array<Eigen::Isometry3d, kLinkCount>& X_GL,
@@ -301,7 +248,7 @@ void ProxyHand::hold_back_fingers(const ProxyPose& prev, const HandLinkPoses& pr
   std::array<double, kFingerCount> share;
   share.fill(1.0);
   limits_.clear();
-  // Each contact of a phalanx: the depth its finger's own joints added over this substep (the
+  // Each contact of a phalanx: the depth its finger's own joints added over this step (the
   // contact point carried from the previous joint angles, the wrist as it is now), and the share
   // of that motion the limits allow, to first order.
   const auto limit_finger = [&](const ContactPoint& c) {
@@ -464,7 +411,7 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
                                    ProxyConstraint& result) {
   constexpr int kRows = 3;          // the deepest contacts of a finger that steer its joints
   constexpr double kDamping_m2 = 1e-6;  // (1 mm/rad)^2: keeps the step small near a singular finger
-  constexpr double kMaxBend_rad = 0.05;  // per substep: ~4 mm at a fingertip
+  constexpr double kMaxBend_rad = 0.05;  // per step: ~4 mm at a fingertip
   bool moved = false;
   // how far a contact is beyond its limit, and the depth to bring it to
   const auto excess_of = [&](const ContactPoint& c) {

@@ -3,10 +3,10 @@
 // coupling, so a real glove's hand that closes into an object or sinks into a panel does not
 // drive the simulated one there. A god-object per link (Zilles & Salisbury 1995, carried to whole
 // hands by Borst & Indugula 2005 and Jacobs & Froehlich 2011): the proxy goes where the tracked
-// hand goes as far as the world lets it, and each substep
+// hand goes as far as the world lets it, and each step
 //
 //   1. heads for the tracked pose (moved by the fingers' pull, World::finger_pull_G) at bounded
-//      speed (step_goal, advance): the wrist at max_speed_mps / max_spin_radps, or
+//      speed (step_goal): the wrist at max_speed_mps / max_spin_radps, or
 //      push_speed_mps while a link pushes a free object, so no hand motion imparts more than
 //      about push_speed_mps to an object it pushes;
 //   2. after the narrowphase at that tentative pose, holds each finger back (constrain) where
@@ -14,7 +14,7 @@
 //        static_depth_m into a static object, or
 //        d_grip = grip_force_N / k_pair into any object (k_pair the hand-object series
 //        stiffness, so the penalty force of eq. 11 a finger can apply is bounded), or
-//        push_speed_mps * dt deeper in one substep into a free object;
+//        push_speed_mps * dt deeper in one step into a free object;
 //      a finger's joints move by the largest fraction s in [0, 1] of their step that keeps those
 //      limits, to first order in s (the depth change of each contact point along its normal);
 //   3. bends each finger still beyond those depth limits back out (the first-order step of 2
@@ -64,7 +64,7 @@ inline constexpr double kMaxFingerPull_m = 0.02;
 // The most static surfaces the proxy keeps as resting on between steps.
 inline constexpr int kMaxBlockingPlanes = 4;
 
-// What constrain() did in one substep.
+// What constrain() did in one step.
 struct ProxyConstraint {
   Eigen::Vector3d shift_G = Eigen::Vector3d::Zero();  // the proxy's translation out of contact
   bool pushing = false;         // a hand link or held object touches a free object
@@ -89,33 +89,11 @@ class ProxyHand {
                       const std::vector<Eigen::Vector3d>& blocking_out_G, double step_s,
                       hand::KinematicsMemo& fk) const;
 
-  // The tentative pose one substep on: the step's motion from `start` to `goal`, split evenly
-  // over its `substeps`, added to where the proxy is now (`prev`). A proxy that the world holds
-  // back keeps trying the same small motion every substep; taking instead the share
-  // 1 / remaining of all it still lacked made the last substep take the whole step's lag in one
-  // bite: a held-back finger jabbed 35 um into the cup in the last substep and backed off in
-  // the others, and that substep's contact damping read 20 N where the grip pressed 2-5 N.
-  // A step of one substep from where it started is the goal itself, bit for bit.
-  static ProxyPose advance(const ProxyPose& prev, const ProxyPose& start, const ProxyPose& goal,
-                           int substeps);
-  // The fingers flagged in `fingers`, kept where they were for the earlier substeps of a step
-  // (keep_fingers), take the whole step's joint motion from `start` to `goal` now: their joints
-  // in `pose` become `prev`'s plus that motion.
-  void catch_up_fingers(uint8_t fingers, const ProxyPose& prev, const ProxyPose& start,
-                        const ProxyPose& goal, ProxyPose& pose) const;
-
-  // Puts the joints of the fingers flagged in `fingers` (bit f: finger f) back where `prev` has
-  // them.
-  void keep_fingers(uint8_t fingers, const ProxyPose& prev, ProxyPose& pose) const;
-  // The fingers (bits) with a contact against an object flagged in `objects`.
-  uint8_t fingers_touching(const std::vector<ContactPoint>& contacts,
-                           const std::vector<uint8_t>& objects) const;
-
   // Holds the tentative `pose` (links X_HL in `links`, in the world X_GL) back from the contacts
   // the narrowphase found there (`contacts`: with dynamic objects; `hand_static`: with static
   // ones), as the header says, in two parts: the fingers (steps 2 and 3), after which the caller
   // recomputes `hand_static` at the new link poses when they moved (true), then the wrist
-  // (step 4). `prev` and `prev_links` are the proxy one substep ago; `held` flags the held
+  // (step 4). `prev` and `prev_links` are the proxy one step ago; `held` flags the held
   // objects (1), which move with the wrist: the caller shifts them by shift_G. Both update pose,
   // links, X_GL and the contact lists (depths and points to first order, dropping contacts no
   // longer touching) to the pose the proxy ends at.
@@ -167,7 +145,7 @@ class ProxyHand {
   // fingers on the 250 g torch left 12-15 N of residual, eq. 30, and let it go mid-air). The
   // side with more to give (a grip force per thumb or palm link; per finger link, its share
   // along the axis the thumb and palm push on) is scaled down to the other's. constrain_fingers
-  // calls it on every substep's contacts.
+  // calls it on every step's contacts.
   void balance_held_grips(const std::vector<ContactPoint>& contacts,
                           const std::vector<uint8_t>& held);
 
@@ -224,7 +202,7 @@ class ProxyHand {
   const std::vector<uint32_t>* resting_links_ = nullptr;     // per object
   std::vector<uint8_t> dynamic_;                             // per object
   std::vector<uint8_t> holds_fingers_back_;                  // per object
-  struct GripBalance {  // depth limit scales of a held object's grip, this substep
+  struct GripBalance {  // depth limit scales of a held object's grip, this step
     double opposing_scale = 1.0;  // thumb and palm
     double finger_scale = 1.0;    // index to little
   };

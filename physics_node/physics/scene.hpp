@@ -69,7 +69,7 @@ struct Material {
   double damping_ratio = 0.7;
   double mu_s = 0.6;  // static
   double mu_d = 0.4;  // dynamic (sliding)
-  // Rolling and spinning resistance (rolling_resistance.hpp), lengths: the couples against
+  // Rolling and spinning resistance (the contact solver's rolling rows), lengths: the couples against
   // rolling and against spinning about the normal are at most mu_roll N and mu_spin N. 0 turns
   // either off. mu_roll: 0.1 mm is MuJoCo's default: a 3 cm ball rolling at 0.5 m/s on a hard
   // top stops after ~5 m (rolling resistance coefficient mu_roll / r = 0.003). mu_spin: a
@@ -163,18 +163,12 @@ struct GraspParams {
   double release_gap_m = 0.005;
 };
 
-// How the contact springs are stepped: explicit penalty forces over substeps (the paper's), or
-// soft constraints at the full step (contact_solver.hpp: the same springs, backward Euler).
-enum class ContactSolver { kPenalty, kSoft };
-
-// Contact model details beyond the paper's equations.
+// Contact model details beyond the paper's equations. The contact springs are soft constraints
+// at the full step (contact_solver.hpp: the same springs, backward Euler): one solve a step.
 struct ContactParams {
   double slip_speed_mps = 1.0e-3;  // eq. 15-17 epsilon: |v_t| at or above it is sliding
-  double substep_safety = 0.2;     // penalty: dt_sub <= safety * sqrt(m_eff / k_eff)
-  int max_substeps = 32;           // penalty
   int max_points_per_pair = 4;
-  ContactSolver solver = ContactSolver::kSoft;
-  // soft: Gauss-Seidel sweeps with the springs' bias, then relax sweeps without it on impacts
+  // Gauss-Seidel sweeps with the springs' bias, then relax sweeps without it on impacts
   // and rebounds (faster than the threshold), then the dashpot's restitution for those impacts
   int iterations = 8;
   int relax_iterations = 2;

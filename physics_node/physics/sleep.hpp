@@ -4,7 +4,7 @@
 //
 // After each step, every free object (dynamic, not a control, not held) none of whose points
 // moved faster than SleepParams::speed_mps (|v| + |w| r, r its farthest reach from the
-// centroid) has been still for that much longer; any faster motion starts its count again. The free objects touching each other (the last substep's
+// centroid) has been still for that much longer; any faster motion starts its count again. The free objects touching each other (the last step's
 // contacts) form islands; an island whose every member has been still for time_s falls asleep:
 // its bodies stop (velocity zero) and are left out of the broadphase's pairs with static bodies
 // and with each other, so they cost no narrowphase, force or integration. A hand link, a control
@@ -12,9 +12,9 @@
 // world (World::update_sleep) while a hand still owns it (held, or clearing it after a release).
 //
 // A sleeping body wakes with its island when a contact with a moving body is found (the
-// world's substep, which then runs its collision again: the woken bodies' contacts with the
-// floor are there from the first substep they are awake). Its friction anchors go when it falls
-// asleep (carrying them every substep would cost what sleeping saves): it wakes with new ones
+// world's step, which then runs its collision again: the woken bodies' contacts with the
+// floor are there from the first step they are awake). Its friction anchors go when it falls
+// asleep (carrying them every step would cost what sleeping saves): it wakes with new ones
 // at zero stretch, which on a slope gives way by the stretch that holds it (mg sin(theta) / k,
 // micrometres) before they hold again.
 //
@@ -33,7 +33,7 @@ class SleepTracker {
  public:
   explicit SleepTracker(const Scene& scene);
 
-  // After a step, over the last substep's contacts (objects then hand links, as the collision
+  // After a step, over the last step's contacts (objects then hand links, as the collision
   // world numbers bodies). may_sleep[i] == 0: object i stays awake this step whatever its motion.
   void update(const std::vector<ContactPoint>& contacts, const std::vector<uint8_t>& may_sleep,
              std::vector<BodyState>& bodies);

@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include "common/assert.hpp"
-#include "physics_node/physics/contact_sums.hpp"
 #include "physics_node/physics/integrator.hpp"
 
 namespace vcockpit::physics {
@@ -81,7 +80,7 @@ void merge_by_pair(const std::vector<const std::vector<ContactPoint>*>& lists,
 }  // namespace
 
 const char* stage_name(Stage stage) {
-  static constexpr const char* kNames[] = {"substep_choice", "hand_kinematics", "broadphase",
+  static constexpr const char* kNames[] = {"proxy_goal", "hand_kinematics", "broadphase",
                                            "narrowphase", "proxy_hand", "forces", "integrate",
                                            "body_check", "grasp"};
   static_assert(std::size(kNames) == kStageCount, "a name per stage");
@@ -91,8 +90,6 @@ const char* stage_name(Stage stage) {
 World::World(Scene scene)
     : scene_(std::move(scene)),
       collision_(scene_),
-      substep_choice_(scene_, collision_),
-      forces_(scene_.contact.slip_speed_mps),
       soft_(SoftSolverParams{scene_.contact.iterations, scene_.contact.relax_iterations,
                              scene_.contact.restitution_threshold_mps, scene_.contact.slip_speed_mps}),
       grasp_tracker_(scene_.grasp, scene_.step_s, scene_.gravity_mps2, scene_.hand_material.mu_s),
@@ -101,8 +98,7 @@ World::World(Scene scene)
       object_count_(static_cast<int>(scene_.objects.size())),
       step_ns_(std::llround(scene_.step_s * 1e9)),
       controls_(scene_, state_) {
-  if (scene_.contact.max_substeps < 1 || !(scene_.step_s > 0.0))
-    throw std::invalid_argument("World: the step and max_substeps must be positive");
+  if (!(scene_.step_s > 0.0)) throw std::invalid_argument("World: the step must be positive");
   const std::size_t hand_count = scene_.hands.size();
   if (hand_count > kMaxHands) throw std::invalid_argument("World: more hands than kMaxHands");
   for (std::size_t a = 0; a < hand_count; ++a)
@@ -118,7 +114,6 @@ World::World(Scene scene)
   start_bodies_.resize(object_count_);
   hands_.resize(hand_count);  // never again: each proxy keeps a pointer to its hand's vectors
   state_.hands.resize(hand_count);
-  sweeps_.resize(hand_count);
   on_object_.resize(hand_count);
   for (std::size_t h = 0; h < hand_count; ++h) {
     HandSim& sim = hands_[h];
@@ -156,12 +151,8 @@ World::World(Scene scene)
     X_GO_[c.body] = state_.bodies[c.body].X_GO;
     X_GO_before_[c.body] = X_GO_[c.body];
   }
-  state_.substeps = choose_substeps(false);  // for the initial state: the count the first step will use
-  if (scene_.contact.solver == ContactSolver::kSoft) state_.substeps = 1;
   const int body_count = object_count_ + static_cast<int>(hand_count) * kLinkCount;
   contact_bodies_.resize(body_count);
-  F_G_.resize(body_count);
-  M_G_.resize(body_count);
   contacts_.reserve(256);
   merged_.reserve(256);
   applied_.reserve(256);
@@ -182,36 +173,22 @@ int World::holder_of(const BodyState& body) const {
   return body.held() ? lowest_bit(body.holders) : -1;
 }
 
-// Substeps for the coming step (substep_choice.hpp): each hand sweeps from its links now to the
-// latest input, or its proxy to where it heads (never farther than its speeds allow).
-int World::choose_substeps(bool holding) {
+// Where each proxy heads over the coming step: from where it is towards the latest input, never
+// farther than its speeds allow (ProxyHand::step_goal).
+void World::aim_proxies(bool holding) {
   for (std::size_t h = 0; h < hands_.size(); ++h) {
     HandSim& sim = hands_[h];
-    HandState& hs = state_.hands[h];
-    SubstepChoice::HandSweep& sweep = sweeps_[h];
-    if (!hs.active) {
-      sweep = {};
-      continue;
-    }
-    if (sim.proxy) {
-      const bool this_holds = holding && sim.holds_any;
-      sim.proxy_start = {hs.X_GH, hs.q_rad};
-      sim.fingers_kept = 0;
-      // (the tracked hand where the fingers the world holds back pull it: finger_pull_G)
-      HandInput from = hs.from;
-      HandInput to = hs.to;
-      from.X_GH.translation() += hs.finger_pull_G;
-      to.X_GH.translation() += hs.finger_pull_G;
-      sim.proxy_goal = sim.proxy->step_goal(sim.proxy_start, from, to, hs.pushing, this_holds,
-                                            hs.blocking_out_G, scene_.step_s, *sim.fk);
-      sweep = {&hs.X_GL, sim.proxy_goal.X_GH, sim.proxy_goal.q_rad};
-    } else {
-      sweep = {&hs.X_GL, hs.to.X_GH, hs.to.q_rad};
-    }
+    const HandState& hs = state_.hands[h];
+    if (!hs.active || !sim.proxy) continue;
+    const bool this_holds = holding && sim.holds_any;
+    // (the tracked hand where the fingers the world holds back pull it: finger_pull_G)
+    HandInput from = hs.from;
+    HandInput to = hs.to;
+    from.X_GH.translation() += hs.finger_pull_G;
+    to.X_GH.translation() += hs.finger_pull_G;
+    sim.proxy_goal = sim.proxy->step_goal({hs.X_GH, hs.q_rad}, from, to, hs.pushing, this_holds,
+                                          hs.blocking_out_G, scene_.step_s, *sim.fk);
   }
-  // soft constraints are stable at the full step: one collision, one solve, no sweep to judge
-  if (scene_.contact.solver == ContactSolver::kSoft) return 1;
-  return substep_choice_.choose(state_.bodies, sweeps_);
 }
 
 Eigen::Vector3d World::finger_pull_G(int hand) const {
@@ -318,7 +295,6 @@ void World::reset_objects(const WorldState& saved) {
       hs.grasp[static_cast<std::size_t>(i)] = grasp_tracker_.initial_hold(scene_.objects[static_cast<std::size_t>(i)]);
     }
     hs.pushing = false;
-    hs.fingers_on_held = 0;
     hs.finger_pull_G.setZero();  // (what pulled it is elsewhere now)
     hands_[h].proxy_prev_links_valid = false;
   }
@@ -357,9 +333,6 @@ void World::step() {
   body_check_.clear_new_faults();
   std::copy(state_.bodies.begin(), state_.bodies.end(), start_bodies_.begin());
   tell_sleepers();
-  // a held object and the hand move together: their contacts matter to the grasp test only,
-  // which reads the last substep's, so the substeps before it leave them out (their friction
-  // anchors carry over) -- but for a proxy hand, whose fingers stop at the held object's surface
   bool any_held = false;
   for (HandSim& sim : hands_) {
     sim.holds_any = false;
@@ -376,11 +349,9 @@ void World::step() {
     }
   }
   {
-    StageTimer timer(stage_times_, Stage::kSubstepChoice);
-    state_.substeps = choose_substeps(any_held);
+    StageTimer timer(stage_times_, Stage::kProxyGoal);
+    aim_proxies(any_held);
   }
-  VCOCKPIT_ASSERT(state_.substeps >= 1 && state_.substeps <= scene_.contact.max_substeps,
-                  "substeps in [1, max_substeps]");
   for (std::size_t h = 0; h < hands_.size(); ++h) {
     HandSim& sim = hands_[h];
     const HandState& hs = state_.hands[h];
@@ -389,12 +360,8 @@ void World::step() {
       sim.proxy_prev_links_valid = true;
     }
   }
-  const double dt_s = scene_.step_s / state_.substeps;
-  for (int s = 1; s <= state_.substeps; ++s)
-    substep(dt_s, static_cast<double>(s) / state_.substeps, state_.substeps - s + 1,
-            any_held && s < state_.substeps);
-  // a held object's velocity is the hand's over the whole step: within it the proxy can go
-  // into a panel and be shifted back out substep by substep, which is no motion of the object
+  advance(scene_.step_s);
+  // a held object's velocity is the hand's over the step (a held control's too: its joint moved it)
   for (int i = 0; i < object_count_; ++i) {
     BodyState& body = state_.bodies[i];
     if (held_mask_[i] == 0 || !body.held()) continue;
@@ -424,12 +391,13 @@ void World::set_stage_timing_every(int steps) {
   stage_timing_every_ = steps;
 }
 
-void World::substep(double dt_s, double alpha, int remaining, bool skip_held_hand_pairs) {
-  held_pairs_skipped_ = skip_held_hand_pairs;
+// One step of dt_s: the contacts are soft constraints (contact_solver.hpp), stable at the full
+// step, so one collision and one solve a step.
+void World::advance(double dt_s) {
   {
     StageTimer timer(stage_times_, Stage::kHandKinematics);
     for (int h = 0; h < hand_count(); ++h)
-      if (hand_state(h).active) move_hand(h, alpha, remaining);
+      if (hand_state(h).active) move_hand(h);
     move_held_objects(dt_s);
   }
   {
@@ -442,10 +410,9 @@ void World::substep(double dt_s, double alpha, int remaining, bool skip_held_han
   }
   {
     StageTimer timer(stage_times_, Stage::kNarrowphase);
-    collision_.skip_hand_pairs_with(skip_held_hand_pairs ? &held_mask_ : nullptr);
     collision_.compute_contacts(contacts_, has_proxy() ? &hand_static_ : nullptr);
   }
-  // something that moves touched a sleeping island: it wakes, and this substep's collision is
+  // something that moves touched a sleeping island: it wakes, and this step's collision is
   // found again with it awake (its contacts with what it rests on)
   while (wake_touched()) {
     {
@@ -460,61 +427,31 @@ void World::substep(double dt_s, double alpha, int remaining, bool skip_held_han
     StageTimer timer(stage_times_, Stage::kProxyHand);
     constrain_proxies(dt_s);
   }
-  if (scene_.contact.solver == ContactSolver::kSoft) {
-    {
-      StageTimer timer(stage_times_, Stage::kForces);
-      build_contact_bodies();
-      if (!controls_.empty()) controls_.solver_joints(contacts_, dt_s, joints_);
-      soft_.solve(contacts_, contact_bodies_, joints_, scene_.gravity_mps2, dt_s, applied_,
-                  state_.anchors, touched_);
-      if (!controls_.empty()) controls_.find_pushers(applied_, collision_);
-    }
-    StageTimer timer(stage_times_, Stage::kIntegrate);
-    integrate_soft(dt_s);
-    if (!controls_.empty()) controls_.integrate_soft(joints_, dt_s);
-    return;
-  }
   {
     StageTimer timer(stage_times_, Stage::kForces);
     build_contact_bodies();
-    for (std::size_t b = 0; b < F_G_.size(); ++b) {
-      F_G_[b].setZero();
-      M_G_[b].setZero();
-    }
-    KeptPairs kept;
-    if (skip_held_hand_pairs) kept = {&held_mask_, object_count_};
-    forces_.apply(contacts_, contact_bodies_, dt_s, F_G_, M_G_, applied_, state_.anchors, kept);
+    if (!controls_.empty()) controls_.solver_joints(contacts_, dt_s, joints_);
+    soft_.solve(contacts_, contact_bodies_, joints_, scene_.gravity_mps2, dt_s, applied_,
+                state_.anchors, touched_);
     if (!controls_.empty()) controls_.find_pushers(applied_, collision_);
   }
-  {
-    StageTimer timer(stage_times_, Stage::kIntegrate);
-    integrate(dt_s);
-  }
+  StageTimer timer(stage_times_, Stage::kIntegrate);
+  integrate(dt_s);
+  if (!controls_.empty()) controls_.integrate(joints_, dt_s);
 }
 
-void World::move_hand(int hand, double alpha, int remaining) {
+// The hand where this step takes it: the proxy's goal (constrain_proxy then holds it back), or
+// the tracked hand itself.
+void World::move_hand(int hand) {
   HandSim& sim = hands_[static_cast<std::size_t>(hand)];
   const HandState& hs = hand_state(hand);
   sim.X_GL_before = hs.X_GL;
   if (sim.proxy) {
-    // the proxy's tentative pose; constrain_proxy holds it back after the narrowphase
     sim.proxy_prev = {hs.X_GH, hs.q_rad};
-    ProxyPose next = ProxyHand::advance(sim.proxy_prev, sim.proxy_start, sim.proxy_goal, state_.substeps);
-    // a finger on a held object waits for the last substep, where their contacts are known,
-    // and then takes the step's whole motion
-    if (remaining > 1 && held_pairs_skipped_) {
-      sim.proxy->keep_fingers(hs.fingers_on_held, sim.proxy_prev, next);
-      sim.fingers_kept = hs.fingers_on_held;
-    } else if (remaining == 1 && sim.fingers_kept != 0) {
-      sim.proxy->catch_up_fingers(sim.fingers_kept, sim.proxy_prev, sim.proxy_start, sim.proxy_goal, next);
-    }
-    place_hand(hand, next.X_GH, next.q_rad);
+    place_hand(hand, sim.proxy_goal.X_GH, sim.proxy_goal.q_rad);
     return;
   }
-  JointAngles q;
-  for (int j = 0; j < kJointCount; ++j)
-    q[j] = hs.from.q_rad[j] + alpha * (hs.to.q_rad[j] - hs.from.q_rad[j]);
-  place_hand(hand, interpolate(hs.from.X_GH, hs.to.X_GH, alpha), q);
+  place_hand(hand, hs.to.X_GH, hs.to.q_rad);
 }
 
 void World::place_hand(int hand, const Eigen::Isometry3d& X_GH, const JointAngles& q_rad) {
@@ -586,7 +523,6 @@ void World::constrain_proxy(int hand, double dt_s) {
   hs.q_rad = pose.q_rad;
   if (fingers_moved) sim.fk->remember(hs.q_rad, sim.link_poses);  // (the next step starts here)
   hs.pushing = r.pushing;
-  if (!held_pairs_skipped_) hs.fingers_on_held = sim.proxy->fingers_touching(sim.contacts, held_mask_);
   sim.proxy_prev_links = sim.link_poses;
   if (r.shift_G.squaredNorm() == 0.0) return;
   // the held objects move with the proxy (eq. 29; one held with both hands, halfway)
@@ -746,7 +682,7 @@ void World::build_contact_bodies() {
     c.mass_for_damping = c.dynamic ? o.mass_kg : 0.0;
     c.inv_I_O = c.dynamic ? I_O_inv_[i] : Eigen::Matrix3d::Zero();
   }
-  const double dt_s = scene_.step_s / state_.substeps;
+  const double dt_s = scene_.step_s;
   for (int h = 0; h < hand_count(); ++h) {
     const HandSim& sim = hands_[static_cast<std::size_t>(h)];
     const HandState& hs = hand_state(h);
@@ -783,18 +719,8 @@ void World::build_contact_bodies() {
   }
 }
 
+// Positions from the solver's velocities; a body in no contact falls freely (or spins: the top).
 void World::integrate(double dt_s) {
-  for (int i = 0; i < object_count_; ++i) {
-    const ObjectSpec& o = scene_.objects[i];
-    BodyState& body = state_.bodies[i];
-    if (!o.dynamic || body.held() || o.control >= 0 || body.asleep) continue;
-    const Eigen::Vector3d F = total_force_G(F_G_[i], o.mass_kg, scene_.gravity_mps2);  // eq. 18
-    integrate_body(body, F, M_G_[i], o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
-  }
-  if (!controls_.empty()) controls_.integrate(F_G_, M_G_, dt_s);
-}
-
-void World::integrate_soft(double dt_s) {
   for (int i = 0; i < object_count_; ++i) {
     const ObjectSpec& o = scene_.objects[i];
     BodyState& body = state_.bodies[i];
@@ -802,8 +728,8 @@ void World::integrate_soft(double dt_s) {
     if (touched_[static_cast<std::size_t>(i)] != 0) {
       const ContactBody& c = contact_bodies_[i];
       integrate_position(body, c.v_G, c.w_G, soft_.v_end(i), soft_.w_end(i), o.I_O, dt_s);
-    } else {  // in no contact: the same operations as the penalty path's (free fall, the top)
-      const Eigen::Vector3d F = total_force_G(Eigen::Vector3d::Zero(), o.mass_kg, scene_.gravity_mps2);
+    } else {
+      const Eigen::Vector3d F = o.mass_kg * scene_.gravity_mps2;  // eq. 18 with no contact
       integrate_body(body, F, Eigen::Vector3d::Zero(), o.mass_kg, o.I_O, I_O_inv_[i], dt_s);
     }
   }
@@ -850,7 +776,7 @@ void World::grasp_stage() {
   const auto clear_hand_contacts = [&] {
     for (HandSim& sim : hands_) sim.on_object.clear();
   };
-  // hand contacts of the last substep, grouped by object (contacts are sorted by body_a), and
+  // hand contacts of the step, grouped by object (contacts are sorted by body_a), and
   // by hand: a hand's contacts count only for its own grasp test
   std::size_t i = 0;
   int next_object = 0;  // objects before it have had their grasp test this step

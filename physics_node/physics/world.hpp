@@ -1,11 +1,10 @@
 #pragma once
-// One world step (paper §4, Box2D's b2World_Step in spirit), in named, timed stages: the
-// substep count, chosen short enough for the stiffest contact that can happen within the step
-// (dt_sub <= safety sqrt(m/k) over the pairs whose boxes, grown by how far they can move, meet);
-// then over each substep
-//   hand kinematics -> broadphase -> narrowphase -> proxy hand -> virtual forces -> motion
-// then the body check, and the grasp test on the last substep's contacts: attach (eqs. 28-29)
-// or release. The world orchestrates; each stage is a system of its own file.
+// One world step (paper §4, Box2D's b2World_Step in spirit), in named, timed stages:
+//   proxy goal -> hand kinematics -> broadphase -> narrowphase -> proxy hand -> virtual forces
+//   -> motion -> body check -> grasp test on the step's contacts: attach (eqs. 28-29) or release.
+// The contact springs of eqs. 11-19 are soft constraints (contact_solver.hpp), stable at the full
+// step: one collision and one solve a step, whatever the stiffness. The world orchestrates; each
+// stage is a system of its own file.
 //
 // Deterministic: fixed steps, no clock in the results (stage timings are observations only),
 // every container iterated in a fixed order. The same scene and inputs give bit-identical states.
@@ -14,9 +13,9 @@
 // WorldState (world_state.hpp) holds everything that carries from step to step, and the rest
 // of the world is per-step scratch. state() / restore() take and put back that state.
 //
-// The stages live in their own files: substep_choice (how many substeps), collision and
-// manifold_clipper (contacts), proxy_hand (the hand that stops at surfaces), contact_forces with
-// normal_force / friction_force / contact_sums (eqs. 11-19), integrator (eqs. 20-25),
+// The stages live in their own files: collision and manifold_clipper (contacts), proxy_hand (the
+// hand that stops at surfaces), contact_solver with normal_force / friction_force (eqs. 11-19),
+// integrator (eqs. 20-25),
 // control_system (the cockpit's controls), body_check, grasp and grasp_tracker (eqs. 28-31).
 
 #include <Eigen/Geometry>
@@ -30,7 +29,6 @@
 #include "physics_node/physics/body_check.hpp"
 #include "physics_node/physics/broadphase.hpp"
 #include "physics_node/physics/collision.hpp"
-#include "physics_node/physics/contact_forces.hpp"
 #include "physics_node/physics/contact_solver.hpp"
 #include "physics_node/physics/control_system.hpp"
 #include "physics_node/physics/grasp.hpp"
@@ -38,14 +36,13 @@
 #include "physics_node/physics/proxy_hand.hpp"
 #include "physics_node/physics/scene.hpp"
 #include "physics_node/physics/sleep.hpp"
-#include "physics_node/physics/substep_choice.hpp"
 #include "physics_node/physics/world_state.hpp"
 
 namespace vcockpit::physics {
 
 // In the order a step runs them; each is timed where it runs and nowhere else.
 enum class Stage : uint8_t {
-  kSubstepChoice, kHandKinematics, kBroadphase, kNarrowphase, kProxyHand, kForces, kIntegrate,
+  kProxyGoal, kHandKinematics, kBroadphase, kNarrowphase, kProxyHand, kForces, kIntegrate,
   kBodyCheck, kGrasp, kCount
 };
 constexpr int kStageCount = static_cast<int>(Stage::kCount);
@@ -76,7 +73,7 @@ class World {
   // The hand with topic id `hand_id`, or -1.
   int hand_index(int hand_id) const;
 
-  // Hand `hand` from now on (applied over the next step, interpolated across its substeps).
+  // Hand `hand` from now on (reached by the next step).
   void set_hand_input(const HandInput& input, int hand = 0);
   void step();
 
@@ -91,7 +88,6 @@ class World {
   const GraspJoint* grasp_joint_of(int object) const { return controls_.grasp_joint_of(object); }
   int64_t time_ns() const { return state_.time_ns; }
   uint64_t step_count() const { return state_.steps; }
-  int substeps() const { return state_.substeps; }  // of the last step (chosen every step)
   bool hand_active(int hand = 0) const {
     return !hands_.empty() && state_.hands[static_cast<std::size_t>(hand)].active;
   }
@@ -164,18 +160,16 @@ class World {
     std::vector<uint8_t> held_mask;      // 1 for the objects it held at the start of this step
     bool holds_any = false;              // ... any of them
     std::vector<uint32_t> resting_links;  // GraspHold::resting_links at the start of this step
-    std::array<Eigen::Isometry3d, kLinkCount> X_GL_before;  // the links one substep ago
+    std::array<Eigen::Isometry3d, kLinkCount> X_GL_before;  // the links one step ago
     HandLinkPoses link_poses;
     // this hand's forward kinematics: the proxy now, the tracked hand and the goal, each once a
     // step (the grasp stage's view of the glove is const)
     mutable std::optional<hand::KinematicsMemo> fk;
-    HandLinkPoses proxy_prev_links;  // the proxy's links one substep ago, in H
-    ProxyPose proxy_prev;            // the proxy one substep ago
-    ProxyPose proxy_start;           // the proxy at the start of this step
+    HandLinkPoses proxy_prev_links;  // the proxy's links at the start of this step, in H
+    ProxyPose proxy_prev;            // the proxy at the start of this step
     ProxyPose proxy_goal;            // where the proxy heads over this step
-    uint8_t fingers_kept = 0;        // fingers kept still in this step's earlier substeps
     bool proxy_prev_links_valid = false;  // false after a restore: recomputed from the state
-    std::vector<ContactPoint> contacts;     // its share of this substep's contacts (the proxy's)
+    std::vector<ContactPoint> contacts;     // its share of this step's contacts (the proxy's)
     std::vector<ContactPoint> hand_static;  // its links against static objects
     std::vector<HandContact> on_object;     // the grasp stage's: its contacts on one object
     mutable std::array<Eigen::Isometry3d, kLinkCount> tracked_X_GL;
@@ -184,17 +178,16 @@ class World {
   };
 
   const HandState& hand_state(int hand) const { return state_.hands[static_cast<std::size_t>(hand)]; }
-  int choose_substeps(bool holding);  // holding: a hand holds an object
-  void substep(double dt_s, double alpha, int remaining, bool skip_held_hand_pairs);
-  void integrate_soft(double dt_s);  // contact.solver soft: positions from the solver's velocities
-  void move_hand(int hand, double alpha, int remaining);
+  void aim_proxies(bool holding);  // each proxy's goal for the step; holding: a hand holds an object
+  void advance(double dt_s);       // the step's motion, collision, proxies, solve and integration
+  void move_hand(int hand);
   void place_hand(int hand, const Eigen::Isometry3d& X_GH, const JointAngles& q_rad);
   // The proxies after the narrowphase: each hand's share of the contacts, constrained, then
   // put back in order.
   void constrain_proxies(double dt_s);
   void constrain_proxy(int hand, double dt_s);
   void observe_tracked_hand(int hand) const;  // on demand: one forward kinematics a step
-  // HandState::finger_pull_G at the end of a step, from the last substep's contacts.
+  // HandState::finger_pull_G at the end of a step, from its contacts.
   Eigen::Vector3d finger_pull_G(int hand) const;
   // The links of hand `hand`'s glove (tracked) hand that overlap `object` now (bit l); 0 unless
   // that hand is clearing it after a release (GraspHold::hand_clearing), the only time they
@@ -216,9 +209,9 @@ class World {
   void move_held_objects(double dt_s);
   void build_contact_bodies();
   void forget_anchors_of_recovered_bodies();
-  void integrate(double dt_s);
-  // Sleeping (sleep.hpp): the broadphases told which objects sleep; the islands a contact of
-  // this substep reaches woken (true if any woke); after a step, which objects may sleep and
+  void integrate(double dt_s);  // positions from the solver's velocities
+  // Sleeping (sleep.hpp): the broadphase told which objects sleep; the islands a contact of
+  // this step reaches woken (true if any woke); after a step, which objects may sleep and
   // the sleep tracker's update.
   void tell_sleepers();
   bool wake_touched();
@@ -231,11 +224,9 @@ class World {
   // space) never changes a result, which is why a restored world steps like the original
   Scene scene_;
   CollisionWorld collision_;
-  SubstepChoice substep_choice_;
-  ContactForceModel forces_;
-  SoftContactSolver soft_;        // contact.solver: soft
-  std::vector<uint8_t> touched_;  // soft: the dynamic bodies the solver moved this step
-  std::vector<SolverJoint> joints_;  // soft: the controls in a contact, as the solver's joints
+  SoftContactSolver soft_;
+  std::vector<uint8_t> touched_;     // the dynamic bodies the solver moved this step
+  std::vector<SolverJoint> joints_;  // the controls in a contact, as the solver's joints
   GraspTracker grasp_tracker_;
   BodyCheck body_check_;
   SleepTracker sleep_;
@@ -247,22 +238,18 @@ class World {
   WorldState state_;
   ControlSystem controls_;  // moves state_'s controls (after state_: it keeps a reference)
 
-  // scratch: rebuilt every step or substep before it is read
+  // scratch: rebuilt every step before it is read
   std::vector<Eigen::Isometry3d> X_GO_;         // collision input, all objects
-  std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose one substep ago
+  std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose at the start of this step
   std::vector<uint8_t> held_mask_;              // 1 for the objects any hand held at the start of this step
   std::vector<uint8_t> may_sleep_;              // per object, at the end of a step (update_sleep)
   std::vector<BodyState> start_bodies_;         // the bodies at the start of this step
-  std::vector<SubstepChoice::HandSweep> sweeps_;
   std::vector<HandOnObject> on_object_;         // the grasp stage's, per hand
-  bool held_pairs_skipped_ = false;      // in this substep
   std::vector<ContactPoint> contacts_;
   std::vector<ContactPoint> hand_static_;  // every hand's links against static objects
-  std::vector<ContactPoint> merged_;       // the contacts no proxy takes, in a substep
+  std::vector<ContactPoint> merged_;       // the contacts no proxy takes
   std::vector<const std::vector<ContactPoint>*> merge_lists_;  // merged_ and each hand's share
   std::vector<ContactBody> contact_bodies_;
-  std::vector<Eigen::Vector3d> F_G_;
-  std::vector<Eigen::Vector3d> M_G_;
   // observations of the last step
   std::vector<AppliedContact> applied_;
   std::vector<GraspEvent> events_;

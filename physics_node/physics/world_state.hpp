@@ -28,15 +28,12 @@ struct HandState {
   bool active = false;  // an input has arrived for it
   HandInput from;       // the hand at the start of the coming step
   HandInput to;         // at its end: the latest input
-  // the hand now (after the last substep), the proxy's when the scene has one (proxy_hand.hpp):
+  // the hand now (after the last step), the proxy's when the scene has one (proxy_hand.hpp):
   // the coming step's link velocities and reach start here
   Eigen::Isometry3d X_GH = Eigen::Isometry3d::Identity();
   JointAngles q_rad{};
   std::array<Eigen::Isometry3d, kLinkCount> X_GL;
-  bool pushing = false;  // a proxy link or held object touched a free object in the last substep
-  // bit f: finger f touched a held object in the last substep. Such a finger stays put on the
-  // substeps that leave held pairs out, and its step is limited on the last one.
-  uint8_t fingers_on_held = 0;
+  bool pushing = false;  // a proxy link or held object touched a free object in the last step
   // The static surfaces the proxy rested on at the end of the last step (the directions that take
   // it out, at most kMaxBlockingPlanes): the next step's wrist motion is projected off them, so
   // the proxy slides along a panel it touches (a god-object) instead of going in and being
@@ -53,13 +50,12 @@ struct HandState {
 struct WorldState {
   int64_t time_ns = 0;
   uint64_t steps = 0;
-  int substeps = 1;  // the last step's count (chosen afresh every step: an observation)
 
   std::vector<BodyState> bodies;  // per object, the scene's order
   std::vector<ControlState> controls;  // per control (Scene::controls)
   std::vector<HandState> hands;   // per hand (Scene::hands)
 
-  std::vector<StickAnchor> anchors;  // friction stick anchors of the last substep, by pair
+  std::vector<StickAnchor> anchors;  // friction stick anchors of the last step, by pair
 };
 
 }  // namespace vcockpit::physics

@@ -75,7 +75,6 @@ void visit_world_state(V& v, S& s) {
   namespace f = world_state_fields;
   v.num(s.time_ns);
   v.num(s.steps);
-  v.num(s.substeps);
   v.count(s.bodies);
   for (auto& b : s.bodies) {
     f::pose(v, b.X_GO);
@@ -100,7 +99,6 @@ void visit_world_state(V& v, S& s) {
     for (auto& X : hand.X_GL)
       f::pose(v, X);
     v.num(hand.pushing);
-    v.num(hand.fingers_on_held);
     v.var_count(hand.blocking_out_G);
     for (auto& n : hand.blocking_out_G)
       f::vec3(v, n);

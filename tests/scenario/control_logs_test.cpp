@@ -6,8 +6,7 @@
 // touched or moved, and every control the log does not operate stays where it was. A change
 // repeated by chatter at a threshold would be an extra event and fails the comparison; so would a
 // missed one. (tests/integration/physics_node_test replays the same logs over DDS in lockstep
-// and compares the files byte for byte.) Each log runs on both contact solvers: the penalty
-// springs over substeps, and the soft constraints with each control's body on its joint.
+// and compares the files byte for byte.) Each control's body is on its joint in the contact solve.
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -48,15 +47,13 @@ struct LogRun {
 };
 
 // One log per hand (each log's '# hand:' line says whose).
-LogRun run_logs(physics::ContactSolver solver, const std::vector<std::string>& names) {
+LogRun run_logs(const std::vector<std::string>& names) {
   physics_io::OfflineOptions options;
   options.scene_path = source_dir() + "/config/cockpit.yaml";
   for (const std::string& name : names)
     options.log_paths.push_back(source_dir() + "/config/glove_logs/" + name + ".csv");
   options.out_dir = make_temp_dir("control_logs_" + names.front());
-  physics::Scene scene = load_scene(options.scene_path);
-  scene.contact.solver = solver;
-  physics_io::run_offline(scene, options);
+  physics_io::run_offline(load_scene(options.scene_path), options);
   LogRun run;
   run.dir = options.out_dir;
   std::ifstream in(options.out_dir + "/events.jsonl");
@@ -75,11 +72,11 @@ LogRun run_logs(physics::ContactSolver solver, const std::vector<std::string>& n
 
 // The controls the log operates and the events it must give; every other control and every
 // loose object must end where it started.
-void expect_logs(physics::ContactSolver solver, const std::vector<std::string>& names,
+void expect_logs(const std::vector<std::string>& names,
                  const std::vector<Change>& expected, const std::vector<std::string>& expected_grasps,
                  bool with_hands = false) {
   const std::string name = names.front();
-  const LogRun run = run_logs(solver, names);
+  const LogRun run = run_logs(names);
   std::string got, want;
   for (const auto& c : run.changes) got += text_of(c, with_hands) + "\n";
   for (const auto& c : expected) want += text_of(c, with_hands) + "\n";
@@ -102,19 +99,15 @@ void expect_logs(physics::ContactSolver solver, const std::vector<std::string>& 
   }
 }
 
-void expect_log(physics::ContactSolver solver, const std::string& name,
-                const std::vector<Change>& expected, const std::vector<std::string>& expected_grasps) {
-  expect_logs(solver, {name}, expected, expected_grasps);
+void expect_log(const std::string& name, const std::vector<Change>& expected,
+                const std::vector<std::string>& expected_grasps) {
+  expect_logs({name}, expected, expected_grasps);
 }
-
-// Each log on both contact solvers: the penalty springs over substeps, and the same springs as
-// soft constraints at the full step with each control's body on its joint in the solve.
-class ControlLogs : public ::testing::TestWithParam<physics::ContactSolver> {};
 
 const char* kIndexTip = "index_distal";
 
-TEST_P(ControlLogs, PanelSwitchesPressFlipAndLiftEachSwitchOnce) {
-  expect_log(GetParam(), "panel_switches",
+TEST(ControlLogs, PanelSwitchesPressFlipAndLiftEachSwitchOnce) {
+  expect_log("panel_switches",
              {{"master_caution", "out", "pressed", "pushed", kIndexTip},
               {"master_caution", "pressed", "out", "mechanism", ""},
               {"avionics_master", "off", "on", "pushed", kIndexTip},
@@ -134,7 +127,7 @@ TEST_P(ControlLogs, PanelSwitchesPressFlipAndLiftEachSwitchOnce) {
              {});
 }
 
-TEST_P(ControlLogs, PanelKnobsTurnTheSelectorTwoDetentsAndTheHeadingKnobTenClicks) {
+TEST(ControlLogs, PanelKnobsTurnTheSelectorTwoDetentsAndTheHeadingKnobTenClicks) {
   std::vector<Change> expected = {{"nav_mode", "off", "vor", "grasped", ""},
                                   {"nav_mode", "vor", "gps", "grasped", ""}};
   for (int twist = 0; twist < 2; ++twist) {
@@ -143,7 +136,7 @@ TEST_P(ControlLogs, PanelKnobsTurnTheSelectorTwoDetentsAndTheHeadingKnobTenClick
       expected.push_back({"heading_bug", "between", "click", "grasped", ""});
     }
   }
-  expect_log(GetParam(), "panel_knobs", expected,
+  expect_log("panel_knobs", expected,
              {"grasp nav_mode", "release nav_mode", "grasp heading_bug", "release heading_bug",
               "grasp heading_bug", "release heading_bug"});
 }
@@ -151,8 +144,8 @@ TEST_P(ControlLogs, PanelKnobsTurnTheSelectorTwoDetentsAndTheHeadingKnobTenClick
 // The throttle: lifted over its gate back to cutoff and forward again, on to full, back unlifted
 // (the gate stops it at idle); the flaps: stopped by the gate at approach both ways, lifted over
 // it. Both grasped by the power grip of config/gestures/pedestal_levers.yaml.
-TEST_P(ControlLogs, PedestalLeversPassTheirGatesOnlyWhenLifted) {
-  expect_log(GetParam(), "pedestal_levers",
+TEST(ControlLogs, PedestalLeversPassTheirGatesOnlyWhenLifted) {
+  expect_log("pedestal_levers",
              {{"throttle", "idle", "cutoff", "grasped", ""},
               {"throttle", "cutoff", "idle", "grasped", ""},
               {"throttle", "idle", "full", "grasped", ""},
@@ -167,8 +160,8 @@ TEST_P(ControlLogs, PedestalLeversPassTheirGatesOnlyWhenLifted) {
 // Two hands at once (config/glove_logs/two_hand_controls_{right,left}.csv): the left hand works
 // the throttle through its gate while the right hand's index fingertip flips the fuel pump on.
 // Each change names its hand; nothing else moves.
-TEST_P(ControlLogs, TheLeftHandWorksTheThrottleWhileTheRightFlipsTheFuelPump) {
-  expect_logs(GetParam(), {"two_hand_controls_right", "two_hand_controls_left"},
+TEST(ControlLogs, TheLeftHandWorksTheThrottleWhileTheRightFlipsTheFuelPump) {
+  expect_logs({"two_hand_controls_right", "two_hand_controls_left"},
               {{"throttle", "idle", "cutoff", "grasped", "", "left"},
                {"fuel_pump", "off", "on", "pushed", kIndexTip, "right"},
                {"throttle", "cutoff", "idle", "grasped", "", "left"},
@@ -176,12 +169,6 @@ TEST_P(ControlLogs, TheLeftHandWorksTheThrottleWhileTheRightFlipsTheFuelPump) {
                {"throttle", "full", "idle", "grasped", "", "left"}},
               {"grasp throttle", "release throttle"}, /*with_hands=*/true);
 }
-
-INSTANTIATE_TEST_SUITE_P(Solvers, ControlLogs,
-                         ::testing::Values(physics::ContactSolver::kPenalty, physics::ContactSolver::kSoft),
-                         [](const auto& info) {
-                           return info.param == physics::ContactSolver::kSoft ? "Soft" : "Penalty";
-                         });
 
 }  // namespace
 }  // namespace vcockpit::test

@@ -5,10 +5,10 @@
 //     not beyond;
 //   - a command moves a control to the position asked for, reported as commanded; a command for
 //     an unknown position is refused;
-//   - a weight set on a spring button overshoots and settles as one mass on the button's spring,
-//     on both contact solvers (the soft one solves the cap as a body on its joint);
+//   - a weight set on a spring button overshoots and settles as one mass on the button's spring
+//     (the contact solver takes the cap as a body on its joint);
 //   - the default cockpit's master caution button pressed by the proxy hand's fingertip, with its
-//     own box cap (on both contact solvers) and with a cap from a model file (glTF, OBJ, AC3D).
+//     own box cap and with a cap from a model file (glTF, OBJ, AC3D).
 
 #include <gtest/gtest.h>
 
@@ -163,9 +163,8 @@ TEST(Controls, ACommandSetsThePositionAndIsReportedAsCommanded) {
 // A 50 g box set on the cap of a vertical spring button (5 g, 50 N/m, rest at its top stop) and
 // let go: box and cap go down together as one mass on the button's spring, so the button
 // overshoots to q_eq (1 + exp(-zeta pi / sqrt(1 - zeta^2))) and settles at q_eq = (m_box +
-// m_cap) g / k, zeta = c / (2 sqrt(k (m_box + m_cap))). Both contact solvers: on the soft one the
-// cap is a body on its joint in the solve (its rate's answer to the box's impulse), on the
-// penalty one the contact force is projected onto the joint each substep.
+// m_cap) g / k, zeta = c / (2 sqrt(k (m_box + m_cap))). The cap is a body on its joint in the
+// contact solve (its rate's answer to the box's impulse).
 struct WeightOnButton {
   static constexpr double kBox_kg = 0.05;
   static constexpr double kCap_kg = 0.005;
@@ -174,9 +173,8 @@ struct WeightOnButton {
   static double damping() { return 2.0 * kZeta * std::sqrt(kStiffness_Npm * (kBox_kg + kCap_kg)); }
   static double q_eq() { return (kBox_kg + kCap_kg) * 9.81 / kStiffness_Npm; }
 
-  static physics::Scene make(physics::ContactSolver solver) {
+  static physics::Scene make() {
     physics::Scene scene;
-    scene.contact.solver = solver;
     scene.sleep.enabled = false;
     physics::ObjectSpec cap = dynamic_object("cap", physics::Shape::box({0.03, 0.03, 0.006}), kCap_kg,
                                              at(0, 0, 0.1), material(5e4));
@@ -201,10 +199,8 @@ struct WeightOnButton {
   }
 };
 
-class WeightOnButtonTest : public ::testing::TestWithParam<physics::ContactSolver> {};
-
-TEST_P(WeightOnButtonTest, OvershootsAndSettlesAsTheWeightOnTheSpring) {
-  physics::World world(WeightOnButton::make(GetParam()));
+TEST(WeightOnButtonTest, OvershootsAndSettlesAsTheWeightOnTheSpring) {
+  physics::World world(WeightOnButton::make());
   const double q_eq = WeightOnButton::q_eq();
   const double zeta = WeightOnButton::kZeta;
   const double q_peak_closed = q_eq * (1.0 + std::exp(-zeta * kPi / std::sqrt(1.0 - zeta * zeta)));
@@ -214,8 +210,7 @@ TEST_P(WeightOnButtonTest, OvershootsAndSettlesAsTheWeightOnTheSpring) {
     q_peak = std::max(q_peak, world.state().controls[0].q);
   }
   const double q_end = world.state().controls[0].q;
-  std::printf("%s: peak %.3f mm (closed form %.3f), rest %.3f mm (closed form %.3f)\n",
-              GetParam() == physics::ContactSolver::kSoft ? "soft" : "penalty", q_peak * 1e3,
+  std::printf("peak %.3f mm (closed form %.3f), rest %.3f mm (closed form %.3f)\n", q_peak * 1e3,
               q_peak_closed * 1e3, q_end * 1e3, q_eq * 1e3);
   EXPECT_NEAR(q_peak, q_peak_closed, 0.03 * q_peak_closed);
   EXPECT_NEAR(q_end, q_eq, 0.01 * q_eq);
@@ -226,11 +221,6 @@ TEST_P(WeightOnButtonTest, OvershootsAndSettlesAsTheWeightOnTheSpring) {
   EXPECT_LT(std::abs(world.bodies()[1].X_GO.translation().x()), 1e-4) << "slid off sideways";
 }
 
-INSTANTIATE_TEST_SUITE_P(Controls, WeightOnButtonTest,
-                         ::testing::Values(physics::ContactSolver::kPenalty, physics::ContactSolver::kSoft),
-                         [](const auto& info) {
-                           return info.param == physics::ContactSolver::kSoft ? "Soft" : "Penalty";
-                         });
 
 // The default cockpit's master caution button, pressed by the proxy hand's index fingertip: the
 // fingertip's contact force, projected onto the button's axis, pushes it past its actuation
@@ -239,9 +229,7 @@ INSTANTIATE_TEST_SUITE_P(Controls, WeightOnButtonTest,
 // The default cockpit's master caution pressed in to its detent by the index fingertip of a
 // pointing hand and let go: one press, reported as pushed by that link, and one return by its
 // spring. `cap_half_m`: how far the cap's front face stands out from the joint's origin.
-void press_master_caution(physics::Scene loaded, double cap_half_m,
-                          physics::ContactSolver solver = physics::ContactSolver::kPenalty) {
-  loaded.contact.solver = solver;
+void press_master_caution(const physics::Scene& loaded, double cap_half_m) {
   physics::World world(loaded);
   const physics::Scene& scene = world.scene();
   const int button = scene.find_control("master_caution");
@@ -307,11 +295,6 @@ void press_master_caution(physics::Scene loaded, double cap_half_m,
 
 TEST(Controls, AFingertipPressesTheMasterCautionButtonAndItsSpringReturnsIt) {
   press_master_caution(load_scene(source_dir() + "/config/cockpit.yaml"), 0.004);
-}
-
-TEST(Controls, AFingertipPressesTheMasterCautionButtonOnTheSoftSolver) {
-  press_master_caution(load_scene(source_dir() + "/config/cockpit.yaml"), 0.004,
-                       physics::ContactSolver::kSoft);
 }
 
 // The same button with a cap from a model file (the 24 x 24 x 12 mm chamfered cap of

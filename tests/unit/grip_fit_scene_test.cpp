@@ -157,7 +157,7 @@ TEST(GripFitScene, TheWrittenSceneLoadsWithThePoseTheHandAndTheCockpitsSettings)
   EXPECT_EQ(scene.grasp.alpha0_deg, cockpit.grasp.alpha0_deg);
   EXPECT_EQ(scene.grasp.gesture_rule, cockpit.grasp.gesture_rule);
   EXPECT_EQ(scene.grasp.min_hold_s, cockpit.grasp.min_hold_s);
-  EXPECT_EQ(scene.contact.max_substeps, cockpit.contact.max_substeps);
+  EXPECT_EQ(scene.contact.iterations, cockpit.contact.iterations);
   EXPECT_EQ(scene.contact.slip_speed_mps, cockpit.contact.slip_speed_mps);
 
   // the header says what made it

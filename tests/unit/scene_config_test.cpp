@@ -337,7 +337,6 @@ TEST_F(ShippedCockpit, GraspAndContactBlocks) {
   EXPECT_DOUBLE_EQ(scene_->grasp.release_opening_share, 0.2);
   EXPECT_DOUBLE_EQ(scene_->grasp.release_gap_m, 0.005);
   EXPECT_EQ(scene_->contact.max_points_per_pair, 4);
-  EXPECT_EQ(scene_->contact.solver, physics::ContactSolver::kSoft);
 }
 
 // ---- a small valid scene, so each case can break one thing ----------------------------------
@@ -415,10 +414,27 @@ TEST(SceneConfig, ValidSceneParses) {
 
   EXPECT_EQ(scene.grasp.alpha0_deg, 110.0);
   EXPECT_EQ(scene.grasp.exit_scale, physics::GraspParams{}.exit_scale);  // not given: default
-  EXPECT_EQ(scene.contact.max_substeps, 16);
-  EXPECT_EQ(scene.contact.substep_safety, physics::ContactParams{}.substep_safety);
+  EXPECT_EQ(scene.contact.slip_speed_mps, 0.002);  // (its max_substeps: 16 loads, and sets nothing)
   EXPECT_TRUE(scene.sleep.enabled);  // not given: resting objects sleep
   EXPECT_EQ(scene.sleep.time_s, physics::SleepParams{}.time_s);
+}
+
+// Scenes written when the contacts were stepped in substeps (recordings' scenes made by other
+// sites carry contact.substep_safety and max_substeps) load, and those keys set nothing.
+TEST(SceneConfig, ASceneWithTheOldSubstepSettingsLoadsAsOneWithout) {
+  std::string without = kValidScene;
+  const std::string old_line = "contact: {slip_speed_mps: 0.002, max_substeps: 16}";
+  without.replace(without.find(old_line), old_line.size(), "contact: {slip_speed_mps: 0.002}");
+  std::string with = kValidScene;
+  with.replace(with.find(old_line), old_line.size(),
+               "contact: {slip_speed_mps: 0.002, substep_safety: 0.05, max_substeps: 500, solver: soft}");
+  const Scene a = parse_scene(ConfigNode::load_string(without, "without.yaml"), "");
+  const Scene b = parse_scene(ConfigNode::load_string(with, "with.yaml"), "");
+  EXPECT_EQ(a.contact.slip_speed_mps, b.contact.slip_speed_mps);
+  EXPECT_EQ(a.contact.max_points_per_pair, b.contact.max_points_per_pair);
+  EXPECT_EQ(a.contact.iterations, b.contact.iterations);
+  EXPECT_EQ(a.contact.relax_iterations, b.contact.relax_iterations);
+  EXPECT_EQ(a.contact.restitution_threshold_mps, b.contact.restitution_threshold_mps);
 }
 
 TEST(SceneConfig, SleepingIsReadAndCanBeTurnedOff) {
@@ -694,7 +710,11 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
        "proxy.speed", "unknown key 'speed'"},
       {"contact_solver_unknown", "contact: {slip_speed_mps: 0.002, max_substeps: 16}",
        "contact: {slip_speed_mps: 0.002, max_substeps: 16, solver: implicit}", "contact:",
-       "contact.solver", "expected penalty"},
+       "contact.solver", "the only value is soft"},
+      // the explicit penalty path is gone: a scene asking for it is told so
+      {"contact_solver_penalty", "contact: {slip_speed_mps: 0.002, max_substeps: 16}",
+       "contact: {slip_speed_mps: 0.002, max_substeps: 16, solver: penalty}", "contact:",
+       "contact.solver", "the explicit penalty path and its substeps were removed"},
       {"contact_iterations_zero", "contact: {slip_speed_mps: 0.002, max_substeps: 16}",
        "contact: {slip_speed_mps: 0.002, max_substeps: 16, iterations: 0}", "contact:",
        "contact.iterations", "1"},

@@ -436,14 +436,14 @@ TEST(WorldStep, AllocatesNothingOnceWarm) {
 // Checkpoints (physics_io::world_checkpoint): a world saved to bytes and restored from them goes
 // on bit-identically; a damaged file, another scene's, or one whose checksum holds but whose
 // contents point outside the scene is refused with what is wrong, never half-restored.
-// Each stage's timer runs where that stage runs and nowhere else: the substep choice, the proxy
+// Each stage's timer runs where that stage runs and nowhere else: the proxy goal, the proxy
 // hand and the body check have their own (they were once counted in the broadphase, the hand
 // kinematics and the integration). A stage that does not run (no proxy without a hand) takes no
 // time; the names are the topics' and the summaries' keys, one per stage.
 TEST(WorldStep, EachStageIsTimedWhereItRunsAndOnlyThere) {
   std::vector<std::string> names;
   for (int s = 0; s < kStageCount; ++s) names.emplace_back(stage_name(static_cast<Stage>(s)));
-  EXPECT_EQ(names, (std::vector<std::string>{"substep_choice", "hand_kinematics", "broadphase",
+  EXPECT_EQ(names, (std::vector<std::string>{"proxy_goal", "hand_kinematics", "broadphase",
                                              "narrowphase", "proxy_hand", "forces", "integrate",
                                              "body_check", "grasp"}));
   World boxes(two_boxes());
@@ -457,7 +457,7 @@ TEST(WorldStep, EachStageIsTimedWhereItRunsAndOnlyThere) {
   GloveFeed glove{&cockpit.samples};
   glove.feed(world);
   world.step();
-  for (const Stage stage : {Stage::kSubstepChoice, Stage::kHandKinematics, Stage::kBroadphase,
+  for (const Stage stage : {Stage::kProxyGoal, Stage::kHandKinematics, Stage::kBroadphase,
                             Stage::kNarrowphase, Stage::kProxyHand, Stage::kForces,
                             Stage::kIntegrate, Stage::kBodyCheck, Stage::kGrasp})
     EXPECT_GT(world.stage_times().ns[static_cast<int>(stage)], 0) << stage_name(stage);
