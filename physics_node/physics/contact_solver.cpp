@@ -44,24 +44,6 @@ SoftContactSolver::Row SoftContactSolver::make_row(const Point& p, const Eigen::
   return row;
 }
 
-double SoftContactSolver::row_velocity(const Point& p, const Row& row) const {
-  return (v_[p.b] - v_[p.a]).dot(row.u) + w_[p.b].dot(row.rb_u) - w_[p.a].dot(row.ra_u);
-}
-
-void SoftContactSolver::apply_row(const Point& p, const Row& row, double impulse) {
-  // kinematic bodies and joint bodies have zero inverse mass and inertia, and are skipped: 0 * NaN
-  // is NaN, and a static floor would carry one body's fault to the others
-  if (inv_m_[p.b] > 0.0) {
-    v_[p.b] += (inv_m_[p.b] * impulse) * row.u;
-    w_[p.b] += impulse * row.spin_b;
-  }
-  if (inv_m_[p.a] > 0.0) {
-    v_[p.a] -= (inv_m_[p.a] * impulse) * row.u;
-    w_[p.a] -= impulse * row.spin_a;
-  }
-  if (p.on_joint) push_joints(p, impulse * row.u);
-}
-
 void SoftContactSolver::apply_angular_impulse(int a, int b, const Eigen::Vector3d& L) {
   if (inv_m_[b] > 0.0) w_[b] += inv_I_G_[b] * L;
   if (inv_m_[a] > 0.0) w_[a] -= inv_I_G_[a] * L;
@@ -75,13 +57,14 @@ void SoftContactSolver::push_joint(int body, double impulse) {
   joint.velocity(joint.qd(), v_[body], w_[body]);
 }
 
-double SoftContactSolver::inverse_mass_along(const Point& p, const Eigen::Vector3d& u) const {
-  double K = inv_m_[p.a] + inv_m_[p.b] + along(inv_I_G_[p.a], p.r_a.cross(u)) +
-             along(inv_I_G_[p.b], p.r_b.cross(u));
+double SoftContactSolver::inverse_mass_along(const Point& p, const Row& row) const {
+  // u.(I^-1 u) for u = r x row.u, from the row's own r x u and I^-1 (r x u)
+  double K = inv_m_[p.a] + inv_m_[p.b] + row.ra_u.dot(row.spin_a) + row.rb_u.dot(row.spin_b);
+  if (!p.on_joint) return K;
   for (const int i : {p.a, p.b}) {
     if (const int j = joint_of_[i]; j >= 0) {
       const SolverJoint& joint = (*joints_)[static_cast<std::size_t>(j)];
-      const double J = joint.along(p.p_G, u);
+      const double J = joint.along(p.p_G, row.u);
       K += joint.mobility * J * J;
     }
   }
@@ -158,9 +141,13 @@ void SoftContactSolver::solve(const std::vector<ContactPoint>& contacts,
   const auto sweep = [&](bool use_bias) {
     for (Pair& pair : pairs_) {
       if (pair.kinematic) continue;
-      for (std::size_t i = pair.first; i < pair.end; ++i) solve_normal(points_[i], use_bias);
-      solve_friction(pair, use_bias);
-      solve_rolling(pair);
+      double load = 0.0;  // the pair's normal impulse: the friction's and the rolling rows' cap
+      for (std::size_t i = pair.first; i < pair.end; ++i) {
+        solve_normal(points_[i], use_bias);
+        load += points_[i].lambda_n;
+      }
+      solve_friction(pair, load, use_bias);
+      solve_rolling(pair, load);
     }
   };
   for (int it = 0; it < params_.iterations; ++it) sweep(true);
@@ -227,12 +214,12 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
       p.r_a = c.p_G - A.X_GB.translation();
       p.r_b = c.p_G - B.X_GB.translation();
       p.on_joint = joint_of_[p.a] >= 0 || joint_of_[p.b] >= 0;
-      p.K_n = inverse_mass_along(p, p.n);
-      p.K_t1 = inverse_mass_along(p, p.t1);
-      p.K_t2 = inverse_mass_along(p, p.t2);
       p.row_n = make_row(p, p.n);
       p.row_t1 = make_row(p, p.t1);
       p.row_t2 = make_row(p, p.t2);
+      p.K_n = inverse_mass_along(p, p.row_n);
+      p.K_t1 = inverse_mass_along(p, p.row_t1);
+      p.K_t2 = inverse_mass_along(p, p.row_t2);
       p.spring = spring;
       p.restitution = restitution;
       // the kinematic bodies are at the step's end already: take their motion out of the gap
@@ -325,8 +312,8 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
         trial_sum += p.lambda_t.x() * p.t1 + p.lambda_t.y() * p.t2;
       }
       if (pair.sliding || trial_sum.norm() > pair.mu.mu_s * N_sum * h_s) {
-        // sliding on: against the motion (eq. 17); just broken loose: along the springs' pull,
-        // as the penalty path does
+        // sliding on: against the motion (eq. 17); just broken loose: along the springs' pull
+        // (it has no motion of its own yet to go against)
         const bool broke_loose = !pair.sliding;
         pair.sliding = true;
         for (std::size_t j = pair.first; j < pair.end; ++j) {
@@ -381,9 +368,7 @@ void SoftContactSolver::solve_normal(Point& p, bool use_bias) {
   p.lambda_n = next;
 }
 
-void SoftContactSolver::solve_friction(Pair& pair, bool use_bias) {
-  double load = 0.0;
-  for (std::size_t i = pair.first; i < pair.end; ++i) load += points_[i].lambda_n;
+void SoftContactSolver::solve_friction(Pair& pair, double load, bool use_bias) {
   for (std::size_t i = pair.first; i < pair.end; ++i) {
     Point& p = points_[i];
     Eigen::Vector2d step = Eigen::Vector2d::Zero();
@@ -420,7 +405,7 @@ void SoftContactSolver::solve_friction(Pair& pair, bool use_bias) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (std::size_t i = pair.first; i < pair.end; ++i) {
     const Point& p = points_[i];
-    sum += p.lambda_t.x() * p.t1 + p.lambda_t.y() * p.t2;
+    sum += p.lambda_t.x() * p.row_t1.u + p.lambda_t.y() * p.row_t2.u;
   }
   const double size = sum.norm();
   if (use_bias && size > pair.mu.mu_s * load) pair.sliding = true;
@@ -436,11 +421,9 @@ void SoftContactSolver::solve_friction(Pair& pair, bool use_bias) {
   }
 }
 
-void SoftContactSolver::solve_rolling(Pair& pair) {
+void SoftContactSolver::solve_rolling(Pair& pair, double load) {
   const double mu_roll = pair.mu.mu_roll_m, mu_spin = pair.mu.mu_spin_m;
   if (!(mu_roll > 0.0) && !(mu_spin > 0.0)) return;
-  double load = 0.0;
-  for (std::size_t i = pair.first; i < pair.end; ++i) load += points_[i].lambda_n;
   const Eigen::Vector3d& n = pair.n_mean;
   const Eigen::Vector3d w_rel = w_[pair.b] - w_[pair.a];
   if (mu_roll > 0.0) {
