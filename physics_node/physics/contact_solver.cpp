@@ -220,6 +220,12 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
       p.K_n = inverse_mass_along(p, p.row_n);
       p.K_t1 = inverse_mass_along(p, p.row_t1);
       p.K_t2 = inverse_mass_along(p, p.row_t2);
+      p.mass_n = p.K_n > 0.0 ? 1.0 / p.K_n : 0.0;
+      p.mass_t1 = p.K_t1 > 0.0 ? 1.0 / p.K_t1 : 0.0;
+      p.mass_t2 = p.K_t2 > 0.0 ? 1.0 / p.K_t2 : 0.0;
+      p.soft_mass_n = 1.0 / (p.K_n + spring.gamma);
+      p.soft_mass_t1 = 1.0 / (p.K_t1 + spring.gamma);
+      p.soft_mass_t2 = 1.0 / (p.K_t2 + spring.gamma);
       p.spring = spring;
       p.restitution = restitution;
       // the kinematic bodies are at the step's end already: take their motion out of the gap
@@ -273,8 +279,13 @@ void SoftContactSolver::prepare(const std::vector<ContactPoint>& contacts,
       tangent_basis(pair.n_mean, pair.u1, pair.u2);
       pair.K_roll1 = inverse_inertia_along(pair.a, pair.b, pair.u1);
       pair.K_roll2 = inverse_inertia_along(pair.a, pair.b, pair.u2);
+      pair.inertia_roll1 = pair.K_roll1 > 0.0 ? 1.0 / pair.K_roll1 : 0.0;
+      pair.inertia_roll2 = pair.K_roll2 > 0.0 ? 1.0 / pair.K_roll2 : 0.0;
     }
-    if (pair.mu.mu_spin_m > 0.0) pair.K_spin = inverse_inertia_along(pair.a, pair.b, pair.n_mean);
+    if (pair.mu.mu_spin_m > 0.0) {
+      pair.K_spin = inverse_inertia_along(pair.a, pair.b, pair.n_mean);
+      pair.inertia_spin = pair.K_spin > 0.0 ? 1.0 / pair.K_spin : 0.0;
+    }
     // eq. 15: a sliding pair sticks again once slower than epsilon (anchors start over); a new
     // or sticking pair sticks until its springs pull past the cap (inside the iterations)
     const bool slow = load_sum > 0.0 ? speed_weighted / load_sum < params_.slip_speed_mps : true;
@@ -350,8 +361,8 @@ void SoftContactSolver::warm_start() {
 void SoftContactSolver::solve_normal(Point& p, bool use_bias) {
   if (!(p.K_n > 0.0)) return;
   const double v_n = row_velocity(p, p.row_n);
-  double step = use_bias ? -(v_n + p.spring.beta * p.s0 + p.spring.gamma * p.lambda_n) / (p.K_n + p.spring.gamma)
-                         : -v_n / p.K_n;  // relax: rigid, keeps what the spring did
+  double step = use_bias ? -(v_n + p.spring.beta * p.s0 + p.spring.gamma * p.lambda_n) * p.soft_mass_n
+                         : -v_n * p.mass_n;  // relax: rigid, keeps what the spring did
   // The relax sweeps take out what the dashpot's restitution puts back: an impact is stopped
   // rigidly, and a rebound loses the springs' push-out. A slow point keeps the spring's own
   // end-of-step speed, or a heavy body would reach its rest depth by creep. (A moving kinematic
@@ -379,12 +390,12 @@ void SoftContactSolver::solve_friction(Pair& pair, double load, bool use_bias) {
       const double g = p.spring.gamma;
       if (!pair.sliding && use_bias) {
         // the stick spring (eq. 16), implicit: same k_pt, c_pt as the normal
-        step.x() = -(v_t.x() + p.spring.beta * p.delta_t.x() + g * p.lambda_t.x()) / (p.K_t1 + g);
-        step.y() = -(v_t.y() + p.spring.beta * p.delta_t.y() + g * p.lambda_t.y()) / (p.K_t2 + g);
+        step.x() = -(v_t.x() + p.spring.beta * p.delta_t.x() + g * p.lambda_t.x()) * p.soft_mass_t1;
+        step.y() = -(v_t.y() + p.spring.beta * p.delta_t.y() + g * p.lambda_t.y()) * p.soft_mass_t2;
       } else {
         // sliding (eq. 17 on the end-of-step velocity), or relax: stop the tangential motion
-        step.x() = p.K_t1 > 0.0 ? -v_t.x() / p.K_t1 : 0.0;
-        step.y() = p.K_t2 > 0.0 ? -v_t.y() / p.K_t2 : 0.0;
+        step.x() = -v_t.x() * p.mass_t1;
+        step.y() = -v_t.y() * p.mass_t2;
         if (pair.sliding) {
           // eq. 17 point by point: at most mu_d N here (a sliding, spinning patch's points pull
           // different ways, which a cap on their sum alone would never meet)
@@ -429,11 +440,10 @@ void SoftContactSolver::solve_rolling(Pair& pair, double load) {
   if (mu_roll > 0.0) {
     const Eigen::Vector3d& u1 = pair.u1;
     const Eigen::Vector3d& u2 = pair.u2;
-    const double K1 = pair.K_roll1, K2 = pair.K_roll2;
     const Eigen::Vector2d before = pair.lambda_roll;
     Eigen::Vector2d next = before;
-    if (K1 > 0.0) next.x() -= w_rel.dot(u1) / K1;
-    if (K2 > 0.0) next.y() -= w_rel.dot(u2) / K2;
+    next.x() -= w_rel.dot(u1) * pair.inertia_roll1;
+    next.y() -= w_rel.dot(u2) * pair.inertia_roll2;
     const double cap = mu_roll * load;
     if (next.norm() > cap) next *= cap / next.norm();
     const Eigen::Vector2d change = next - before;
@@ -445,7 +455,7 @@ void SoftContactSolver::solve_rolling(Pair& pair, double load) {
     if (K > 0.0) {
       const double w_spin = (w_[pair.b] - w_[pair.a]).dot(n);
       const double cap = mu_spin * load;
-      const double next = std::clamp(pair.lambda_spin - w_spin / K, -cap, cap);
+      const double next = std::clamp(pair.lambda_spin - w_spin * pair.inertia_spin, -cap, cap);
       apply_angular_impulse(pair.a, pair.b, (next - pair.lambda_spin) * n);
       pair.lambda_spin = next;
     }
@@ -462,7 +472,7 @@ void SoftContactSolver::restitution() {
       Point& p = points_[i];
       if (!(p.K_n > 0.0) || p.v_n_own > -threshold || p.lambda_n <= 0.0) continue;
       const double v_n = row_velocity(p, p.row_n);
-      const double next = std::max(0.0, p.lambda_n - (v_n + p.restitution * p.v_n_before) / p.K_n);
+      const double next = std::max(0.0, p.lambda_n - (v_n + p.restitution * p.v_n_before) * p.mass_n);
       apply_row(p, p.row_n, next - p.lambda_n);
       p.lambda_n = next;
     }

@@ -76,6 +76,10 @@ class SoftContactSolver {
     bool on_joint = false;  // a or b moves on a control's joint
     Row row_n;
     double K_n = 0.0;  // inverse effective mass along n
+    // the sweeps multiply by these rather than divide (a division's latency is on the sweeps'
+    // critical path): 1 / K (0 where K is 0: nothing moves along that row) for the rigid rows,
+    // 1 / (K + gamma) for the soft ones
+    double mass_n = 0.0, soft_mass_n = 0.0;
     SoftSpring spring;
     double s0 = 0.0;  // separation (m, < 0 overlapping), shifted back by the kinematic motion
     double lambda_n = 0.0;
@@ -83,6 +87,7 @@ class SoftContactSolver {
     double v_n_own = 0.0;  // its dynamic bodies' part of v_n_before (an impact or rebound if fast)
     Row row_t1, row_t2;
     double K_t1 = 0.0, K_t2 = 0.0;
+    double mass_t1 = 0.0, mass_t2 = 0.0, soft_mass_t1 = 0.0, soft_mass_t2 = 0.0;
     Eigen::Vector2d delta_t = Eigen::Vector2d::Zero();  // stick spring's stretch along t1, t2
     Eigen::Vector2d lambda_t = Eigen::Vector2d::Zero();
     Eigen::Vector3d p_G = Eigen::Vector3d::Zero();  // where it acts
@@ -101,6 +106,7 @@ class SoftContactSolver {
     Eigen::Vector3d n_mean = Eigen::Vector3d::UnitZ();  // the patch's normal (rolling, spinning)
     Eigen::Vector3d u1 = Eigen::Vector3d::UnitX(), u2 = Eigen::Vector3d::UnitY();  // rolling axes
     double K_roll1 = 0.0, K_roll2 = 0.0, K_spin = 0.0;  // inverse inertias about u1, u2, n_mean
+    double inertia_roll1 = 0.0, inertia_roll2 = 0.0, inertia_spin = 0.0;  // their inverses (or 0)
     Eigen::Vector2d lambda_roll = Eigen::Vector2d::Zero();
     double lambda_spin = 0.0;
   };
