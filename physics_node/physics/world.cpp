@@ -107,7 +107,6 @@ World::World(Scene scene)
         throw std::invalid_argument("World: two hands of the same side (one right, one left)");
   state_.bodies.resize(object_count_);
   X_GO_.resize(object_count_);
-  X_GO_before_.resize(object_count_);
   I_O_inv_.resize(object_count_);
   held_mask_.assign(object_count_, 0);
   may_sleep_.assign(object_count_, 0);
@@ -142,14 +141,12 @@ World::World(Scene scene)
     state_.bodies[i].v_G = o.v_G;
     state_.bodies[i].w_G = o.w_G;
     X_GO_[i] = o.X_GO;
-    X_GO_before_[i] = o.X_GO;
     for (HandState& hs : state_.hands) hs.grasp[i] = grasp_tracker_.initial_hold(o);
     I_O_inv_[i] = o.dynamic ? Eigen::Matrix3d(o.I_O.inverse()) : Eigen::Matrix3d::Zero();
   }
   controls_.start();
   for (const ControlSpec& c : scene_.controls) {
     X_GO_[c.body] = state_.bodies[c.body].X_GO;
-    X_GO_before_[c.body] = X_GO_[c.body];
   }
   const int body_count = object_count_ + static_cast<int>(hand_count) * kLinkCount;
   contact_bodies_.resize(body_count);
@@ -530,7 +527,7 @@ void World::constrain_proxy(int hand, double dt_s) {
     BodyState& body = state_.bodies[i];
     if ((body.holders & sim.holder_bit) == 0 || scene_.objects[i].control >= 0) continue;  // a joint holds a control
     body.X_GO.translation() += r.shift_G / std::popcount(body.holders);
-    finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
+    finite_difference_velocity(start_bodies_[i].X_GO, body.X_GO, dt_s, body.v_G, body.w_G);
   }
 }
 
@@ -654,9 +651,8 @@ void World::move_held_objects(double dt_s) {
       controls_.move_held(control, hand, hand_state(hand).X_GH, X_HO(i, hand).translation(), dt_s);
       continue;
     }
-    X_GO_before_[i] = body.X_GO;
     body.X_GO = held_pose(i);
-    finite_difference_velocity(X_GO_before_[i], body.X_GO, dt_s, body.v_G, body.w_G);
+    finite_difference_velocity(start_bodies_[i].X_GO, body.X_GO, dt_s, body.v_G, body.w_G);
   }
 }
 

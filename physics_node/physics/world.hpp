@@ -240,7 +240,6 @@ class World {
 
   // scratch: rebuilt every step before it is read
   std::vector<Eigen::Isometry3d> X_GO_;         // collision input, all objects
-  std::vector<Eigen::Isometry3d> X_GO_before_;  // held objects' pose at the start of this step
   std::vector<uint8_t> held_mask_;              // 1 for the objects any hand held at the start of this step
   std::vector<uint8_t> may_sleep_;              // per object, at the end of a step (update_sleep)
   std::vector<BodyState> start_bodies_;         // the bodies at the start of this step
