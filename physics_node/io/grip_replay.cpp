@@ -102,8 +102,10 @@ GripReplay replay_grip(const physics::Scene& scene_in,
         run.fastest_free_at_s = t_s;
       }
     }
-    run.deepest_link_in_object_m =
-        std::max(run.deepest_link_in_object_m, world.hand_penetration().max_m);
+    if (world.hand_penetration().max_m > run.deepest_link_in_object_m) {
+      run.deepest_link_in_object_m = world.hand_penetration().max_m;
+      run.deepest_link_in_object_at_s = t_s;
+    }
     run.deepest_link_in_static_m =
         std::max(run.deepest_link_in_static_m, world.hand_penetration().static_max_m);
   };

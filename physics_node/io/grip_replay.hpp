@@ -34,6 +34,7 @@ struct GripReplay {
   double fastest_free_horizontal_mps = 0.0;
   double fastest_free_at_s = 0.0;
   double deepest_link_in_object_m = 0.0;  // any hand link in the object (proxy contacts)
+  double deepest_link_in_object_at_s = 0.0;  // ... when it was deepest
   double deepest_link_in_static_m = 0.0;  // any hand link in a static object
   double last_sample_s = 0.0;             // the last accepted sample: the log's end
   double end_s = 0.0;                     // the replay's (tail_steps past the log's end)

@@ -410,8 +410,18 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
                                    std::vector<ContactPoint>& hand_static,
                                    ProxyConstraint& result) {
   constexpr int kRows = 3;          // the deepest contacts of a finger that steer its joints
+  // The finger's other contacts that the step could take past their limits: a fingertip wedged
+  // between a panel and a held object (a thumb under a bar on its pedestal) bent out of the
+  // panel alone went up to kMaxBend_rad into the object in one step (4.6 mm on a real log with
+  // calibration error). Each one the step would take past its limit joins the rows, held at it.
+  constexpr int kGuards = 4;
+  constexpr double kGuardBand_m = 1e-3;  // contacts this close to their limits are watched
+  constexpr int kGuardPasses = 2;
   constexpr double kDamping_m2 = 1e-6;  // (1 mm/rad)^2: keeps the step small near a singular finger
-  constexpr double kMaxBend_rad = 0.05;  // per step: ~4 mm at a fingertip
+  // per step: ~1.6 mm at a fingertip. A bend reaches links not yet touching anything (their
+  // contacts come with the next step's narrowphase): at 0.05 rad a thumb bent out of a table
+  // swung 4-5 mm into the bar lying on it, a step at a time (a real log with 0.1-0.7 s gaps).
+  constexpr double kMaxBend_rad = 0.02;
   bool moved = false;
   // how far a contact is beyond its limit, and the depth to bring it to
   const auto excess_of = [&](const ContactPoint& c) {
@@ -423,18 +433,22 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
   };
   ProxyPose bent = pose;
   for (int f = 0; f < kFingerCount; ++f) {
-    // the finger's contacts farthest beyond their limits
-    std::array<const ContactPoint*, kRows> rows{};
+    // the finger's contacts farthest beyond their limits, then those near theirs
+    std::array<const ContactPoint*, kRows + kGuards> rows{};
     int row_count = 0;
-    const auto consider = [&](const ContactPoint& c) {
-      if (!is_link(c.body_b) || is_link(c.body_a) || excess_of(c) <= 0.0) return;
+    int guard_count = 0;
+    const auto of_finger = [&](const ContactPoint& c) {
+      if (!is_link(c.body_b) || is_link(c.body_a)) return false;
       Finger finger;
-      if (!finger_of(link_of(c.body_b), finger) || static_cast<int>(finger) != f) return;
+      return finger_of(link_of(c.body_b), finger) && static_cast<int>(finger) == f;
+    };
+    const auto consider = [&](const ContactPoint& c) {
+      if (!of_finger(c) || excess_of(c) <= 0.0) return;
       if (row_count < kRows) {
         rows[static_cast<std::size_t>(row_count++)] = &c;
         return;
       }
-      auto least = std::min_element(rows.begin(), rows.end(), [&](auto* a, auto* b) {
+      auto least = std::min_element(rows.begin(), rows.begin() + kRows, [&](auto* a, auto* b) {
         return excess_of(*a) < excess_of(*b);
       });
       if (excess_of(**least) < excess_of(c)) *least = &c;
@@ -442,35 +456,66 @@ void ProxyHand::bend_out(ProxyPose& pose, HandLinkPoses& links,
     for (const ContactPoint& c : hand_static) consider(c);
     for (const ContactPoint& c : contacts) consider(c);
     if (row_count == 0) continue;
+    const auto watch = [&](const ContactPoint& c) {
+      if (guard_count == kGuards || !of_finger(c)) return;
+      const double excess_m = excess_of(c);
+      if (excess_m > 0.0 || excess_m < -kGuardBand_m) return;  // a row already, or far off
+      rows[static_cast<std::size_t>(row_count + guard_count++)] = &c;
+    };
+    for (const ContactPoint& c : hand_static) watch(c);
+    for (const ContactPoint& c : contacts) watch(c);
+    const int point_count = row_count + guard_count;
     const FingerJoints& finger_joints = finger_joint_list_[static_cast<std::size_t>(f)];
     const auto& joints = finger_joints.joint;
     const int joint_count = finger_joints.count;
     // J(i, k): the depth gained at contact i per radian of joint k
-    std::array<FingerPoint, kRows> points;
-    for (int i = 0; i < row_count; ++i) {
+    std::array<FingerPoint, kRows + kGuards> points;
+    for (int i = 0; i < point_count; ++i) {
       const ContactPoint& c = *rows[static_cast<std::size_t>(i)];
       const auto l = static_cast<std::size_t>(link_of(c.body_b));
       const Eigen::Vector3d p_H = links.X_HL[l] * (X_GL[l].inverse() * c.p_G);
       points[static_cast<std::size_t>(i)] = {l, links.X_HL[l].inverse() * p_H, p_H, c.n_G};
     }
-    Eigen::Matrix<double, kRows, kMaxFingerJoints> J = Eigen::Matrix<double, kRows, kMaxFingerJoints>::Zero();
+    Eigen::Matrix<double, kRows + kGuards, kMaxFingerJoints> J =
+        Eigen::Matrix<double, kRows + kGuards, kMaxFingerJoints>::Zero();
     finger_kinematics(hand_, static_cast<Finger>(f), pose.q_rad, probe_links_, chain_);
     finger_depth_jacobian(hand_, chain_, finger_joints, pose.q_rad, pose.X_GH,
-                          points.data(), static_cast<std::size_t>(row_count), probe_links_,
+                          points.data(), static_cast<std::size_t>(point_count), probe_links_,
                           [&](std::size_t i, int k, double d) {
                             J(static_cast<Eigen::Index>(i), k) = d;
                           });
-    Eigen::Matrix<double, kRows, 1> excess = Eigen::Matrix<double, kRows, 1>::Zero();
-    for (int i = 0; i < row_count; ++i) {
-      const ContactPoint& c = *rows[static_cast<std::size_t>(i)];
-      excess(i) = c.depth_m - target_of(c);
+    // the rows in use: the contacts beyond their limits, and the guards the step would take past
+    // theirs (first order), brought to their targets by a damped least-squares step
+    std::array<int, kRows + kGuards> use{};
+    int use_count = 0;
+    for (int i = 0; i < row_count; ++i) use[static_cast<std::size_t>(use_count++)] = i;
+    Eigen::VectorXd dq;
+    for (int pass = 0;; ++pass) {
+      Eigen::MatrixXd Jr(use_count, joint_count);
+      Eigen::VectorXd excess(use_count);
+      for (int r = 0; r < use_count; ++r) {
+        const int i = use[static_cast<std::size_t>(r)];
+        Jr.row(r) = J.row(i).head(joint_count);
+        const ContactPoint& c = *rows[static_cast<std::size_t>(i)];
+        // a guard is only kept from going deeper than its target
+        excess(r) = i < row_count ? c.depth_m - target_of(c) : std::max(0.0, c.depth_m - target_of(c));
+      }
+      dq = -Jr.transpose() * damped_gram(Jr, kDamping_m2).solve(excess);
+      // a first-order step, trusted only so far: near a singular finger (a contact close to a
+      // joint's axis) it would swing a phalanx through the object it is leaving
+      const double largest_rad = dq.cwiseAbs().maxCoeff();
+      if (largest_rad > kMaxBend_rad) dq *= kMaxBend_rad / largest_rad;
+      if (pass == kGuardPasses) break;
+      bool grew = false;
+      for (int i = row_count; i < point_count; ++i) {
+        if (std::find(use.begin(), use.begin() + use_count, i) != use.begin() + use_count) continue;
+        const ContactPoint& c = *rows[static_cast<std::size_t>(i)];
+        if (excess_of(c) + J.row(i).head(joint_count).dot(dq) <= 0.0) continue;
+        use[static_cast<std::size_t>(use_count++)] = i;
+        grew = true;
+      }
+      if (!grew) break;
     }
-    const auto Jr = J.topLeftCorner(row_count, joint_count);
-    Eigen::VectorXd dq = -Jr.transpose() * damped_gram(Jr, kDamping_m2).solve(excess.head(row_count));
-    // a first-order step, trusted only so far: near a singular finger (a contact close to a
-    // joint's axis) it would swing a phalanx through the object it is leaving
-    const double largest_rad = dq.cwiseAbs().maxCoeff();
-    if (largest_rad > kMaxBend_rad) dq *= kMaxBend_rad / largest_rad;
     for (int k = 0; k < joint_count; ++k) {
       const int j = joints[static_cast<std::size_t>(k)];
       const hand::JointRange& range = hand_.joints[static_cast<std::size_t>(j)];
