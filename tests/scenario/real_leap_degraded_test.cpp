@@ -3,12 +3,14 @@
 // wrist jitter, bend-sensor noise and quantisation, calibration past the range, dropouts, gaps,
 // faster closures), each preset with seeds of its own. Whatever the device, what a user expects
 // of the recorded fist stays the same:
-//   - one GRASP, by 0.30 s (the fist closes at about 0.18 s);
+//   - the first GRASP by 0.30 s (the fist closes at about 0.18 s; the recording closes a second
+//     time at about 1.3 s, and may take the bar again where it fell);
 //   - held until the hand opens: the first RELEASE between 0.70 and 1.00 s, for the hand opening;
 //   - no link more than 1 mm inside the bar or any static object, at any step (a thumb wedged
 //     between the pedestal and the held bar was bent out of the pedestal 1.9-5.0 mm into the bar
 //     in one step, with noise, calibration error or gaps: ProxyHand::bend_out now keeps the
-//     finger's other contacts at their limits);
+//     finger's other contacts at their limits, and bends out of panels alone at most 0.02 rad a
+//     step);
 //   - a free bar (before the grasp, until 0.3 s after the release) never faster than 0.5 m/s
 //     horizontally.
 // Not here: `harsh`, whose 0.1-0.7 s gaps can take the whole closure away (seed 3 grasps at
@@ -99,7 +101,6 @@ TEST_P(RealLeapDegraded, TheFistHoldsTheBarUntilItOpensAndNoLinkSinksIn) {
   EXPECT_LE(run.release_s, 1.00) << run.events;
   EXPECT_EQ(run.release_reason, physics::GraspReason::kHandOpened)
       << physics::grasp_reason_name(run.release_reason);
-  EXPECT_EQ(run.grasps, 1) << run.events;
   EXPECT_LE(run.deepest_link_in_object_m, 1e-3) << "at " << run.deepest_link_in_object_at_s << " s";
   EXPECT_LE(run.deepest_link_in_static_m, 1e-3);
   EXPECT_LE(fastest_free_settling_mps, 0.5);
