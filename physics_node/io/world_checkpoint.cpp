@@ -19,8 +19,9 @@ constexpr char kMagic[8] = {'V', 'C', 'K', 'P', 'O', 'I', 'N', 'T'};
 // 2: GraspHold::opposed_fingers and palm_opposed; 3: GraspHold::grip_tightest_rad;
 // 4: HandState::finger_pull_G; 5: BodyState's sleep (still_s, asleep, island); 6: the stick
 // anchors' impulses (the soft solver's warm start); 7: GraspHold::grip_gap_m; 8: no substep
-// count, no HandState::fingers_on_held (contacts are soft constraints: one solve a step)
-constexpr uint64_t kVersion = 8;
+// count, no HandState::fingers_on_held (contacts are soft constraints: one solve a step);
+// 9: GraspHold::passing_through
+constexpr uint64_t kVersion = 9;
 constexpr uint64_t kFrozenFlag = 1;
 // anchors are per touching pair: far more than any scene makes, far less than a corrupt length
 constexpr uint64_t kMaxVarCount = 1u << 16;

@@ -98,6 +98,13 @@ struct GraspHold {
   // contact, or its glove opened from the grip): a grip that lingers past the cooldown would
   // take it straight back.
   bool handed_over = false;
+  // This hand appeared inside it: some link of its first input was in it, or it was put back
+  // round the hand (World::reset_objects). A tracker that starts with the hand through an object
+  // (a hand resting where a virtual object stands) must not fling it: the solver pushed it out
+  // of 5 cm of hand in one step (3.5 m/s). The hand passes through it, as the glove's does,
+  // until no link touches it (World::pass_through); a hand that only partly passed would be
+  // pushed by the links inside onto the object with those outside.
+  bool passing_through = false;
 };
 
 // A hand at the end of a step, as the decisions see it.

@@ -303,6 +303,12 @@ void World::reset_objects(const WorldState& saved) {
   SleepTracker::wake_all(state_.bodies);  // (put back, they rest on nothing computed yet)
   controls_.reset_to(saved.controls, t_ns);
   state_.anchors.clear();
+  // an object put back round a hand that stands where it was is not flung off it: those links
+  // pass through it until they are out, as a hand's that appears inside one
+  for (int i = 0; i < object_count_; ++i) X_GO_[i] = state_.bodies[static_cast<std::size_t>(i)].X_GO;
+  collision_.set_object_poses(X_GO_);
+  for (int h = 0; h < hand_count(); ++h)
+    if (hand_state(h).active) note_objects_around(h);
 }
 
 void World::set_hand_input(const HandInput& input, int hand) {
@@ -319,7 +325,40 @@ void World::set_hand_input(const HandInput& input, int hand) {
     place_hand(hand, input.X_GH, input.q_rad);
     sim.X_GL_before = hs.X_GL;
     sim.proxy_prev_links_valid = false;
+    note_objects_around(hand);
   }
+}
+
+void World::note_objects_around(int hand) {
+  HandState& hs = state_.hands[static_cast<std::size_t>(hand)];
+  for (int i = 0; i < object_count_; ++i) {
+    const ObjectSpec& o = scene_.objects[static_cast<std::size_t>(i)];
+    bool inside = false;
+    if (o.dynamic || o.control >= 0)
+      for (int l = 0; l < kLinkCount && !inside; ++l)
+        inside = collision_.link_overlaps(hand, static_cast<Link>(l), hs.X_GL[l], i);
+    hs.grasp[static_cast<std::size_t>(i)].passing_through = inside;
+  }
+}
+
+void World::pass_through() {
+  bool any = false;
+  for (const HandState& hs : state_.hands)
+    for (const GraspHold& hold : hs.grasp) any = any || hold.passing_through;
+  if (!any) return;
+  touching_.assign(state_.hands.size() * static_cast<std::size_t>(object_count_), 0);
+  const auto at = [&](std::size_t h, std::size_t o) { return h * static_cast<std::size_t>(object_count_) + o; };
+  std::erase_if(contacts_, [&](const ContactPoint& c) {
+    if (!collision_.is_hand_body(c.body_b) || collision_.is_hand_body(c.body_a)) return false;
+    const auto h = static_cast<std::size_t>(collision_.hand_of_body(c.body_b));
+    const auto o = static_cast<std::size_t>(c.body_a);
+    if (!state_.hands[h].grasp[o].passing_through) return false;
+    touching_[at(h, o)] = 1;
+    return true;
+  });
+  for (std::size_t h = 0; h < state_.hands.size(); ++h)
+    for (std::size_t o = 0; o < static_cast<std::size_t>(object_count_); ++o)
+      if (touching_[at(h, o)] == 0) state_.hands[h].grasp[o].passing_through = false;
 }
 
 void World::step() {
@@ -420,6 +459,7 @@ void World::advance(double dt_s) {
     StageTimer timer(stage_times_, Stage::kNarrowphase);
     collision_.compute_contacts(contacts_, has_proxy() ? &hand_static_ : nullptr);
   }
+  pass_through();
   if (has_proxy()) {
     StageTimer timer(stage_times_, Stage::kProxyHand);
     constrain_proxies(dt_s);

@@ -127,7 +127,9 @@ class World {
   // a checkpoint), each at rest or moving as it was then. Unlike restore(), time goes on and
   // the hands stay where their gloves put them: what they held is let go (a RELEASE "scene
   // reset" in step_events()), and a control whose position changes reports it as commanded
-  // (control_events()); both lists are this call's until the next step. `saved` must be a state
+  // (control_events()); both lists are this call's until the next step. An object put back round
+  // a hand that stands where it was is passed through until the hand is clear of it
+  // (GraspHold::passing_through), as by a hand that appears inside one. `saved` must be a state
   // of this scene (asserted).
   void reset_objects(const WorldState& saved);
 
@@ -193,6 +195,12 @@ class World {
   // that hand is clearing it after a release (GraspHold::hand_clearing), the only time they
   // matter.
   uint32_t glove_links_inside(int hand, int object, const GraspHold& hold) const;
+  // At a hand's first input, or after a reset: each object that is not static and that one of
+  // its links overlaps is one it passes through (GraspHold::passing_through).
+  void note_objects_around(int hand);
+  // After the narrowphase: the contacts of a hand with an object it passes through are dropped
+  // (neither the proxy nor the solver sees them); once none is left, it is clear of it.
+  void pass_through();
   // The links of the tracked hand, posed on the proxy's wrist, within grasp.release_gap_m of a
   // held object (HandOnObject::tracked_links_near): the grip the pilot's hand makes round it,
   // whatever the lag of the proxy's wrist. For a held control, a link where the tracked hand
@@ -242,6 +250,7 @@ class World {
   std::vector<Eigen::Isometry3d> X_GO_;         // collision input, all objects
   std::vector<uint8_t> held_mask_;              // 1 for the objects any hand held at the start of this step
   std::vector<uint8_t> may_sleep_;              // per object, at the end of a step (update_sleep)
+  std::vector<uint8_t> touching_;               // pass_through's, per hand and object
   std::vector<BodyState> start_bodies_;         // the bodies at the start of this step
   std::vector<HandOnObject> on_object_;         // the grasp stage's, per hand
   std::vector<ContactPoint> contacts_;

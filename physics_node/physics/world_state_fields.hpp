@@ -65,6 +65,7 @@ void grasp_hold(V& v, Hold& g) {
   v.num(g.resting_links);
   v.num(g.hand_clearing);
   v.num(g.handed_over);
+  v.num(g.passing_through);
 }
 
 }  // namespace world_state_fields

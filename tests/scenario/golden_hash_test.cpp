@@ -61,13 +61,13 @@ TEST(GoldenHash, BundledGraspLogOnTheDefaultCockpit) {
   const Replayed run =
       replay("/config/cockpit.yaml", "/config/glove_logs/reach_grasp_lift_release.csv");
   EXPECT_EQ(run.steps, 8500u);
-  EXPECT_EQ(hex(run.hash_at_grasp), "0x767b810301f01595") << "state right after the GRASP step";
-  EXPECT_EQ(hex(run.final_hash), "0x0dffddc2c1e8e17b") << "final state";
+  EXPECT_EQ(hex(run.hash_at_grasp), "0xb416cc008437fad5") << "state right after the GRASP step";
+  EXPECT_EQ(hex(run.final_hash), "0x19664aca3f8f9ffb") << "final state";
 }
 
 TEST(GoldenHash, BundledOpenHandSweep) {
   const Replayed run = replay("/config/cockpit.yaml", "/config/glove_logs/open_hand_sweep.csv");
-  EXPECT_EQ(hex(run.final_hash), "0x8a009167ebab12ad") << "final state";
+  EXPECT_EQ(hex(run.final_hash), "0xb0c1cff4022f3e6d") << "final state";
 }
 
 // A world read between its steps (the physics node publishes the tracked hand there) steps as

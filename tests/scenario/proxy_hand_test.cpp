@@ -188,6 +188,72 @@ TEST(ProxyHand, ASweptBallGetsAboutThePushSpeed) {
   EXPECT_GT(kinematic_mps, 1.0) << "without the proxy the 2 m/s hand throws the ball";
 }
 
+// A hand whose first input has fingers through a 60 g ball on the console (a tracker that starts
+// with the hand where a virtual object stands), held there, then drawn back and swept through the
+// ball's place at 2 m/s: the hand passes through the ball until no link touches it
+// (GraspHold::passing_through), then pushes it as any hand does. Before, the first step pushed
+// the ball out of the fingers at once.
+struct AppearedInside {
+  bool passing = false;             // after the first input
+  double still_fastest_mps = 0.0;   // while the hand stays where it appeared
+  double still_drift_m = 0.0;
+  bool cleared = false;             // no longer passing through once drawn back
+  double sweep_fastest_mps = 0.0;   // drawn back, then swept through its place
+};
+
+AppearedInside appear_inside_ball(bool proxy) {
+  const Eigen::Vector3d ball_at(0.45, 0.0, kConsoleTop_m + 0.03);
+  const double palm_z = kConsoleTop_m + 0.045;  // the sweep's height: the fingers meet the ball
+  Scene scene = console_scene(proxy);
+  scene.objects.push_back(test::dynamic_object("ball", Shape::sphere(0.03), 0.06,
+                                               at(ball_at.x(), ball_at.y(), ball_at.z()),
+                                               test::material(2.0e4, 0.9, 0.8)));
+  World world(std::move(scene));
+  const HandModel& hand = world.scene().hands[0];
+  const auto ball = static_cast<std::size_t>(world.scene().find_object("ball"));
+  // the wrist 12 cm behind the ball's centre: the middle finger's first two links in it
+  const double x = ball_at.x() - 0.12;
+  world.set_hand_input(hand_at(hand, {x, 0.0, palm_z}));
+  AppearedInside out;
+  out.passing = world.state().hands[0].grasp[ball].passing_through;
+  for (int step = 0; step < 300; ++step) {  // held where it appeared
+    world.step();
+    const BodyState& b = world.bodies()[ball];
+    out.still_fastest_mps = std::max(out.still_fastest_mps, b.v_G.norm());
+    out.still_drift_m = std::max(out.still_drift_m, (b.X_GO.translation() - ball_at).norm());
+  }
+  for (int step = 0; step < 600; ++step) {  // back 15 cm over 0.3 s, then through at 2 m/s
+    const double t_s = step * 1e-3;
+    const double back_x = x - 0.15;
+    const double hand_x =
+        t_s < 0.3 ? lerp(x, back_x, t_s / 0.3) : lerp(back_x, back_x + 0.4, (t_s - 0.3) / 0.2);
+    world.set_hand_input(hand_at(hand, {hand_x, 0.0, palm_z}));
+    world.step();
+    if (step == 299) out.cleared = !world.state().hands[0].grasp[ball].passing_through;
+    out.sweep_fastest_mps = std::max(out.sweep_fastest_mps, world.bodies()[ball].v_G.norm());
+  }
+  return out;
+}
+
+TEST(ProxyHand, AHandThatAppearsInsideABallPassesThroughItUntilItIsClear) {
+  const double push_mps = ProxyParams{}.push_speed_mps;
+  for (const bool proxy : {true, false}) {
+    const AppearedInside r = appear_inside_ball(proxy);
+    std::printf("proxy %d: still: fastest %.4f m/s, drift %.2f mm; swept: fastest %.3f m/s\n",
+                proxy, r.still_fastest_mps, r.still_drift_m * 1e3, r.sweep_fastest_mps);
+    ASSERT_TRUE(r.passing) << "the hand did not start in the ball";
+    EXPECT_LE(r.still_fastest_mps, 0.02) << "proxy " << proxy;
+    EXPECT_LE(r.still_drift_m, 1e-3) << "proxy " << proxy;
+    EXPECT_TRUE(r.cleared) << "proxy " << proxy;
+    // clear of it, the hand is solid again: the sweep pushes the ball (the proxy at about the
+    // pushing speed)
+    EXPECT_GT(r.sweep_fastest_mps, 0.5 * push_mps) << "proxy " << proxy;
+    if (proxy) {
+      EXPECT_LE(r.sweep_fastest_mps, push_mps + 0.2);
+    }
+  }
+}
+
 struct Squeeze {
   double cup_sink_m = 0.0;   // deepest the cup's base went below the console's top
   double max_spin_radps = 0.0;
