@@ -6,8 +6,14 @@
 // because the hand opened, and left where it was, on the pedestal:
 //   - GRASP by 0.30 s; the first RELEASE between 0.70 and 1.00 s, for the hand opening;
 //   - until 0.3 s after that release the bar never more than 1 cm below the pedestal's top (not
-//     yet asserted: the held bar walks 1.5 cm off the 1.8 cm pedestal while the recorded wrist
-//     drifts, and falls beside it when let go; the figure is printed);
+//     asserted; the figure is printed). The recorded hand itself carries the bar off the 1.8 cm
+//     pedestal: the closing fist pushes it 5-6 mm across before the grasp, and from the grasp
+//     the closed hand moves it 12-14 mm more (wrist frame 14.2 mm, rigid fit of the hand's links
+//     11.9 mm, at 0.685 s, before the fingers open at all), then 30 mm by 0.74 s, while they
+//     have opened 4 deg from their tightest:
+//       build/bin/grip_drift --scene tests/data/real/leap_grab_scene.yaml
+//         --log tests/data/real/leap_grab.csv --object bar --from 0.178
+//     A 9 mm half-width is less than any rule that follows the hand moves it;
 //   - a free bar (before the grasp, after the release) never faster than 0.5 m/s horizontally;
 //   - no link more than 1 mm inside the bar or any static object, at any step.
 
