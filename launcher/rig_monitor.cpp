@@ -81,32 +81,20 @@ void RigMonitor::poll() {
     controls_[control_info.control_id()] = {control_info.name().to_string(),
                                              split_bar_list(control_info.position_names().to_string())};
   }
-  // a position by index, or its number when the control's info has not come (yet)
-  auto position_name = [&](uint32_t control, uint32_t position) {
-    auto it = controls_.find(control);
-    if (it != controls_.end() && position < it->second.positions.size()) return it->second.positions[position];
-    return std::to_string(position);
-  };
-  auto control_name = [&](uint32_t control) {
-    auto it = controls_.find(control);
-    return it != controls_.end() ? it->second.name : "control " + std::to_string(control);
-  };
   cockpit::ControlState control_state;
-  while (control_state_reader_.take(control_state)) {
-    control_positions_[control_name(control_state.control_id())] =
-        position_name(control_state.control_id(), control_state.position());
-  }
+  while (control_state_reader_.take(control_state))
+    control_positions_[control_state.control_id()] = control_state.position();
   cockpit::ControlEvent control_event;
   while (control_event_reader_.take(control_event)) {
-    SeenControlEvent seen;
-    seen.t_s = static_cast<double>(control_event.sim_time_ns()) / 1e9;
-    seen.control = control_name(control_event.control_id());
-    seen.from = position_name(control_event.control_id(), control_event.from_position());
-    seen.to = position_name(control_event.control_id(), control_event.to_position());
-    seen.cause = cause_name(control_event.cause());
+    RawControlEvent raw;
+    raw.t_s = static_cast<double>(control_event.sim_time_ns()) / 1e9;
+    raw.control = control_event.control_id();
+    raw.from = control_event.from_position();
+    raw.to = control_event.to_position();
+    raw.cause = cause_name(control_event.cause());
     if (control_event.link() >= 0 && control_event.link() < hand::kLinkCount)
-      seen.link = std::string(hand::link_name(static_cast<hand::Link>(control_event.link())));
-    control_events_.push_back(seen);
+      raw.link = std::string(hand::link_name(static_cast<hand::Link>(control_event.link())));
+    control_events_.push_back(raw);
   }
   cockpit::SystemsInfo systems_info;
   while (systems_info_reader_.take(systems_info)) {
@@ -213,6 +201,34 @@ std::string RigMonitor::status_line(double elapsed_s) const {
                 rate("image_generator"), held_.empty() ? "nothing held" : ("holding " + held_).c_str(),
                 static_cast<double>(latency_.percentile_ns(0.5)) * 1e-6);
   return line;
+}
+
+std::string RigMonitor::control_name(uint32_t control) const {
+  const auto it = controls_.find(control);
+  return it != controls_.end() ? it->second.name : "control " + std::to_string(control);
+}
+
+// a position by index, or its number when the control's info has not come
+std::string RigMonitor::position_name(uint32_t control, uint32_t position) const {
+  const auto it = controls_.find(control);
+  if (it != controls_.end() && position < it->second.positions.size()) return it->second.positions[position];
+  return std::to_string(position);
+}
+
+std::vector<SeenControlEvent> RigMonitor::control_events() const {
+  std::vector<SeenControlEvent> out;
+  out.reserve(control_events_.size());
+  for (const RawControlEvent& raw : control_events_)
+    out.push_back({raw.t_s, control_name(raw.control), position_name(raw.control, raw.from),
+                   position_name(raw.control, raw.to), raw.cause, raw.link});
+  return out;
+}
+
+std::map<std::string, std::string> RigMonitor::control_positions() const {
+  std::map<std::string, std::string> out;
+  for (const auto& [control, position] : control_positions_)
+    out[control_name(control)] = position_name(control, position);
+  return out;
 }
 
 std::vector<SeenProcedure> RigMonitor::procedures() const {

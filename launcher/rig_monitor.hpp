@@ -64,9 +64,12 @@ class RigMonitor {
 
   const std::map<std::string, cockpit::NodeStatus>& statuses() const { return statuses_; }
   const std::vector<SeenEvent>& events() const { return events_; }
-  const std::vector<SeenControlEvent>& control_events() const { return control_events_; }
+  // Named when read, not when taken: a control's state or event can come before its
+  // cockpit/control_info (the topics are independent), and named then, it stayed "control 9"
+  // beside the "nav_mode" of later samples. A control whose info never came keeps its number.
+  std::vector<SeenControlEvent> control_events() const;
   // each control's last position name (cockpit/control_state), by control name
-  const std::map<std::string, std::string>& control_positions() const { return control_positions_; }
+  std::map<std::string, std::string> control_positions() const;
   const std::vector<SeenSystemsEvent>& systems_events() const { return systems_events_; }
   // the lesson's procedures in order (cockpit/procedure_score); empty without a lesson
   std::vector<SeenProcedure> procedures() const;
@@ -124,8 +127,18 @@ class RigMonitor {
     std::vector<std::string> positions;
   };
   std::map<uint32_t, ControlNames> controls_;
-  std::vector<SeenControlEvent> control_events_;
-  std::map<std::string, std::string> control_positions_;
+  std::string control_name(uint32_t control) const;
+  std::string position_name(uint32_t control, uint32_t position) const;
+  struct RawControlEvent {  // as taken: ids and position indices
+    double t_s = 0;
+    uint32_t control = 0;
+    uint32_t from = 0;
+    uint32_t to = 0;
+    std::string cause;
+    std::string link;
+  };
+  std::vector<RawControlEvent> control_events_;
+  std::map<uint32_t, uint32_t> control_positions_;  // control id -> its last position index
   std::map<uint32_t, bool> dynamic_;
   std::map<std::string, cockpit::ObjectState> final_;
   std::map<std::string, cockpit::NodeStatus> statuses_;
