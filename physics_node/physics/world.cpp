@@ -260,6 +260,7 @@ void World::restore(const WorldState& state) {
     sim.proxy_prev_links_valid = false;
     sim.tracked_observed = false;
   }
+  count_passing_through();
   // the last step's observations belong to the world the state came from
   applied_.clear();
   events_.clear();
@@ -309,6 +310,7 @@ void World::reset_objects(const WorldState& saved) {
   collision_.set_object_poses(X_GO_);
   for (int h = 0; h < hand_count(); ++h)
     if (hand_state(h).active) note_objects_around(h);
+  count_passing_through();  // (the holds were made afresh above, hands active or not)
 }
 
 void World::set_hand_input(const HandInput& input, int hand) {
@@ -339,13 +341,17 @@ void World::note_objects_around(int hand) {
         inside = collision_.link_overlaps(hand, static_cast<Link>(l), hs.X_GL[l], i);
     hs.grasp[static_cast<std::size_t>(i)].passing_through = inside;
   }
+  count_passing_through();
+}
+
+void World::count_passing_through() {
+  passing_through_ = 0;
+  for (const HandState& hs : state_.hands)
+    for (const GraspHold& hold : hs.grasp) passing_through_ += hold.passing_through ? 1 : 0;
 }
 
 void World::pass_through() {
-  bool any = false;
-  for (const HandState& hs : state_.hands)
-    for (const GraspHold& hold : hs.grasp) any = any || hold.passing_through;
-  if (!any) return;
+  if (passing_through_ == 0) return;  // (the usual step: no scan of every hold)
   touching_.assign(state_.hands.size() * static_cast<std::size_t>(object_count_), 0);
   const auto at = [&](std::size_t h, std::size_t o) { return h * static_cast<std::size_t>(object_count_) + o; };
   std::erase_if(contacts_, [&](const ContactPoint& c) {
@@ -359,6 +365,7 @@ void World::pass_through() {
   for (std::size_t h = 0; h < state_.hands.size(); ++h)
     for (std::size_t o = 0; o < static_cast<std::size_t>(object_count_); ++o)
       if (touching_[at(h, o)] == 0) state_.hands[h].grasp[o].passing_through = false;
+  count_passing_through();
 }
 
 void World::step() {

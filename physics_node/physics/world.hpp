@@ -201,6 +201,7 @@ class World {
   // After the narrowphase: the contacts of a hand with an object it passes through are dropped
   // (neither the proxy nor the solver sees them); once none is left, it is clear of it.
   void pass_through();
+  void count_passing_through();  // passing_through_ from the state
   // The links of the tracked hand, posed on the proxy's wrist, within grasp.release_gap_m of a
   // held object (HandOnObject::tracked_links_near): the grip the pilot's hand makes round it,
   // whatever the lag of the proxy's wrist. For a held control, a link where the tracked hand
@@ -251,6 +252,9 @@ class World {
   std::vector<uint8_t> held_mask_;              // 1 for the objects any hand held at the start of this step
   std::vector<uint8_t> may_sleep_;              // per object, at the end of a step (update_sleep)
   std::vector<uint8_t> touching_;               // pass_through's, per hand and object
+  // the holds with GraspHold::passing_through set, derived from the state (kept by
+  // note_objects_around, pass_through and restore) so that a step without any scans none
+  int passing_through_ = 0;
   std::vector<BodyState> start_bodies_;         // the bodies at the start of this step
   std::vector<HandOnObject> on_object_;         // the grasp stage's, per hand
   std::vector<ContactPoint> contacts_;
