@@ -3,8 +3,9 @@
 // object is moved the way the tracked hand moves: by the wrist frame (eq. 29) and by the rigid
 // fit (Kabsch) of the hand's link points (the palm's origin and each phalanx's midpoint), and its
 // displacement from its pose in the scene is printed every --every s, with the gripping fingers'
-// mean flexion change (an opening hand shows as a negative change). A recording whose closed
-// hand carries the object farther than half its support is wide will set it down off it, however
+// mean flexion change (an opening hand shows as a negative change), and the links' fit's
+// displacement in the object's own frame (which way it went: across a bar or along it). A
+// recording whose closed hand carries the object farther than half its support is wide will set it down off it, however
 // faithfully the simulator follows the hand.
 //   grip_drift --scene S.yaml --log GLOVE.csv --object NAME --from T [--to T] [--every 0.05]
 
@@ -107,8 +108,8 @@ int main(int argc, char** argv) {
     std::printf("# %s on %s, '%s' taken at %.3f s; its displacement (mm) moved by the wrist "
                 "frame and by the rigid fit of the hand's links; the fingers' flexion change (deg)\n",
                 log_path.c_str(), scene_path.c_str(), object_name.c_str(), taken->t_s);
-    std::printf("%8s %12s %10s %12s %10s %10s\n", "t_s", "wrist_xy", "wrist_z", "links_xy", "links_z",
-                "flexion");
+    std::printf("%8s %12s %10s %12s %10s %10s   %s\n", "t_s", "wrist_xy", "wrist_z", "links_xy", "links_z",
+                "flexion", "links_in_object_frame(x y z)");
     double next_s = taken->t_s;
     for (auto it = taken; it != hands.end() && it->t_s <= to_s; ++it) {
       if (it->t_s + 1e-9 < next_s) continue;
@@ -117,9 +118,11 @@ int main(int argc, char** argv) {
           (it->X_GH * taken->X_GH.inverse() * X_GO).translation() - X_GO.translation();
       const Eigen::Vector3d d_links =
           (rigid_fit(taken->points, it->points) * X_GO).translation() - X_GO.translation();
-      std::printf("%8.3f %12.1f %10.1f %12.1f %10.1f %10.1f\n", it->t_s,
+      const Eigen::Vector3d d_links_O = X_GO.linear().transpose() * d_links;
+      std::printf("%8.3f %12.1f %10.1f %12.1f %10.1f %10.1f   %6.1f %6.1f %6.1f\n", it->t_s,
                   d_wrist.head<2>().norm() * 1e3, d_wrist.z() * 1e3, d_links.head<2>().norm() * 1e3,
-                  d_links.z() * 1e3, (it->flexion_rad - taken->flexion_rad) * 57.29577951308232);
+                  d_links.z() * 1e3, (it->flexion_rad - taken->flexion_rad) * 57.29577951308232,
+                  d_links_O.x() * 1e3, d_links_O.y() * 1e3, d_links_O.z() * 1e3);
     }
   } catch (const std::exception& e) {
     std::cerr << "grip_drift: " << e.what() << "\n";

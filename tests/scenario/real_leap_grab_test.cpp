@@ -10,7 +10,9 @@
 //     pedestal: the closing fist pushes it 5-6 mm across before the grasp, and from the grasp
 //     the closed hand moves it 12-14 mm more (wrist frame 14.2 mm, rigid fit of the hand's links
 //     11.9 mm, at 0.685 s, before the fingers open at all), then 30 mm by 0.74 s, while they
-//     have opened 4 deg from their tightest:
+//     have opened 4 deg from their tightest. Nearly all of it is across the bar, the pedestal's
+//     narrow way (the links' fit in the bar's frame: 14.5 mm across at 0.703 s, 32.7 mm at
+//     0.746 s; 2.4 and 8.9 mm along):
 //       build/bin/grip_drift --scene tests/data/real/leap_grab_scene.yaml
 //         --log tests/data/real/leap_grab.csv --object bar --from 0.178
 //     A 9 mm half-width is less than any rule that follows the hand moves it;
