@@ -470,7 +470,8 @@ physics::ContactParams parse_contact(const ConfigNode& node) {
 
 physics::ProxyParams parse_proxy(const ConfigNode& node) {
   node.expect_keys({"enabled", "max_speed_mps", "max_spin_radps", "push_speed_mps",
-                    "grip_force_N", "grip_weight_ratio", "static_depth_m", "finger_pull_ratio"});
+                    "grip_force_N", "grip_weight_ratio", "static_depth_m", "finger_pull_ratio",
+                    "pass_through_depth_m"});
   physics::ProxyParams p;
   auto pos = [](const ConfigNode& n) { return positive(n); };
   if (auto e = node.find("enabled")) p.enabled = e->as_bool();
@@ -487,6 +488,8 @@ physics::ProxyParams parse_proxy(const ConfigNode& node) {
   // the promise is "never more than 1 mm inside a static object"
   read_optional(node, "static_depth_m", p.static_depth_m,
                 [](const ConfigNode& n) { return in_open_closed(n, 0.0, 1.0e-3); });
+  read_optional(node, "pass_through_depth_m", p.pass_through_depth_m,
+                non_negative);  // 0: until no link touches it
   if (p.push_speed_mps > p.max_speed_mps) {
     const ConfigNode at =
         node.has("push_speed_mps") ? node["push_speed_mps"] : node["max_speed_mps"];

@@ -205,6 +205,11 @@ struct ProxyParams {
   // bar draws the fingers in onto its far side) instead of stopping short on one side; the hand
   // keeps that pull while it holds. 0: the wrist ignores the fingers.
   double finger_pull_ratio = 1.0;
+  // A hand whose links are in a loose object by more than this when it appears (its first input,
+  // or an instructor's reset that puts the object back round it) passes through it until they
+  // are in it no deeper than this (GraspHold::passing_through); shallower, its contacts push it
+  // out as any other. With or without the proxy.
+  double pass_through_depth_m = 0.005;
 };
 
 // Beyond these a body's state is taken as broken (nothing in a cockpit gets there; a blown-up

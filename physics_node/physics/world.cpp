@@ -352,19 +352,23 @@ void World::count_passing_through() {
 
 void World::pass_through() {
   if (passing_through_ == 0) return;  // (the usual step: no scan of every hold)
-  touching_.assign(state_.hands.size() * static_cast<std::size_t>(object_count_), 0);
+  deepest_in_.assign(state_.hands.size() * static_cast<std::size_t>(object_count_), -1.0);
   const auto at = [&](std::size_t h, std::size_t o) { return h * static_cast<std::size_t>(object_count_) + o; };
-  std::erase_if(contacts_, [&](const ContactPoint& c) {
+  const auto passing_pair = [&](const ContactPoint& c, std::size_t& index) {
     if (!collision_.is_hand_body(c.body_b) || collision_.is_hand_body(c.body_a)) return false;
     const auto h = static_cast<std::size_t>(collision_.hand_of_body(c.body_b));
     const auto o = static_cast<std::size_t>(c.body_a);
-    if (!state_.hands[h].grasp[o].passing_through) return false;
-    touching_[at(h, o)] = 1;
-    return true;
-  });
+    index = at(h, o);
+    return state_.hands[h].grasp[o].passing_through;
+  };
+  std::size_t index = 0;
+  for (const ContactPoint& c : contacts_)
+    if (passing_pair(c, index)) deepest_in_[index] = std::max(deepest_in_[index], c.depth_m);
   for (std::size_t h = 0; h < state_.hands.size(); ++h)
     for (std::size_t o = 0; o < static_cast<std::size_t>(object_count_); ++o)
-      if (touching_[at(h, o)] == 0) state_.hands[h].grasp[o].passing_through = false;
+      if (deepest_in_[at(h, o)] <= scene_.proxy.pass_through_depth_m)
+        state_.hands[h].grasp[o].passing_through = false;
+  std::erase_if(contacts_, [&](const ContactPoint& c) { return passing_pair(c, index); });
   count_passing_through();
 }
 

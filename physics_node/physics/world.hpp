@@ -196,10 +196,12 @@ class World {
   // matter.
   uint32_t glove_links_inside(int hand, int object, const GraspHold& hold) const;
   // At a hand's first input, or after a reset: each object that is not static and that one of
-  // its links overlaps is one it passes through (GraspHold::passing_through).
+  // its links overlaps is one it may pass through (GraspHold::passing_through).
   void note_objects_around(int hand);
-  // After the narrowphase: the contacts of a hand with an object it passes through are dropped
-  // (neither the proxy nor the solver sees them); once none is left, it is clear of it.
+  // After the narrowphase: once a hand's contacts with an object it passes through are none or
+  // no deeper than ProxyParams::pass_through_depth_m, it is clear of it, and they stay, as any
+  // contact (a hand that appears touching an object pushes it out as one that moved there);
+  // until then they are dropped (neither the proxy nor the solver sees them).
   void pass_through();
   void count_passing_through();  // passing_through_ from the state
   // The links of the tracked hand, posed on the proxy's wrist, within grasp.release_gap_m of a
@@ -251,7 +253,7 @@ class World {
   std::vector<Eigen::Isometry3d> X_GO_;         // collision input, all objects
   std::vector<uint8_t> held_mask_;              // 1 for the objects any hand held at the start of this step
   std::vector<uint8_t> may_sleep_;              // per object, at the end of a step (update_sleep)
-  std::vector<uint8_t> touching_;               // pass_through's, per hand and object
+  std::vector<double> deepest_in_;              // pass_through's, per hand and object (m; -1 apart)
   // the holds with GraspHold::passing_through set, derived from the state (kept by
   // note_objects_around, pass_through and restore) so that a step without any scans none
   int passing_through_ = 0;

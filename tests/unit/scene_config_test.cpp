@@ -704,6 +704,8 @@ TEST(SceneConfig, EveryBadValueNamesFileLineAndKey) {
        "proxy.push_speed_mps", "must not exceed max_speed_mps 1"},
       {"proxy_finger_pull_negative", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {finger_pull_ratio: -1}",
        "proxy:", "proxy.finger_pull_ratio", "must be in [0, 100]"},
+      {"proxy_pass_through_negative", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {pass_through_depth_m: -0.001}",
+       "proxy:", "proxy.pass_through_depth_m", "must be >= 0"},
       {"proxy_grip_force_zero", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {grip_force_N: 0}",
        "proxy:", "proxy.grip_force_N", "must be positive"},
       {"proxy_unknown_key", "contact: {slip_speed_mps: 0.002, max_substeps: 16}", "contact: {slip_speed_mps: 0.002, max_substeps: 16}\nproxy: {speed: 1}", "proxy:",
