@@ -147,39 +147,62 @@ std::string StationModel::object_name(uint32_t id) const {
 }
 
 void StationModel::add_event(std::string kind, int64_t sim_time_ns, std::string text) {
+  add_named_event(std::move(kind), sim_time_ns, std::move(text), Naming{}, std::string());
+}
+
+void StationModel::add_named_event(std::string kind, int64_t sim_time_ns, std::string text,
+                                   Naming naming, std::string tail) {
   Event e;
   e.seq = next_event_seq_++;
   e.kind = std::move(kind);
   e.sim_time_s = ns_to_seconds(sim_time_ns);
   e.text = std::move(text);
+  e.tail = std::move(tail);
+  e.naming = naming;
   events_.push_back(std::move(e));
   while (events_.size() > kMaxEvents) events_.pop_front();
+}
+
+std::string StationModel::event_text(const Event& e) const {
+  switch (e.naming.of) {
+    case Naming::Of::kNothing: return e.text;
+    case Naming::Of::kObject: return e.text + object_name(e.naming.id) + e.tail;
+    case Naming::Of::kControl: {
+      std::string name = "control " + std::to_string(e.naming.id);
+      std::string from = std::to_string(e.naming.from);
+      std::string to = std::to_string(e.naming.to);
+      if (const auto it = controls_.find(e.naming.id); it != controls_.end()) {
+        if (!it->second.name.empty()) name = it->second.name;
+        const auto& p = it->second.positions;
+        if (e.naming.from < p.size()) from = p[e.naming.from];
+        if (e.naming.to < p.size()) to = p[e.naming.to];
+      }
+      return e.text + name + " " + from + " -> " + to + e.tail;
+    }
+  }
+  return e.text;
 }
 
 void StationModel::on_grasp_event(const cockpit::GraspEvent& event) {
   std::lock_guard<std::mutex> lock(mutex_);
   const bool grasp = event.kind() == cockpit::GRASP;
-  add_event(grasp ? "grasp" : "release", event.sim_time_ns(),
-            std::string(grasp ? "GRASP " : "RELEASE ") + object_name(event.object_id()) + " (" +
-                side_name(event.hand_id()) + " hand): " + event.reason().to_string());
+  Naming naming;
+  naming.of = Naming::Of::kObject;
+  naming.id = event.object_id();
+  add_named_event(grasp ? "grasp" : "release", event.sim_time_ns(), grasp ? "GRASP " : "RELEASE ", naming,
+            std::string(" (") + side_name(event.hand_id()) + " hand): " + event.reason().to_string());
 }
 
 void StationModel::on_control_event(const cockpit::ControlEvent& event) {
   std::lock_guard<std::mutex> lock(mutex_);
-  const auto it = controls_.find(event.control_id());
-  std::string name = "control " + std::to_string(event.control_id());
-  std::string from = std::to_string(event.from_position());
-  std::string to = std::to_string(event.to_position());
-  if (it != controls_.end()) {
-    if (!it->second.name.empty()) name = it->second.name;
-    const auto& p = it->second.positions;
-    if (event.from_position() < p.size()) from = p[event.from_position()];
-    if (event.to_position() < p.size()) to = p[event.to_position()];
-  }
-  std::string text = "CONTROL " + name + " " + from + " -> " + to + " (" +
-                     control_cause_name(event.cause());
-  if (event.hand_id() >= 0) text += std::string(", ") + side_name(event.hand_id()) + " hand";
-  add_event("control", event.sim_time_ns(), text + ")");
+  Naming naming;
+  naming.of = Naming::Of::kControl;
+  naming.id = event.control_id();
+  naming.from = event.from_position();
+  naming.to = event.to_position();
+  std::string tail = std::string(" (") + control_cause_name(event.cause());
+  if (event.hand_id() >= 0) tail += std::string(", ") + side_name(event.hand_id()) + " hand";
+  add_named_event("control", event.sim_time_ns(), "CONTROL ", naming, tail + ")");
 }
 
 void StationModel::on_ack(const cockpit::SimAck& ack) {
@@ -320,7 +343,7 @@ nlohmann::json StationModel::events_json(int64_t after) const {
   }
   for (std::size_t i = first; i < events_.size() && list.size() < kEventsPerReply; ++i) {
     const Event& e = events_[i];
-    list.push_back({{"seq", e.seq}, {"kind", e.kind}, {"sim_time_s", e.sim_time_s}, {"text", e.text}});
+    list.push_back({{"seq", e.seq}, {"kind", e.kind}, {"sim_time_s", e.sim_time_s}, {"text", event_text(e)}});
   }
   const int64_t next = list.empty() ? (after < 0 ? next_event_seq_ : std::max<int64_t>(after + 1, 0))
                                     : list.back()["seq"].get<int64_t>() + 1;

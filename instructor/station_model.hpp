@@ -85,15 +85,28 @@ class StationModel {
     std::string text;
     bool inserted = false;
   };
+  // What an event names by id, named when the event is read rather than when it arrives: the
+  // topics are independent, and an event that comes before its object's or control's info
+  // would keep a bare number for good.
+  struct Naming {
+    enum class Of : uint8_t { kNothing, kObject, kControl } of = Of::kNothing;
+    uint32_t id = 0;
+    uint32_t from = 0, to = 0;  // a control's positions
+  };
   struct Event {
     int64_t seq = 0;
     std::string kind;  // grasp, release, control, sim, system, failure
     double sim_time_s = 0.0;
-    std::string text;
+    std::string text;  // with a naming: what comes before the name ...
+    std::string tail;  // ... and after it (and a control's positions)
+    Naming naming;
   };
 
   void add_event(std::string kind, int64_t sim_time_ns, std::string text);  // mutex held
-  std::string object_name(uint32_t id) const;                                 // mutex held
+  void add_named_event(std::string kind, int64_t sim_time_ns, std::string text, Naming naming,
+                       std::string tail);  // mutex held
+  std::string event_text(const Event& e) const;                // mutex held
+  std::string object_name(uint32_t id) const;                  // mutex held
   void note_sim_time(int64_t sim_time_ns);                                     // mutex held
 
   mutable std::mutex mutex_;

@@ -135,6 +135,46 @@ TEST(StationModel, ControlsComeWithTheirPositionsAndEventsNameThem) {
   EXPECT_EQ(events["next"], 2);
 }
 
+// The topics are independent: an event can come before its control's or object's info. It is
+// named when read, so the info that comes after it still names it.
+TEST(StationModel, AnEventThatComesBeforeItsInfoIsNamedWhenRead) {
+  StationModel model;
+  cockpit::ControlEvent event;
+  event.control_id(4);
+  event.from_position(0);
+  event.to_position(1);
+  event.cause(cockpit::PUSHED);
+  event.hand_id(0);
+  event.sim_time_ns(2 * kSecond);
+  model.on_control_event(event);
+  cockpit::GraspEvent grasp;
+  grasp.object_id(9);
+  grasp.hand_id(1);
+  grasp.kind(cockpit::RELEASE);
+  grasp.reason("hand opened");
+  model.on_grasp_event(grasp);
+  auto events = model.events_json(-1)["events"];
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0]["text"], "CONTROL control 4 0 -> 1 (pushed, right hand)") << "not known yet";
+  EXPECT_EQ(events[1]["text"], "RELEASE object 9 (left hand): hand opened");
+
+  cockpit::ControlInfo info;
+  info.control_id(4);
+  info.name("flaps");
+  info.kind(cockpit::LEVER);
+  info.position_count(2);
+  info.position_names("up|approach|");
+  model.on_control_info(info);
+  cockpit::ObjectInfo torch;
+  torch.object_id(9);
+  torch.name("flashlight");
+  model.on_object_info(torch);
+  events = model.events_json(-1)["events"];
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0]["text"], "CONTROL flaps up -> approach (pushed, right hand)");
+  EXPECT_EQ(events[1]["text"], "RELEASE flashlight (left hand): hand opened");
+}
+
 TEST(StationModel, EventsAreReadFromACursorAndTheOldestGoFirst) {
   StationModel model;
   for (int i = 0; i < 250; ++i) model.on_command_sent("SENT freeze (#" + std::to_string(i) + ")");
