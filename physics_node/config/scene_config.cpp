@@ -489,7 +489,7 @@ physics::ProxyParams parse_proxy(const ConfigNode& node) {
   read_optional(node, "static_depth_m", p.static_depth_m,
                 [](const ConfigNode& n) { return in_open_closed(n, 0.0, 1.0e-3); });
   read_optional(node, "pass_through_depth_m", p.pass_through_depth_m,
-                non_negative);  // 0: until no link touches it
+                non_negative);  // 0: until no link is in the object
   if (p.push_speed_mps > p.max_speed_mps) {
     const ConfigNode at =
         node.has("push_speed_mps") ? node["push_speed_mps"] : node["max_speed_mps"];

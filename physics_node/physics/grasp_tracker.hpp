@@ -102,8 +102,9 @@ struct GraspHold {
   // round the hand (World::reset_objects). A tracker that starts with the hand through an object
   // (a hand resting where a virtual object stands) must not fling it: the solver pushed it out
   // of 5 cm of hand in one step (3.5 m/s). The hand passes through it, as the glove's does,
-  // until no link touches it (World::pass_through); a hand that only partly passed would be
-  // pushed by the links inside onto the object with those outside.
+  // until its links are in it no deeper than ProxyParams::pass_through_depth_m (World::
+  // pass_through; at once for a hand that appears only touching it); a hand that only partly
+  // passed would be pushed by the links inside onto the object with those outside.
   bool passing_through = false;
 };
 

@@ -190,8 +190,9 @@ TEST(ProxyHand, ASweptBallGetsAboutThePushSpeed) {
 
 // A hand whose first input has fingers through a 60 g ball on the console (a tracker that starts
 // with the hand where a virtual object stands), held there, then drawn back and swept through the
-// ball's place at 2 m/s: the hand passes through the ball until no link touches it
-// (GraspHold::passing_through), then pushes it as any hand does. Before, the first step pushed
+// ball's place at 2 m/s: the hand (27 mm in it) passes through the ball until it is in it no
+// deeper than proxy.pass_through_depth_m (GraspHold::passing_through), then pushes it as any hand
+// does. Before, the first step pushed
 // the ball out of the fingers at once.
 struct AppearedInside {
   bool passing = false;             // after the first input
