@@ -31,6 +31,7 @@
 #include "hand/glove_log.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/grip_replay.hpp"
+#include "tests/scenario/real_grip/real_grip_run.hpp"
 
 namespace vcockpit {
 namespace {
@@ -78,15 +79,9 @@ TEST_P(RealLeapDegraded, TheFistHoldsTheBarUntilItOpensAndNoLinkSinksIn) {
     if (row.valid) samples.push_back(row.sample);  // a dropout row is read as no sample
   ASSERT_GT(samples.size(), 50u);  // 3 s, at 30 Hz and up
 
-  physics_io::GripReplayOptions options;
-  options.settle_s = 0.3;
-  double fastest_free_settling_mps = 0.0;  // until settle_s after the release
-  options.stop = [&](const physics_io::GripReplay& run, double t_s) {
-    if (run.release_s < 0.0 || t_s <= run.release_s + options.settle_s)
-      fastest_free_settling_mps = run.fastest_free_horizontal_mps;
-    return false;
-  };
-  const physics_io::GripReplay run = physics_io::replay_grip(scene, samples, bar, pedestal, options);
+  const real_grip::SettlingRun settling = real_grip::replay_settling(scene, samples, bar, pedestal);
+  const physics_io::GripReplay& run = settling.run;
+  const double fastest_free_settling_mps = settling.fastest_free_settling_mps;
   std::printf("%s seed %llu: %sdeepest link in the bar %.2f mm (at %.3f s), in a static object "
               "%.2f mm; fastest free until 0.3 s after the release %.3f m/s\n",
               GetParam().preset, static_cast<unsigned long long>(GetParam().seed),

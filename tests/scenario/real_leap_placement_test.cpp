@@ -29,6 +29,7 @@
 #include "hand/glove_log.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/io/grip_replay.hpp"
+#include "tests/scenario/real_grip/real_grip_run.hpp"
 #include "physics_node/physics/broadphase.hpp"
 
 namespace vcockpit {
@@ -131,15 +132,9 @@ TEST_P(RealLeapPlacement, TheFistTakesTheObjectAndHoldsItUntilItOpens) {
   scene.objects[static_cast<std::size_t>(pedestal)].X_GO.translation() += shift_G;
   scene.objects[static_cast<std::size_t>(table)].X_GO.translation() += p.shift_m.z() * up_G;
 
-  physics_io::GripReplayOptions options;
-  options.settle_s = 0.3;
-  double fastest_free_settling_mps = 0.0;  // until settle_s after the release
-  options.stop = [&](const physics_io::GripReplay& run, double t_s) {
-    if (run.release_s < 0.0 || t_s <= run.release_s + options.settle_s)
-      fastest_free_settling_mps = run.fastest_free_horizontal_mps;
-    return false;
-  };
-  const physics_io::GripReplay run = physics_io::replay_grip(scene, log.samples, bar, pedestal, options);
+  const real_grip::SettlingRun settling = real_grip::replay_settling(scene, log.samples, bar, pedestal);
+  const physics_io::GripReplay& run = settling.run;
+  const double fastest_free_settling_mps = settling.fastest_free_settling_mps;
   std::printf("%sdeepest link in the object %.2f mm (at %.3f s), in a static object %.2f mm; "
               "fastest free until 0.3 s after the release %.3f m/s\n",
               run.events.c_str(), run.deepest_link_in_object_m * 1e3, run.deepest_link_in_object_at_s,

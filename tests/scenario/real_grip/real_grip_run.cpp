@@ -22,4 +22,18 @@ RealGripRun replay_real_grip(const std::string& scene_path, const std::string& l
   return physics_io::replay_grip(scene, log.samples, object, support, options);
 }
 
+SettlingRun replay_settling(const physics::Scene& scene, const std::vector<hand::GloveSample>& samples,
+                            int object, int support, double settle_s) {
+  SettlingRun out;
+  physics_io::GripReplayOptions options;
+  options.settle_s = settle_s;
+  options.stop = [&](const physics_io::GripReplay& run, double t_s) {
+    if (run.release_s < 0.0 || t_s <= run.release_s + settle_s)
+      out.fastest_free_settling_mps = run.fastest_free_horizontal_mps;
+    return false;
+  };
+  out.run = physics_io::replay_grip(scene, samples, object, support, options);
+  return out;
+}
+
 }  // namespace vcockpit::real_grip
