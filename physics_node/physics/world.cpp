@@ -310,7 +310,7 @@ void World::reset_objects(const WorldState& saved) {
   collision_.set_object_poses(X_GO_);
   for (int h = 0; h < hand_count(); ++h)
     if (hand_state(h).active) note_objects_around(h);
-  count_passing_through();  // (the holds were made afresh above, hands active or not)
+  count_passing_through();
 }
 
 void World::set_hand_input(const HandInput& input, int hand) {
@@ -328,6 +328,7 @@ void World::set_hand_input(const HandInput& input, int hand) {
     sim.X_GL_before = hs.X_GL;
     sim.proxy_prev_links_valid = false;
     note_objects_around(hand);
+    count_passing_through();
   }
 }
 
@@ -341,7 +342,6 @@ void World::note_objects_around(int hand) {
         inside = collision_.link_overlaps(hand, static_cast<Link>(l), hs.X_GL[l], i);
     hs.grasp[static_cast<std::size_t>(i)].passing_through = inside;
   }
-  count_passing_through();
 }
 
 void World::count_passing_through() {

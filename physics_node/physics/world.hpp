@@ -255,7 +255,8 @@ class World {
   std::vector<uint8_t> may_sleep_;              // per object, at the end of a step (update_sleep)
   std::vector<double> deepest_in_;              // pass_through's, per hand and object (m; -1 apart)
   // the holds with GraspHold::passing_through set, derived from the state (kept by
-  // note_objects_around, pass_through and restore) so that a step without any scans none
+  // count_passing_through after each change: a hand's first input, a reset, pass_through and
+  // restore) so that a step without any scans none
   int passing_through_ = 0;
   std::vector<BodyState> start_bodies_;         // the bodies at the start of this step
   std::vector<HandOnObject> on_object_;         // the grasp stage's, per hand
