@@ -8,6 +8,7 @@
 
 #include "common/clock.hpp"
 #include "idl/topics/bar_list.hpp"
+#include "idl/topics/sim_ack_frozen.hpp"
 
 namespace vcockpit::instructor {
 namespace {
@@ -207,8 +208,8 @@ void StationModel::on_control_event(const cockpit::ControlEvent& event) {
 
 void StationModel::on_ack(const cockpit::SimAck& ack) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (ack.sim_time_ns() >= 0) {  // the physics node's: the world's state after it
-    frozen_ = ack.frozen();
+  if (const std::optional<bool> frozen = physics_frozen_after(ack)) frozen_ = *frozen;
+  if (ack.sim_time_ns() >= 0) {  // the physics node's or the systems node's: the world's time
     note_sim_time(ack.sim_time_ns());
     if (ack.accepted() && ack.kind() == cockpit::SAVE_CHECKPOINT) {
       // the name is the detail's quoted word: "checkpoint 'NAME' saved at ..."

@@ -73,6 +73,14 @@ TEST(StationModel, SimTimeIsTheNewestSeenAndFrozenComesFromThePhysicsAck) {
   ack.frozen(false);
   model.on_ack(ack);
   EXPECT_TRUE(model.state_json(0)["sim"]["frozen"].get<bool>());
+  // nor the systems node's answer to a reset: it has the world's time but does not know whether
+  // the physics is frozen (it says false), and may arrive after the physics node's
+  ack.kind(cockpit::RESET_TO_START);
+  ack.node_name("systems_node");
+  ack.sim_time_ns(2 * kSecond);
+  ack.frozen(false);
+  model.on_ack(ack);
+  EXPECT_TRUE(model.state_json(0)["sim"]["frozen"].get<bool>());
 
   ack.kind(cockpit::SAVE_CHECKPOINT);
   ack.node_name("physics_node");
