@@ -168,6 +168,11 @@ int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Sour
   uint64_t skipped = 0;
   bool restarted = false;
   bool ended = false;
+  // Restarted while the physics is frozen (an instructor's freeze, reset, restart, unfreeze):
+  // the replay stands at its first sample, given again every sample interval with its time going
+  // on, until time goes on. Started at once, its first seconds would play to a frozen world and
+  // be lost by the unfreeze.
+  bool holding_start = false;
   hand::GloveSample sample;
   int64_t due_ns = 0;
   while (!shutdown_requested()) {
@@ -175,6 +180,15 @@ int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Sour
       source.restart();
       restarted = true;
       ended = false;
+      holding_start = commands.physics_frozen();
+      if (holding_start) spdlog::info("the physics is frozen: the replay waits at its start until time goes on");
+    } else if (holding_start) {
+      if (commands.physics_frozen()) {
+        source.restart();  // the first sample again, one sample interval on
+      } else {
+        holding_start = false;
+        spdlog::info("time goes on: the replay plays from its start");
+      }
     }
     if (!source.next(sample, due_ns)) {
       if (!hold_at_end) break;
@@ -199,6 +213,7 @@ int run_publisher(DdsParticipant& participant, const hand::HandModel& hand, Sour
       joining = false;
     }
     if (due_ns > 0) sleep_until_ns(start_ns + due_ns);
+    if (holding_start && due_ns == 0) sleep_until_ns(monotonic_now_ns() + 10'000'000);  // (--rate 0)
     publisher.publish(sample);
     if (joints_publisher && source.tracked_joints() != nullptr)
       joints_publisher->publish(*source.tracked_joints(), sample.t_ns);

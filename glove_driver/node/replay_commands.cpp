@@ -2,14 +2,19 @@
 
 #include <spdlog/spdlog.h>
 
+#include "idl/topics/sim_ack_frozen.hpp"
+
 namespace vcockpit::glove {
 
 ReplayCommands::ReplayCommands(DdsParticipant& participant, std::string node_name)
     : reader_(participant.make_reader<cockpit::SimCommand>("command")),
       ack_writer_(participant.make_writer<cockpit::SimAck>("event")),
+      ack_reader_(participant.make_reader<cockpit::SimAck>("event")),
       node_name_(std::move(node_name)) {}
 
 bool ReplayCommands::take_restart(bool can_restart) {
+  while (ack_reader_.take(ack_))
+    if (const std::optional<bool> frozen = physics_frozen_after(ack_)) physics_frozen_ = *frozen;
   bool restart = false;
   while (reader_.take(command_)) {
     if (command_.kind() != cockpit::RESTART_REPLAY) continue;  // the physics node's

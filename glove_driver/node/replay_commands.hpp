@@ -1,7 +1,8 @@
 #pragma once
 // The instructor's RESTART_REPLAY (cockpit/sim_command) as a glove driver takes it: each is
 // answered on cockpit/sim_ack, refused for a source that cannot start over. The other commands
-// are the physics node's and are left to it.
+// are the physics node's and are left to it; its acknowledgements say whether its time is
+// frozen, so that a replay restarted while frozen starts when time goes on (run_publisher).
 
 #include <cstdint>
 #include <string>
@@ -13,16 +14,23 @@ namespace vcockpit::glove {
 class ReplayCommands {
  public:
   ReplayCommands(DdsParticipant& participant, std::string node_name);
-  // Takes every pending command (no blocking); true when a restart was asked and `can_restart`.
+  // Takes every pending command and acknowledgement (no blocking); true when a restart was
+  // asked and `can_restart`.
   bool take_restart(bool can_restart);
   uint64_t restarts() const { return restarts_; }
+  // The physics node's time is frozen, as its latest acknowledgement taken says (false before
+  // any: a driver started after a freeze does not know of it).
+  bool physics_frozen() const { return physics_frozen_; }
 
  private:
   Reader<cockpit::SimCommand> reader_;
   Writer<cockpit::SimAck> ack_writer_;
+  Reader<cockpit::SimAck> ack_reader_;
   std::string node_name_;
   cockpit::SimCommand command_;
+  cockpit::SimAck ack_;
   uint64_t restarts_ = 0;
+  bool physics_frozen_ = false;
 };
 
 }  // namespace vcockpit::glove

@@ -3,12 +3,14 @@
 // goes on from the frozen time with the objects where they were; a reset puts the objects and
 // controls back (to the start, or to a named checkpoint) while time goes on, and lets go of a
 // held object; a checkpoint that does not exist is refused with its name; a glove driver that
-// reached the end of its log waits, and starts over on a restart with its time going on.
+// reached the end of its log waits, and starts over on a restart with its time going on; a
+// replay restarted while the physics is frozen waits at its start until time goes on.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "common/clock.hpp"
 #include "dds/dds_options.hpp"
@@ -267,6 +269,78 @@ TEST_F(SimCommandTest, AGloveDriverAtTheEndOfItsLogWaitsAndStartsOverOnARestart)
   }
   EXPECT_TRUE(resumed) << text("glove.log");
   EXPECT_EQ(glove.stop(), 0) << text("glove.log");
+}
+
+// An instructor's rerun: freeze, restart replay, unfreeze. The replay waits at its first sample
+// (given again and again, its time going on) while the physics is frozen, and plays from there
+// when time goes on; started at once, the pilot's first actions played to a frozen world were
+// lost when the instructor was slow to unfreeze.
+TEST_F(SimCommandTest, AReplayRestartedWhileFrozenWaitsAtItsStartUntilTimeGoesOn) {
+  ChildProcess node = start("physics_node", {}, "node.log");
+  ChildProcess glove = start("glove_driver", {"--source", "replay", "--log", source_dir() + kGraspLog},
+                             "glove.log");
+  DdsParticipant participant(resolve_dds_options(DdsFlags{}), "sim_command_test");
+  auto samples = participant.make_reader<cockpit::HandSample>("stream");
+  Instructor instructor(participant);
+  ASSERT_TRUE(instructor.matched(2)) << text("node.log") << text("glove.log");
+  cockpit::HandSample sample;
+  int received = 0;
+  for (const int64_t deadline = monotonic_now_ns() + kWait_ns; received < 300 && monotonic_now_ns() < deadline;) {
+    samples.wait_for_data(50'000'000);
+    while (samples.take(sample)) ++received;
+  }
+  ASSERT_GE(received, 300) << "the replay plays: " << text("glove.log");
+
+  const cockpit::SimAck frozen = instructor.send(cockpit::FREEZE, "physics_node");
+  ASSERT_TRUE(frozen.frozen()) << frozen.detail();
+  const cockpit::SimAck restarted = instructor.send(cockpit::RESTART_REPLAY, "glove_driver");
+  ASSERT_TRUE(restarted.accepted()) << restarted.detail();
+  // a second of frozen time: what was in flight before the restart, then the first sample over
+  // and over, one sample interval apart
+  std::vector<cockpit::HandSample> while_frozen;
+  for (const int64_t until = monotonic_now_ns() + 1'000'000'000; monotonic_now_ns() < until;) {
+    samples.wait_for_data(20'000'000);
+    while (samples.take(sample)) while_frozen.push_back(sample);
+  }
+  ASSERT_GE(while_frozen.size(), 100u) << "it keeps giving samples: " << text("glove.log");
+  const cockpit::HandSample held = while_frozen.back();
+  const auto same_pose = [](const cockpit::HandSample& a, const cockpit::HandSample& b) {
+    return a.X_MT().position_m().x() == b.X_MT().position_m().x() &&
+           a.X_MT().position_m().y() == b.X_MT().position_m().y() &&
+           a.joint_angles_rad() == b.joint_angles_rad();
+  };
+  std::size_t first_held = while_frozen.size() - 1;
+  while (first_held > 0 && same_pose(while_frozen[first_held - 1], held)) --first_held;
+  EXPECT_GE(while_frozen.size() - first_held, 100u)
+      << "the first sample again for most of the frozen second, not the log playing on";
+  for (std::size_t i = first_held + 1; i < while_frozen.size(); ++i) {
+    const int64_t step_ns = while_frozen[i].sample_time_ns() - while_frozen[i - 1].sample_time_ns();
+    ASSERT_GT(step_ns, 0) << "its time goes on at " << i;
+    ASSERT_LT(step_ns, 100'000'000) << "one interval on at " << i;
+  }
+  EXPECT_NE(text("glove.log").find("the replay waits at its start"), std::string::npos) << text("glove.log");
+
+  const cockpit::SimAck going = instructor.send(cockpit::UNFREEZE, "physics_node");
+  EXPECT_FALSE(going.frozen());
+  bool played = false;
+  int64_t last_held_ns = held.sample_time_ns();
+  for (const int64_t until = monotonic_now_ns() + 2'000'000'000; !played && monotonic_now_ns() < until;) {
+    samples.wait_for_data(20'000'000);
+    while (!played && samples.take(sample)) {
+      if (same_pose(sample, held)) {
+        last_held_ns = sample.sample_time_ns();
+        continue;
+      }
+      played = true;
+      EXPECT_GT(sample.sample_time_ns(), last_held_ns);
+      EXPECT_LT(sample.sample_time_ns() - last_held_ns, 100'000'000) << "the log's second sample next";
+    }
+  }
+  EXPECT_TRUE(played) << "the replay plays on after the unfreeze: " << text("glove.log");
+  EXPECT_NE(text("glove.log").find("time goes on: the replay plays from its start"), std::string::npos)
+      << text("glove.log");
+  EXPECT_EQ(glove.stop(), 0) << text("glove.log");
+  EXPECT_EQ(node.stop(), 0) << text("node.log");
 }
 
 }  // namespace
