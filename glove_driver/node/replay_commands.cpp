@@ -17,6 +17,11 @@ bool ReplayCommands::take_restart(bool can_restart) {
     if (const std::optional<bool> frozen = physics_frozen_after(ack_)) physics_frozen_ = *frozen;
   bool restart = false;
   while (reader_.take(command_)) {
+    // A freeze or unfreeze is the physics node's to take; its answer may come after the
+    // instructor's next command (another writer, no order between them), so the command itself
+    // says first what time will do: an instructor's freeze, then restart, arrive in that order.
+    if (command_.kind() == cockpit::FREEZE) physics_frozen_ = true;
+    if (command_.kind() == cockpit::UNFREEZE) physics_frozen_ = false;
     if (command_.kind() != cockpit::RESTART_REPLAY) continue;  // the physics node's
     cockpit::SimAck ack;
     ack.command_seq(command_.seq());

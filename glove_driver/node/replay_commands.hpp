@@ -1,8 +1,9 @@
 #pragma once
 // The instructor's RESTART_REPLAY (cockpit/sim_command) as a glove driver takes it: each is
 // answered on cockpit/sim_ack, refused for a source that cannot start over. The other commands
-// are the physics node's and are left to it; its acknowledgements say whether its time is
-// frozen, so that a replay restarted while frozen starts when time goes on (run_publisher).
+// are the physics node's and are left to it; the freezes and unfreezes, and the physics node's
+// answers to them, say whether its time is frozen, so that a replay restarted while frozen
+// starts when time goes on (run_publisher).
 
 #include <cstdint>
 #include <string>
@@ -18,8 +19,9 @@ class ReplayCommands {
   // asked and `can_restart`.
   bool take_restart(bool can_restart);
   uint64_t restarts() const { return restarts_; }
-  // The physics node's time is frozen, as its latest acknowledgement taken says (false before
-  // any: a driver started after a freeze does not know of it).
+  // The physics node's time is frozen, as the latest freeze or unfreeze taken says: the
+  // instructor's command, or the physics node's answer to one (false before any: a driver
+  // started after a freeze does not know of it).
   bool physics_frozen() const { return physics_frozen_; }
 
  private:
