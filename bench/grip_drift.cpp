@@ -18,7 +18,6 @@
 //              --object NAME --from T [--to T] [--every 0.05]
 
 #include <CLI/CLI.hpp>
-#include <Eigen/SVD>
 
 #include <algorithm>
 #include <array>
@@ -32,6 +31,7 @@
 #include "hand/tracker.hpp"
 #include "hand/tracking/joints_log.hpp"
 #include "hand/tracking/joints_replay.hpp"
+#include "hand/tracking/rigid_fit.hpp"
 #include "physics_node/config/scene_config.hpp"
 #include "physics_node/physics/grasp_tracker.hpp"
 
@@ -39,26 +39,6 @@ namespace {
 
 using namespace vcockpit;
 using Points = std::vector<Eigen::Vector3d>;
-
-// The rigid transform taking points `a` onto `b` in the least-squares sense (Kabsch).
-Eigen::Isometry3d rigid_fit(const Points& a, const Points& b) {
-  Eigen::Vector3d ca = Eigen::Vector3d::Zero(), cb = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    ca += a[i];
-    cb += b[i];
-  }
-  ca /= static_cast<double>(a.size());
-  cb /= static_cast<double>(b.size());
-  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-  for (std::size_t i = 0; i < a.size(); ++i) H += (a[i] - ca) * (b[i] - cb).transpose();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
-  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0) D(2, 2) = -1.0;
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = svd.matrixV() * D * svd.matrixU().transpose();
-  X.translation() = cb - X.linear() * ca;
-  return X;
-}
 
 struct HandAt {
   double t_s = 0.0;
@@ -112,7 +92,7 @@ void print_glove_drift(const physics::Scene& scene, const std::string& scene_pat
     const Eigen::Vector3d d_wrist =
         (it->X_GH * taken->X_GH.inverse() * X_GO).translation() - X_GO.translation();
     const Eigen::Vector3d d_links =
-        (rigid_fit(taken->points, it->points) * X_GO).translation() - X_GO.translation();
+        (hand::tracking::rigid_fit(taken->points, it->points) * X_GO).translation() - X_GO.translation();
     const Eigen::Vector3d d_links_O = X_GO.linear().transpose() * d_links;
     std::printf("%8.3f %12.1f %10.1f %12.1f %10.1f %10.1f   %6.1f %6.1f %6.1f\n", it->t_s,
                 d_wrist.head<2>().norm() * 1e3, d_wrist.z() * 1e3, d_links.head<2>().norm() * 1e3,

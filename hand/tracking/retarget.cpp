@@ -1,11 +1,10 @@
 #include "hand/tracking/retarget.hpp"
 
-#include <Eigen/SVD>
-
 #include <algorithm>
 #include <cmath>
 
 #include "hand/tracker.hpp"
+#include "hand/tracking/rigid_fit.hpp"
 
 namespace vcockpit::hand::tracking {
 namespace {
@@ -81,7 +80,8 @@ bool Retargeter::place_palm(const JointsFrame& frame) {
   const auto origin = [&](Link l) { return poses_.X_HL[static_cast<std::size_t>(l)].translation(); };
   // the model's palm points in H and the tracked joint each matches; the palm's own points (its
   // centre, the thumb's base, the wrist) make the fit a plane, not the knuckles' line
-  const std::array<std::pair<Eigen::Vector3d, PalmPoint>, 7> points = {{
+  constexpr std::size_t kPalmPoints = 7;
+  const std::array<std::pair<Eigen::Vector3d, PalmPoint>, kPalmPoints> points = {{
       {model_.p_H_palm_joint, {XrJoint::kPalm, 1.0}},
       {origin(Link::kIndexProximal), {XrJoint::kIndexProximal, 1.0}},
       {origin(Link::kMiddleProximal), {XrJoint::kMiddleProximal, 1.0}},
@@ -90,34 +90,23 @@ bool Retargeter::place_palm(const JointsFrame& frame) {
       {origin(Link::kThumbProximal), {XrJoint::kThumbMetacarpal, 0.5}},
       {model_.p_H_wrist_joint, {XrJoint::kWrist, 0.5}},
   }};
-  double total = 0.0;
-  int count = 0;
+  std::array<Eigen::Vector3d, kPalmPoints> model_H, tracked_G;
+  std::array<double, kPalmPoints> weight{};
+  std::size_t count = 0;
   bool off_the_line = false;
-  Eigen::Vector3d model_c = Eigen::Vector3d::Zero(), tracked_c = Eigen::Vector3d::Zero();
   for (const auto& [p_H, m] : points) {
     const TrackedJoint& t = frame[m.tracked];
     if (!t.valid) continue;
-    total += m.weight;
+    model_H[count] = p_H;
+    tracked_G[count] = t.p_m;
+    weight[count] = m.weight;
     ++count;
-    model_c += m.weight * p_H;
-    tracked_c += m.weight * t.p_m;
     off_the_line = off_the_line || m.tracked == XrJoint::kPalm || m.tracked == XrJoint::kWrist ||
                    m.tracked == XrJoint::kThumbMetacarpal;
   }
   if (count < 3 || !off_the_line) return false;
-  model_c /= total;
-  tracked_c /= total;
-  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-  for (const auto& [p_H, m] : points) {
-    const TrackedJoint& t = frame[m.tracked];
-    if (t.valid) H += m.weight * (p_H - model_c) * (t.p_m - tracked_c).transpose();
-  }
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
-  D(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
-  const Eigen::Matrix3d R_GH = svd.matrixV() * D * svd.matrixU().transpose();
-  result_.X_GH.linear() = R_GH;
-  result_.X_GH.translation() = tracked_c - R_GH * model_c;
+  result_.X_GH = rigid_fit(std::span(model_H).first(count), std::span(tracked_G).first(count),
+                           std::span(weight).first(count));
   return true;
 }
 
