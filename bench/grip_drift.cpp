@@ -39,6 +39,7 @@ namespace {
 
 using namespace vcockpit;
 using Points = std::vector<Eigen::Vector3d>;
+using hand::tracking::rigid_fit;
 
 struct HandAt {
   double t_s = 0.0;
@@ -92,7 +93,7 @@ void print_glove_drift(const physics::Scene& scene, const std::string& scene_pat
     const Eigen::Vector3d d_wrist =
         (it->X_GH * taken->X_GH.inverse() * X_GO).translation() - X_GO.translation();
     const Eigen::Vector3d d_links =
-        (hand::tracking::rigid_fit(taken->points, it->points) * X_GO).translation() - X_GO.translation();
+        (rigid_fit(taken->points, it->points) * X_GO).translation() - X_GO.translation();
     const Eigen::Vector3d d_links_O = X_GO.linear().transpose() * d_links;
     std::printf("%8.3f %12.1f %10.1f %12.1f %10.1f %10.1f   %6.1f %6.1f %6.1f\n", it->t_s,
                 d_wrist.head<2>().norm() * 1e3, d_wrist.z() * 1e3, d_links.head<2>().norm() * 1e3,

@@ -134,7 +134,7 @@ class FaultKillTest : public ProcessTest {
   // at or before the killed node's newest. So a state received after this test has seen the
   // restarted node's "resumed from" (its `resumes`-th) is the restarted node's too.
   void check_physics_resumes(int64_t killed_ns, int cup_id, int resumes,
-                             const physics_io::Checkpoint& saved) {
+                             const physics_io::Checkpoint& saved, double gravity_mps2) {
     ASSERT_FALSE(MonitorLog::read(monitor_path()).watched.empty())
         << "object " << cup_id << " never seen before the kill";
     std::size_t resumed_at = 0;
@@ -226,11 +226,9 @@ class FaultKillTest : public ProcessTest {
     // on the console, let go as the glove set it down and opened). From there it falls at most
     // g dt^2 / 2 in the time it was not seen.
     double fall_m = 0.0;
-    const bool held_at_checkpoint =
-        saved.world.bodies.at(static_cast<std::size_t>(cup_id)).held_by != physics::kNotHeld;
-    if (held_at_checkpoint && new_cup.held < 0) {
+    if (saved.world.bodies.at(static_cast<std::size_t>(cup_id)).held() && new_cup.held < 0) {
       const double unseen_s = ns_to_seconds(new_cup.sim_time_ns - checkpoint_ns);
-      fall_m = 0.5 * 9.81 * unseen_s * unseen_s;
+      fall_m = 0.5 * gravity_mps2 * unseen_s * unseen_s;
       std::printf("  the cup, held at the checkpoint, was let go before %.3f s: it may have "
                   "fallen %.1f mm\n",
                   ns_to_seconds(new_cup.sim_time_ns), fall_m * 1e3);
@@ -354,7 +352,8 @@ TEST_F(FaultKillTest, EachNodeKilledTwiceAtSeededMomentsIsRestartedAndTheRigCarr
     SCOPED_TRACE("kill " + std::to_string(kill + 1) + ": " + node);
     if (node == "physics_node") {
       const physics_io::Checkpoint saved = saved_checkpoint(fresh_world);
-      check_physics_resumes(killed_ns, cup_id, kill / 3 + 1, saved);
+      check_physics_resumes(killed_ns, cup_id, kill / 3 + 1, saved,
+                            fresh_world.scene().gravity_mps2.norm());
     } else if (node == "image_generator") {
       check_image_generator_renders(killed_ns);
     } else {
